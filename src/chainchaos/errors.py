@@ -1,0 +1,28 @@
+"""Exceptions with messages that name the bad value and what is allowed."""
+
+
+class ParameterError(ValueError):
+    """An invalid parameter: the message names the parameter, its value and what is allowed."""
+
+    def __init__(self, name: str, value, allowed: str):
+        self.name, self.value, self.allowed = name, value, allowed
+        super().__init__(f"invalid {name} = {value!r}: allowed is {allowed}")
+
+
+class ChainFileError(ValueError):
+    """A chain file that is missing or lacks a variable of the data contract."""
+
+
+class SimulationError(RuntimeError):
+    """A run stopped by a guard (non-finite state or energy error above the bound)."""
+
+    def __init__(self, scene: str, time: float, quantity: str, value: float, bound: str = ""):
+        self.scene, self.time, self.quantity, self.value = scene, time, quantity, value
+        detail = f" (bound {bound})" if bound else ""
+        super().__init__(f"scene {scene!r} stopped at t = {time:.6g}: {quantity} = {value:.6g}{detail}")
+
+
+def require(condition: bool, name: str, value, allowed: str) -> None:
+    """Raise :class:`ParameterError` unless ``condition`` holds."""
+    if not condition:
+        raise ParameterError(name, value, allowed)

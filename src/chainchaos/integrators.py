@@ -1,0 +1,203 @@
+"""Symplectic splitting schemes for H = T(p) + V(u), applied together with their tangent map.
+
+A scheme is a table of coefficients: one step of size dt is
+
+    kick(b_0) drift(a_0) kick(b_1) drift(a_1) ... drift(a_{s-1}) kick(b_s)
+
+with drift(c): u += c dt M^-1 p and kick(d): p += d dt F(u). The tangent map method (Skokos &
+Gerlach 2010) applies the same maps to a deviation vector (du, dp):
+
+    drift(c): du += c dt M^-1 dp        kick(d): dp -= d dt Hess V(u) du
+
+with Hess V tridiagonal from the bond stiffness k = df/dD. A zero kick is skipped, and a force
+evaluation is reused by the next kick when no drift came in between, so schemes whose step starts
+and ends with a kick (BAB, "first same as last") cost one force evaluation less per step.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+from numba import njit
+
+from chainchaos.errors import require
+from chainchaos.models import bond_forces
+
+
+@dataclass(frozen=True)
+class Scheme:
+    name: str
+    order: int
+    kicks: np.ndarray
+    drifts: np.ndarray
+    reference: str
+
+    @property
+    def force_evaluations(self) -> int:
+        """Force evaluations per step in a long run (kicks not preceded directly by a kick)."""
+        stages = [("k", b) for b in self.kicks[:1]]
+        for a, b in zip(self.drifts, self.kicks[1:]):
+            stages += [("d", a), ("k", b)]
+        ops = [kind for kind, c in stages if c != 0.0]
+        cyclic = ops + ops[:1]
+        return sum(1 for i in range(len(ops)) if cyclic[i + 1] == "k" and cyclic[i] == "d")
+
+
+def _symmetric(half: list[float], middle: float | None = None) -> np.ndarray:
+    tail = half[::-1]
+    return np.array(half + ([middle] if middle is not None else []) + tail)
+
+
+def _kick_drift_pairs(b: list[float], a: list[float]) -> tuple[np.ndarray, np.ndarray]:
+    """Pairs (kick b_i, drift a_i) as written by Blanes & Moan and McLachlan & Atela."""
+    return np.array(b + [0.0]), np.array(a)
+
+
+def _composition_of_verlet(weights: list[float]) -> tuple[np.ndarray, np.ndarray]:
+    """Compose kick-drift-kick Verlet sub-steps of sizes w_i dt, merging adjacent half kicks."""
+    w = np.asarray(weights)
+    kicks = np.concatenate(([w[0] / 2], (w[:-1] + w[1:]) / 2, [w[-1] / 2]))
+    return kicks, w.copy()
+
+
+def _build_table() -> dict[str, Scheme]:
+    table = {}
+
+    def add(name, order, kicks, drifts, reference):
+        kicks, drifts = np.asarray(kicks, float), np.asarray(drifts, float)
+        assert kicks.size == drifts.size + 1
+        assert abs(kicks.sum() - 1) < 1e-14 and abs(drifts.sum() - 1) < 1e-14, name
+        table[name] = Scheme(name, order, kicks, drifts, reference)
+
+    add("verlet", 2, [0.5, 0.5], [1.0], "velocity Verlet (Stormer-Verlet, kick-drift-kick)")
+
+    # McLachlan & Atela 1992, optimal fourth order RKN (4 stages, non-symmetric).
+    add("mclachlan_atela4", 4, *_kick_drift_pairs(
+        [0.1344961992774310892, -0.2248198030794208058, 0.7563200005156682911, 0.3340036032863214255],
+        [0.5153528374311229364, -0.085782019412973646, 0.4415830236164665242, 0.1288461583653841854]),
+        "McLachlan & Atela, Nonlinearity 5, 541 (1992)")
+
+    # Blanes & Moan 2002, SRKN_6^b: order 4, BAB, 6 force evaluations per step.
+    b1, b2, b3 = 0.082984406417405200, 0.39630980149836800, -0.039056304922348600
+    a1, a2 = 0.24529895718427100, 0.60487266571108000
+    add("SRKN6b", 4, _symmetric([b1, b2, b3], 1 - 2 * (b1 + b2 + b3)),
+        _symmetric([a1, a2, 0.5 - a1 - a2]),
+        "Blanes & Moan, J. Comput. Appl. Math. 142, 313 (2002), SRKN_6^b")
+
+    # Blanes, Casas, Farres, Laskar, Makazaga & Murua 2013, ABA864: order 4 (8,6,4), 7 evaluations.
+    a = [0.0711334264982231177779387300061549964174, 0.241153427956640098736487795326289649618,
+         0.521411761772814789212136078067994229991, -0.333698616227678005726562603400438876027]
+    b = [0.183083687472197221961703757166430291072, 0.310782859898574869507522291054262796375,
+         -0.0265646185119588006972121379164987592663]
+    add("ABA864", 4, np.concatenate(([0.0], _symmetric(b, 1 - 2 * sum(b)), [0.0])),
+        _symmetric(a[:3] + [0.5 - sum(a[:3])]),
+        "Blanes et al., Appl. Numer. Math. 68, 58 (2013), ABA(8,6,4)")
+
+    # Blanes & Moan 2002, SRKN_11^b: order 6, BAB, 11 force evaluations per step.
+    b = [0.041464998518262400, 0.19812867191806700, -0.040006192104153300,
+         0.075253984301580700, -0.011511387420687900]
+    a = [0.12322977594627100, 0.29055379779955800, -0.12704921262541700,
+         -0.24633176106207500, 0.35720887279592800]
+    add("SRKN11b", 6, _symmetric(b + [0.5 - sum(b)]), _symmetric(a, 1 - 2 * sum(a)),
+        "Blanes & Moan, J. Comput. Appl. Math. 142, 313 (2002), SRKN_11^b")
+
+    # Yoshida 1990, sixth order solution A: seven Verlet sub-steps.
+    w1, w2, w3 = -1.17767998417887, 0.235573213359357, 0.784513610477560
+    add("yoshida6", 6, *_composition_of_verlet([w3, w2, w1, 1 - 2 * (w1 + w2 + w3), w1, w2, w3]),
+        "Yoshida, Phys. Lett. A 150, 262 (1990), solution A")
+    return table
+
+
+SCHEMES: dict[str, Scheme] = _build_table()
+
+
+def get_scheme(name: str) -> Scheme:
+    require(name in SCHEMES, "integrator", name, f"one of {sorted(SCHEMES)}")
+    return SCHEMES[name]
+
+
+@njit(cache=True)
+def _kick(p, dp, f, k, g, dq, c, tangent):
+    N = p.shape[0]
+    for n in range(N):
+        p[n] += c * (f[n] - f[n + 1])
+    if tangent:
+        g[0] = -k[0] * dq[0]
+        for b in range(1, N):
+            g[b] = k[b] * (dq[b - 1] - dq[b])
+        g[N] = k[N] * dq[N - 1]
+        for n in range(N):
+            dp[n] += c * (g[n] - g[n + 1])
+
+
+@njit(cache=True)
+def _drift(q, p, dq, dp, inv_mass, c, tangent):
+    for n in range(q.shape[0]):
+        q[n] += c * inv_mass[n] * p[n]
+    if tangent:
+        for n in range(q.shape[0]):
+            dq[n] += c * inv_mass[n] * dp[n]
+
+
+@njit(cache=True)
+def _renormalise(dq, dp):
+    s = 0.0
+    for n in range(dq.shape[0]):
+        s += dq[n] * dq[n] + dp[n] * dp[n]
+    norm = np.sqrt(s)
+    for n in range(dq.shape[0]):
+        dq[n] /= norm
+        dp[n] /= norm
+    return np.log(norm)
+
+
+@njit(cache=True)
+def _count_gaps(q, delta, gap_steps):
+    N = q.shape[0]
+    n_open = 0
+    for b in range(N + 1):
+        left = q[b - 1] if b > 0 else 0.0
+        right = q[b] if b < N else 0.0
+        if delta[b] + left - right < 0.0:
+            gap_steps[b] += 1
+            n_open += 1
+    return n_open
+
+
+@njit(cache=True)
+def advance(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, drifts, dt, n_steps,
+            tangent, check_every, track_gaps, gap_steps, diagnostics, f, k, g):
+    """Advance the state (q, p) and, if ``tangent``, the deviation vector (dq, dp) by n_steps.
+
+    Every ``check_every`` steps and at the end the state is checked for finiteness and the
+    deviation vector is renormalised, its log growth added to diagnostics[0]. With
+    ``track_gaps`` the number of steps each Hertz bond ends open is added to gap_steps and the
+    largest number of simultaneously open bonds is kept in diagnostics[1].
+    Returns -1, or the number of steps done when a non-finite state stopped the run.
+    """
+    n_stages = drifts.shape[0]
+    force_valid = False
+    for step in range(n_steps):
+        for i in range(n_stages + 1):
+            c = kicks[i]
+            if c != 0.0:
+                if not force_valid:
+                    bond_forces(model, q, A, delta, K2, K3, K4, f, k, tangent)
+                    force_valid = True
+                _kick(p, dp, f, k, g, dq, c * dt, tangent)
+            if i < n_stages:
+                _drift(q, p, dq, dp, inv_mass, drifts[i] * dt, tangent)
+                force_valid = False
+        if track_gaps:
+            n_open = _count_gaps(q, delta, gap_steps)
+            if n_open > diagnostics[1]:
+                diagnostics[1] = n_open
+        if (step + 1) % check_every == 0 or step + 1 == n_steps:
+            s = 0.0
+            for n in range(q.shape[0]):
+                s += q[n] + p[n]
+            if tangent:
+                diagnostics[0] += _renormalise(dq, dp)
+                s += dq[0]
+            if not np.isfinite(s):
+                return step + 1
+    return -1

@@ -1,0 +1,91 @@
+"""NetCDF input and output: chain files, atomic writes (DESIGN section 7)."""
+
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from chainchaos.chain import GENERATOR, Chain
+from chainchaos.errors import ChainFileError
+from chainchaos.linear import mode_energy_density, normal_modes, participation_number
+from chainchaos.provenance import provenance_attrs
+
+CHAIN_VARIABLES = ("radius", "mass", "A", "delta", "K2", "K3", "K4", "frequency", "mode_shape",
+                   "mode_participation")
+
+
+def write_netcdf(ds: xr.Dataset, path) -> Path:
+    """Write ``ds`` to ``path`` atomically: a temporary file in the same directory, renamed on
+    success and removed on any failure, so an interrupted write leaves no complete-looking file."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    encoding = {name: {"zlib": True, "complevel": 4} for name, v in ds.data_vars.items() if v.ndim > 0}
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    os.close(fd)
+    try:
+        ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
+
+
+def chain_dataset(chain: Chain, extra_attrs: dict | None = None) -> xr.Dataset:
+    """The chain file of the data contract: parameters, frequencies, modes, participation numbers."""
+    omega, U = normal_modes(chain)
+    N = chain.N
+    coords = {"site": np.arange(1, N + 1), "bond": np.arange(1, N + 2), "mode": np.arange(1, N + 1)}
+    dimless = {"units": "1"}
+    P = participation_number(mode_energy_density(chain, omega, U, "potential"))
+    P_avg = participation_number(mode_energy_density(chain, omega, U, "period_averaged"))
+    ds = xr.Dataset(
+        {
+            "radius": ("site", chain.radius, {**dimless, "long_name": "bead radius R_n / R_ref"}),
+            "mass": ("site", chain.mass, {**dimless, "long_name": "bead mass m_n = r_n^3"}),
+            "A": ("bond", chain.A, {**dimless, "long_name": "Hertz contact coefficient A_n"}),
+            "delta": ("bond", chain.delta, {**dimless, "long_name": "static overlap delta_n"}),
+            "K2": ("bond", chain.K2, {**dimless, "long_name": "harmonic coefficient K2_n"}),
+            "K3": ("bond", chain.K3, {**dimless, "long_name": "cubic coefficient K3_n"}),
+            "K4": ("bond", chain.K4, {**dimless, "long_name": "quartic coefficient K4_n",
+                                      "comment": f"K4_sign = {chain.k4_sign:+g}"}),
+            "frequency": ("mode", omega, {**dimless, "long_name": "linear mode frequency omega_k / omega_max"}),
+            "mode_shape": (("site", "mode"), U, {**dimless, "long_name": "mass-orthonormal mode shape U_nk"}),
+            "mode_participation": ("mode", P, {**dimless, "long_name": "mode participation number",
+                                               "comment": "P = 1/sum h_n^2, h from u = U_k, p = 0, bond energies split half-half"}),
+            "mode_participation_period_averaged": ("mode", P_avg, {
+                **dimless, "long_name": "mode participation number, period-averaged energy density"}),
+        },
+        coords=coords,
+    )
+    ds.site.attrs.update(long_name="bead index n", units="1")
+    ds.bond.attrs.update(long_name="bond index (bond n joins beads n-1 and n)", units="1")
+    ds.mode.attrs.update(long_name="mode number, by increasing frequency", units="1")
+    params = {"alpha": chain.alpha, "seed": chain.seed, "N": N, "wall_radius": chain.wall_radius,
+              "K4_sign": chain.k4_sign}
+    ds.attrs.update(provenance_attrs(params))
+    ds.attrs.update(title="Disordered chain (chainchaos)", alpha=chain.alpha,
+                    seed=-1 if chain.seed is None else int(chain.seed), generator=GENERATOR,
+                    wall_radius=chain.wall_radius, K4_sign=chain.k4_sign)
+    ds.attrs.update(extra_attrs or {})
+    return ds
+
+
+def read_chain(path, k4_sign: float = 1.0) -> Chain:
+    """The chain stored in a chain file; a missing file or variable raises ChainFileError."""
+    path = Path(path)
+    if not path.is_file():
+        raise ChainFileError(f"chain file {str(path)!r} does not exist")
+    with xr.open_dataset(path, engine="netcdf4") as ds:
+        missing = [v for v in CHAIN_VARIABLES if v not in ds.variables]
+        if missing:
+            raise ChainFileError(f"chain file {str(path)!r} lacks variable(s) {missing}; "
+                                 f"a chain file holds {list(CHAIN_VARIABLES)}")
+        for attr in ("alpha", "seed"):
+            if attr not in ds.attrs:
+                raise ChainFileError(f"chain file {str(path)!r} lacks attribute {attr!r}")
+        seed = int(ds.attrs["seed"])
+        return Chain(ds["radius"].values, float(ds.attrs["alpha"]), None if seed < 0 else seed,
+                     float(ds.attrs.get("wall_radius", 1.0)), float(k4_sign))
