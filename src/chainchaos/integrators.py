@@ -115,21 +115,21 @@ def get_scheme(name: str) -> Scheme:
     return SCHEMES[name]
 
 
-@njit(cache=True)
-def _kick(p, dp, f, k, g, dq, c, tangent):
+@njit(cache=True, inline="always")
+def _kick(p, dp, f, k, dq, c, tangent):
+    """p_n += c (f_n - f_{n+1}); with tangent dp_n += c (g_n - g_{n+1}), g_b = k_b (dq_{b-1} - dq_b)
+    formed on the fly (dq_{-1} = dq_N = 0: the wall terms are taken out of the loop)."""
     N = p.shape[0]
     for n in range(N):
         p[n] += c * (f[n] - f[n + 1])
     if tangent:
-        g[0] = -k[0] * dq[0]
-        for b in range(1, N):
-            g[b] = k[b] * (dq[b - 1] - dq[b])
-        g[N] = k[N] * dq[N - 1]
-        for n in range(N):
-            dp[n] += c * (g[n] - g[n + 1])
+        dp[0] += c * (-k[0] * dq[0] - k[1] * (dq[0] - dq[1]))
+        for n in range(1, N - 1):
+            dp[n] += c * (k[n] * (dq[n - 1] - dq[n]) - k[n + 1] * (dq[n] - dq[n + 1]))
+        dp[N - 1] += c * (k[N - 1] * (dq[N - 2] - dq[N - 1]) - k[N] * dq[N - 1])
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _drift(q, p, dq, dp, inv_mass, c, tangent):
     for n in range(q.shape[0]):
         q[n] += c * inv_mass[n] * p[n]
@@ -183,7 +183,7 @@ def advance(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, drifts, 
                 if not force_valid:
                     bond_forces(model, q, A, delta, K2, K3, K4, f, k, tangent)
                     force_valid = True
-                _kick(p, dp, f, k, g, dq, c * dt, tangent)
+                _kick(p, dp, f, k, dq, c * dt, tangent)
             if i < n_stages:
                 _drift(q, p, dq, dp, inv_mass, drifts[i] * dt, tangent)
                 force_valid = False

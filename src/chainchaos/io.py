@@ -89,3 +89,29 @@ def read_chain(path, k4_sign: float = 1.0) -> Chain:
         seed = int(ds.attrs["seed"])
         return Chain(ds["radius"].values, float(ds.attrs["alpha"]), None if seed < 0 else seed,
                      float(ds.attrs.get("wall_radius", 1.0)), float(k4_sign))
+
+
+def ensemble_dataset(alphas, n_realizations: int, N: int = 40, first_seed: int = 0,
+                     convention: str = "potential") -> xr.Dataset:
+    """Fig. 1(a) statistics: mean and standard deviation of the sorted mode participation numbers."""
+    from chainchaos.linear import ensemble_participation
+
+    stats = ensemble_participation(alphas, n_realizations, N, first_seed, convention)
+    ds = xr.Dataset(
+        {
+            "mean_participation": (("alpha", "rank"), stats["mean"], {
+                "units": "1", "long_name": "mean participation number of the rank-k mode"}),
+            "std_participation": (("alpha", "rank"), stats["std"], {
+                "units": "1", "long_name": "standard deviation of the participation number of the rank-k mode"}),
+        },
+        coords={"alpha": np.asarray(alphas, dtype=float), "rank": np.arange(1, N + 1)},
+    )
+    ds["alpha"].attrs.update(units="1", long_name="disorder strength alpha = max R / min R")
+    ds["rank"].attrs.update(units="1", long_name="rank k of the mode, by decreasing participation number")
+    params = {"alphas": [float(a) for a in np.atleast_1d(alphas)], "n_realizations": int(n_realizations),
+              "N": int(N), "first_seed": int(first_seed), "convention": convention}
+    ds.attrs.update(provenance_attrs(params))
+    ds.attrs.update(title="Participation numbers of linear modes over disorder realizations",
+                    n_realizations=int(n_realizations), first_seed=int(first_seed), generator=GENERATOR,
+                    convention=convention)
+    return ds

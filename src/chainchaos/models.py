@@ -5,6 +5,7 @@ compression D_b = u_{b-1} - u_b, bead n obeys m_n u_n'' = f_n - f_{n+1} where
 
     Hertz:  f = A [delta + D]_+^(3/2),            k = df/dD = (3/2) A [delta + D]_+^(1/2)
     FPUT:   f = K2 D - K3 D^2 + K4 D^3,           k = K2 - 2 K3 D + 3 K4 D^2
+    harmonic: FPUT with K3 = K4 = 0 (the common linear limit)
 
 (FPUT written with y = -D: V(y) = K2 y^2/2 + K3 y^3/3 + K4 y^4/4, DESIGN section 2). A Hertz bond
 whose overlap delta + D is negative is an open gap and carries no force. The model is an integer
@@ -18,7 +19,8 @@ from chainchaos.errors import require
 
 HERTZ = 0
 FPUT = 1
-MODELS = {"hertz": HERTZ, "fput": FPUT}
+HARMONIC = 2
+MODELS = {"hertz": HERTZ, "fput": FPUT, "harmonic": HARMONIC}
 
 
 def model_id(name: str) -> int:
@@ -26,27 +28,61 @@ def model_id(name: str) -> int:
     return MODELS[name]
 
 
-@njit(cache=True)
+def coefficients(model: int, chain) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(K2, K3, K4) of the polynomial kernel; the harmonic model is FPUT with K3 = K4 = 0."""
+    if model == HARMONIC:
+        return chain.K2, np.zeros_like(chain.K2), np.zeros_like(chain.K2)
+    return chain.K2, chain.K3, chain.K4
+
+
+@njit(cache=True, inline="always")
 def bond_forces(model, u, A, delta, K2, K3, K4, f, k, with_stiffness):
-    """Fill f[b] (and k[b] if ``with_stiffness``) for every bond at displacements u."""
+    """Fill f[b] (and k[b] if ``with_stiffness``) for every bond at displacements u.
+
+    The two wall bonds (u_{-1} = u_N = 0) are done outside the loops, which carry no branch.
+    """
     N = u.shape[0]
     if model == HERTZ:
-        for b in range(N + 1):
-            left = u[b - 1] if b > 0 else 0.0
-            right = u[b] if b < N else 0.0
-            x = max(delta[b] + left - right, 0.0)
-            s = np.sqrt(x)
-            f[b] = A[b] * x * s
-            if with_stiffness:
+        f[0], k0 = _hertz(A[0], delta[0] - u[0])
+        f[N], kN = _hertz(A[N], delta[N] + u[N - 1])
+        if with_stiffness:
+            k[0], k[N] = k0, kN
+            for b in range(1, N):
+                x = max(delta[b] + u[b - 1] - u[b], 0.0)
+                s = np.sqrt(x)
+                f[b] = A[b] * x * s
                 k[b] = 1.5 * A[b] * s
+        else:
+            for b in range(1, N):
+                x = max(delta[b] + u[b - 1] - u[b], 0.0)
+                f[b] = A[b] * x * np.sqrt(x)
     else:
-        for b in range(N + 1):
-            left = u[b - 1] if b > 0 else 0.0
-            right = u[b] if b < N else 0.0
-            D = left - right
-            f[b] = D * (K2[b] - D * (K3[b] - D * K4[b]))
-            if with_stiffness:
+        f[0], k0 = _fput(K2[0], K3[0], K4[0], -u[0])
+        f[N], kN = _fput(K2[N], K3[N], K4[N], u[N - 1])
+        if with_stiffness:
+            k[0], k[N] = k0, kN
+            for b in range(1, N):
+                D = u[b - 1] - u[b]
+                f[b] = D * (K2[b] - D * (K3[b] - D * K4[b]))
                 k[b] = K2[b] - D * (2.0 * K3[b] - 3.0 * K4[b] * D)
+        else:
+            for b in range(1, N):
+                D = u[b - 1] - u[b]
+                f[b] = D * (K2[b] - D * (K3[b] - D * K4[b]))
+
+
+@njit(cache=True)
+def _hertz(A, overlap):
+    """(force, stiffness) of one Hertz bond with overlap delta + D."""
+    x = max(overlap, 0.0)
+    s = np.sqrt(x)
+    return A * x * s, 1.5 * A * s
+
+
+@njit(cache=True)
+def _fput(K2, K3, K4, D):
+    """(force, stiffness) of one FPUT bond with compression D."""
+    return D * (K2 - D * (K3 - D * K4)), K2 - D * (2.0 * K3 - 3.0 * K4 * D)
 
 
 @njit(cache=True)
@@ -71,7 +107,7 @@ def bond_potential_energy(model: int, chain, u: np.ndarray) -> np.ndarray:
     u = np.ascontiguousarray(u, dtype=float)
     flat = u.reshape(-1, u.shape[-1])
     out = np.empty((flat.shape[0], flat.shape[1] + 1))
-    K2, K3, K4 = chain.K2, chain.K3, chain.K4
+    K2, K3, K4 = coefficients(model, chain)
     for i in range(flat.shape[0]):
         bond_potentials(model, flat[i], chain.A, chain.delta, K2, K3, K4, out[i])
     return out.reshape(u.shape[:-1] + (u.shape[-1] + 1,))

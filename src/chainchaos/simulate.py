@@ -18,7 +18,7 @@ from chainchaos.errors import SimulationError, require
 from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.integrators import advance, get_scheme
 from chainchaos.linear import modal_energies, normal_modes, participation_number
-from chainchaos.models import HERTZ, energy_density, model_id, open_gaps, total_energy
+from chainchaos.models import coefficients, energy_density, model_id, open_gaps, total_energy
 from chainchaos.provenance import provenance_attrs
 
 OBSERVABLES = ("energy_density", "participation", "energy_centre", "mlce", "dvd", "dvd_participation",
@@ -134,7 +134,7 @@ def simulate(chain, params: SceneParameters, progress=None) -> xr.Dataset:
     Q[0], Pm[0], DQ[0], DP[0] = q, p, dq, dp
 
     inv_mass = 1.0 / chain.mass
-    K2, K3, K4 = chain.K2, chain.K3, chain.K4
+    K2, K3, K4 = coefficients(model, chain)
     f, k, g = np.empty(N + 1), np.empty(N + 1), np.empty(N + 1)
     diagnostics = np.zeros(2)
     counts = np.zeros(N + 1, dtype=np.int64)
@@ -172,8 +172,8 @@ def _dataset(chain, params, model, times, steps, Q, Pm, DQ, DP, log_growth, gap_
     data = {}
     one = {"units": "1"}
 
-    def put(name, dims, values, long_name, **attrs):
-        if name in wanted or attrs.pop("always", False):
+    def put(name, dims, values, long_name, always=False, **attrs):
+        if name in wanted or always:
             data[name] = (dims, values, {**one, "long_name": long_name, **attrs})
 
     if wanted & {"energy_density", "participation", "energy_centre"}:

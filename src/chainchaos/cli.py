@@ -1,0 +1,152 @@
+"""Command line: ``chainchaos chain | ensemble | simulate | bench``."""
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+
+def _positive_float(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number")
+    if not (np.isfinite(value) and value > 0):
+        raise argparse.ArgumentTypeError(f"{text!r}: a finite number > 0 is required")
+    return value
+
+
+def _cmd_chain(args) -> None:
+    from chainchaos.chain import chain_from_radii, random_chain
+    from chainchaos.io import chain_dataset, write_netcdf
+    from chainchaos.selection import SelectionCriteria, select_realization
+
+    extra = {}
+    if args.radii:
+        path = Path(args.radii)
+        if not path.is_file():
+            raise SystemExit(f"chainchaos chain: radii file {str(path)!r} does not exist")
+        chain = chain_from_radii(np.loadtxt(path, ndmin=1), wall_radius=args.wall_radius)
+    elif args.search:
+        chain, extra = select_realization(SelectionCriteria(alpha=args.alpha, N=args.N, n_seeds=args.n_seeds))
+        print(f"selected seed {extra['selection_seed']} among {extra['selection_candidates']} candidates "
+              f"(score {extra['selection_score']:.4g})", file=sys.stderr)
+    else:
+        chain = random_chain(args.seed, args.alpha, args.N, args.wall_radius)
+    write_netcdf(chain_dataset(chain, extra), args.out)
+    print(args.out)
+
+
+def _cmd_ensemble(args) -> None:
+    from chainchaos.io import ensemble_dataset, write_netcdf
+
+    write_netcdf(ensemble_dataset(args.alpha, args.realizations, args.N, args.first_seed, args.convention), args.out)
+    print(args.out)
+
+
+def _cmd_simulate(args) -> None:
+    from chainchaos.io import read_chain, write_netcdf
+    from chainchaos.simulate import OBSERVABLES, ProgressReporter, SceneParameters, simulate
+
+    observables = OBSERVABLES if args.observables == ["all"] else tuple(args.observables)
+    params = SceneParameters(model=args.model, energy=args.energy, t_final=args.t_final, dt=args.dt,
+                             integrator=args.integrator, observables=observables,
+                             excited_site=args.site, k4_sign=args.k4_sign, deviation_seed=args.deviation_seed,
+                             samples_per_decade=args.samples_per_decade,
+                             max_energy_error=args.max_energy_error)
+    chain = read_chain(args.chain)
+    ds = simulate(chain, params, progress=ProgressReporter(params.name, params.t_final))
+    write_netcdf(ds, args.out)
+    print(args.out)
+
+
+def _cmd_bench(args) -> None:
+    from chainchaos.bench import kernel_report
+
+    report = kernel_report(args.model, args.integrator, args.N, args.steps)
+    print(json.dumps(report, indent=2) if args.json else
+          "\n".join(f"{key}: {value:.1f}" if isinstance(value, float) else f"{key}: {value}"
+                    for key, value in report.items()))
+
+
+def build_parser() -> argparse.ArgumentParser:
+    from chainchaos.integrators import SCHEMES
+    from chainchaos.linear import CONVENTIONS
+    from chainchaos.models import MODELS
+    from chainchaos.simulate import OBSERVABLES
+
+    parser = argparse.ArgumentParser(prog="chainchaos", description=__import__("chainchaos").__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    p = sub.add_parser("chain", help="write a chain file (NetCDF)",
+                       description="Write a chain file from --seed/--alpha, from --radii FILE (one radius "
+                                   "per line, any unit), or by the realization search of DESIGN section 4.")
+    source = p.add_mutually_exclusive_group()
+    source.add_argument("--radii", metavar="FILE", help="text file with one radius per line")
+    source.add_argument("--search", action="store_true", help="scan seeds for the paper-like realization")
+    p.add_argument("--seed", type=int, default=0, help="seed of numpy.random.default_rng (default 0)")
+    p.add_argument("--alpha", type=float, default=5.0, help="disorder strength max R / min R (default 5)")
+    p.add_argument("--N", type=int, default=40, help="number of beads (default 40)")
+    p.add_argument("--n-seeds", type=int, default=10000, help="seeds scanned by --search (default 10000)")
+    p.add_argument("--wall-radius", type=float, default=1.0, help="reduced radius of the wall beads (default 1)")
+    p.add_argument("--out", required=True, help="output NetCDF file")
+    p.set_defaults(func=_cmd_chain)
+
+    p = sub.add_parser("ensemble", help="participation-number statistics over realizations (Fig. 1a)")
+    p.add_argument("--alpha", type=float, nargs="+", required=True, help="disorder strengths")
+    p.add_argument("--realizations", type=int, default=1000, help="realizations per alpha (default 1000)")
+    p.add_argument("--N", type=int, default=40, help="number of beads (default 40)")
+    p.add_argument("--first-seed", type=int, default=0, help="seed of the first realization (default 0)")
+    p.add_argument("--convention", choices=CONVENTIONS, default="potential",
+                   help="participation-number convention (default potential)")
+    p.add_argument("--out", required=True, help="output NetCDF file")
+    p.set_defaults(func=_cmd_ensemble)
+
+    p = sub.add_parser("simulate", help="integrate one scene from a chain file",
+                       description="Integrate one scene (model, energy) and write its observables as NetCDF. "
+                                   "Progress goes to stderr.")
+    p.add_argument("--chain", required=True, help="chain file written by 'chainchaos chain'")
+    p.add_argument("--model", required=True, choices=sorted(MODELS))
+    p.add_argument("--energy", required=True, type=_positive_float, help="total energy H")
+    p.add_argument("--t-final", required=True, type=_positive_float, help="final time (units 1/omega_max)")
+    p.add_argument("--dt", type=_positive_float, default=5e-4, help="time step (default 5e-4, the paper's)")
+    p.add_argument("--integrator", choices=sorted(SCHEMES), default="SRKN6b", help="splitting scheme")
+    p.add_argument("--observables", nargs="+", default=["all"], choices=["all", *OBSERVABLES],
+                   metavar="NAME", help=f"observables to compute (default all): {', '.join(OBSERVABLES)}")
+    p.add_argument("--site", type=int, default=21, help="excited bead (default 21)")
+    p.add_argument("--k4-sign", type=float, choices=[1.0, -1.0], default=1.0,
+                   help="sign of K4: +1 the paper's, -1 the Taylor expansion of Hertz (default +1)")
+    p.add_argument("--deviation-seed", type=int, default=0, help="seed of the initial deviation vector")
+    p.add_argument("--samples-per-decade", type=int, default=40, help="log-spaced samples per decade")
+    p.add_argument("--max-energy-error", type=_positive_float, default=1e-2,
+                   help="stop when the relative energy error exceeds this (default 1e-2)")
+    p.add_argument("--out", required=True, help="output NetCDF file")
+    p.set_defaults(func=_cmd_simulate)
+
+    p = sub.add_parser("bench", help="nanoseconds per step of the kernel, with and without tangent dynamics")
+    p.add_argument("--model", choices=sorted(MODELS), default="hertz")
+    p.add_argument("--integrator", choices=sorted(SCHEMES), default="SRKN6b")
+    p.add_argument("--N", type=int, default=40, help="number of beads (default 40)")
+    p.add_argument("--steps", type=int, default=200000, help="steps per timing (default 200000)")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.set_defaults(func=_cmd_bench)
+    return parser
+
+
+def main(argv=None) -> int:
+    from chainchaos.errors import ChainFileError, ParameterError, SimulationError
+
+    args = build_parser().parse_args(argv)
+    try:
+        args.func(args)
+    except (ParameterError, ChainFileError, SimulationError) as err:
+        print(f"chainchaos {args.command}: error: {err}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,233 @@
+"""Single measured runs: a splitting scheme of the package, or one of scipy's solve_ivp methods.
+
+Every run starts from the package's initial state (bead ``site`` displaced so that H = energy,
+all momenta zero; :func:`chainchaos.initial.initial_state`) and, with ``tangent``, the package's
+initial deviation vector (:func:`chainchaos.initial.initial_deviation`). It records
+
+- the largest relative energy error |H(t) - H(0)| / H(0) (dimensionless) seen on the check grid,
+- the phase-space state (u, p) at t_probe (units of DESIGN section 1),
+- the finite-time mLCE Lambda(t_final) (units of omega_max, i.e. 1 / time unit),
+- the wall-clock seconds of the integration (time.perf_counter; the best of ``repeats`` runs when
+  one run is shorter than ``repeat_below`` seconds, so that short runs are not timer noise).
+
+Times are in units of 1/omega_max of the homogeneous linear chain (DESIGN section 1).
+"""
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from numba import njit
+from scipy import integrate
+
+from chainchaos.errors import require
+from chainchaos.initial import initial_deviation, initial_state
+from chainchaos.integrators import advance, get_scheme
+from chainchaos.numerics.rhs import RightHandSide, energy_kernel
+
+IVP_METHODS = ("RK45", "DOP853")
+
+
+@dataclass
+class RunResult:
+    """Outcome of one measured run (see the module docstring for quantities and units)."""
+
+    method: str
+    dt: float = math.nan
+    rtol: float = math.nan
+    seconds: float = math.nan
+    n_steps: int = 0
+    force_evaluations: int = 0
+    max_energy_error: float = math.nan
+    final_energy_error: float = math.nan
+    lambda_final: float = math.nan
+    state_probe: np.ndarray | None = None
+    stable: bool = True
+    t_stopped: float = math.nan
+    max_open_gaps: int = 0
+    open_fraction: float = 0.0
+    bonds_ever_open: int = 0
+    energy_errors: np.ndarray | None = field(default=None, repr=False)
+
+
+@njit(cache=True)
+def run_chunks(model, q, p, dq, dp, inv_mass, mass, A, delta, K2, K3, K4, kicks, drifts, dt, n_chunks,
+               chunk_steps, tangent, H0, err, err_offset, stop_error, track_gaps, gap_steps, diagnostics,
+               f, k, g, V):
+    """Advance ``n_chunks`` chunks of ``chunk_steps`` steps with :func:`advance`, recording the
+    relative energy error after each chunk in err[err_offset + i].
+
+    Returns -1, or the index of the chunk after which the state was non-finite or the energy
+    error exceeded ``stop_error`` (the run then stops).
+    """
+    for i in range(n_chunks):
+        bad = advance(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, drifts, dt, chunk_steps,
+                      tangent, chunk_steps, track_gaps, gap_steps, diagnostics, f, k, g)
+        e = abs(energy_kernel(model, q, p, mass, A, delta, K2, K3, K4, V) - H0) / abs(H0)
+        err[err_offset + i] = e
+        if bad >= 0 or not e <= stop_error:
+            err[err_offset + i] = np.inf if bad >= 0 else e
+            return i
+    return -1
+
+
+def _grid(t: float, dt: float, name: str) -> int:
+    n = int(round(t / dt))
+    require(n >= 1 and abs(n * dt - t) <= 1e-9 * t, name, t, f"a multiple of dt = {dt:g}")
+    return n
+
+
+def _check_plan(n_steps: int, chunk: int) -> list[tuple[int, int]]:
+    """(n_chunks, chunk_steps) pairs covering n_steps: full chunks, then the remainder."""
+    plan = [(n_steps // chunk, chunk)]
+    if n_steps % chunk:
+        plan.append((1, n_steps % chunk))
+    return [(n, c) for n, c in plan if n > 0]
+
+
+def run_scheme(model: int, chain, energy: float, scheme: str, dt: float, t_final: float,
+               t_probe: float | None = None, tangent: bool = True, check_interval: float = 0.1,
+               repeats: int = 3, repeat_below: float = 0.5, stop_error: float = math.inf,
+               excited_site: int = 21, deviation_seed: int = 0, track_gaps: bool = False,
+               keep_errors: bool = False) -> RunResult:
+    """Integrate with splitting scheme ``scheme`` (a name of chainchaos.integrators.SCHEMES) at
+    step ``dt`` to ``t_final`` and measure it (module docstring).
+
+    The energy error is checked every ``check_interval`` time units (every step if dt is larger);
+    a run whose energy error exceeds ``stop_error`` or whose state turns non-finite stops there
+    and is reported with ``stable = False`` and ``t_stopped``. ``t_probe`` (a multiple of dt)
+    is where the phase-space state is kept. With ``track_gaps`` (Hertz) the contact statistics
+    of the run are recorded: largest number of simultaneously open bonds, fraction of bond-steps
+    open, number of bonds that opened at least once (at step ends).
+    """
+    s = get_scheme(scheme)
+    require(np.isfinite(dt) and dt > 0, "dt", dt, "a finite step > 0")
+    n_total = _grid(t_final, dt, "t_final")
+    n_probe = _grid(t_probe, dt, "t_probe") if t_probe is not None else n_total
+    require(n_probe <= n_total, "t_probe", t_probe, f"<= t_final = {t_final}")
+    chunk = max(1, int(round(check_interval / dt)))
+    segments = [_check_plan(n_probe, chunk), _check_plan(n_total - n_probe, chunk)]
+    n_checks = sum(n for seg in segments for n, _ in seg)
+
+    q0, p0, _ = initial_state(model, chain, energy, excited_site)
+    dq0, dp0 = initial_deviation(chain.N, deviation_seed) if tangent else (np.zeros(chain.N), np.zeros(chain.N))
+    N = chain.N
+    inv_mass, K2, K3, K4 = 1.0 / chain.mass, chain.K2, chain.K3, chain.K4
+    H0 = float(energy_kernel(model, q0, p0, chain.mass, chain.A, chain.delta, K2, K3, K4, np.empty(N + 1)))
+
+    best = math.inf
+    for attempt in range(max(1, repeats)):
+        q, p, dq, dp = q0.copy(), p0.copy(), dq0.copy(), dp0.copy()
+        err = np.zeros(n_checks)
+        diagnostics = np.zeros(2)
+        gap_steps = np.zeros(N + 1, dtype=np.int64)
+        scratch = [np.empty(N + 1) for _ in range(4)]
+        probe, offset, stopped, steps_done = None, 0, -1, 0
+        start = time.perf_counter()
+        for si, seg in enumerate(segments):
+            for n_chunks, c in seg:
+                bad = run_chunks(model, q, p, dq, dp, inv_mass, chain.mass, chain.A, chain.delta, K2, K3, K4,
+                                 s.kicks, s.drifts, dt, n_chunks, c, tangent, H0, err, offset, stop_error,
+                                 track_gaps, gap_steps, diagnostics, *scratch)
+                if bad >= 0:
+                    stopped = steps_done + (bad + 1) * c
+                    break
+                offset += n_chunks
+                steps_done += n_chunks * c
+            if stopped >= 0:
+                break
+            if si == 0:
+                probe = np.concatenate([q, p])
+        elapsed = time.perf_counter() - start
+        best = min(best, elapsed)
+        if elapsed >= repeat_below or stopped >= 0:
+            break
+
+    done = stopped if stopped >= 0 else n_total
+    checked = err[:offset + (1 if stopped >= 0 else 0)] if stopped >= 0 else err
+    result = RunResult(
+        method=scheme, dt=float(dt), seconds=best, n_steps=int(done),
+        force_evaluations=int(done * s.force_evaluations),
+        max_energy_error=float(np.max(checked)) if checked.size else 0.0,
+        final_energy_error=float(checked[-1]) if checked.size else 0.0,
+        lambda_final=float(diagnostics[0] / t_final) if tangent and stopped < 0 else math.nan,
+        state_probe=probe if stopped < 0 or (probe is not None) else None,
+        stable=stopped < 0, t_stopped=float(done * dt) if stopped >= 0 else math.nan,
+        energy_errors=checked.copy() if keep_errors else None)
+    if track_gaps:
+        result.max_open_gaps = int(diagnostics[1])
+        result.open_fraction = float(gap_steps.sum() / (done * (N + 1)))
+        result.bonds_ever_open = int(np.count_nonzero(gap_steps))
+    return result
+
+
+def run_solve_ivp(model: int, chain, energy: float, method: str, rtol: float, t_final: float,
+                  t_probe: float | None = None, atol: float | None = None, tangent: bool = True,
+                  repeats: int = 3, repeat_below: float = 0.5, excited_site: int = 21,
+                  deviation_seed: int = 0) -> RunResult:
+    """Integrate with scipy's ``method`` ("RK45" or "DOP853") at relative tolerance ``rtol``
+    (absolute tolerance ``atol``, default rtol: the state is of order one in these units) on
+    the compiled right-hand side :class:`RightHandSide` and measure it (module docstring).
+
+    The solver is scipy.integrate's own stepper class, driven step by step exactly as
+    ``solve_ivp`` drives it (solve_ivp is that loop plus storage); the energy error is taken at
+    every accepted step. The run is split at t_probe so that the phase-space state there is a
+    solver step, not an interpolant (the step-size controller restarts there). Lambda(t_final)
+    is ln |v(t_final)| / t_final with |v(0)| = 1 (no renormalisation is needed to t = 1e3).
+    """
+    require(method in IVP_METHODS, "method", method, f"one of {IVP_METHODS}")
+    require(np.isfinite(rtol) and rtol > 0, "rtol", rtol, "a tolerance > 0")
+    atol = rtol if atol is None else atol
+    q0, p0, _ = initial_state(model, chain, energy, excited_site)
+    parts = [q0, p0]
+    if tangent:
+        parts += list(initial_deviation(chain.N, deviation_seed))
+    y0 = np.concatenate(parts)
+    fun = RightHandSide(model, chain, tangent)
+    H0 = fun.energy(y0)
+    solver_class = getattr(integrate, method)
+    bounds = [t for t in ((t_probe,) if t_probe is not None else ()) if t < t_final] + [t_final]
+
+    best, result = math.inf, None
+    for attempt in range(max(1, repeats)):
+        fun.nfev = 0
+        y, t0, n_steps, max_err, probe, ok = y0.copy(), 0.0, 0, 0.0, None, True
+        start = time.perf_counter()
+        for t_bound in bounds:
+            solver = solver_class(fun, t0, y, t_bound, rtol=rtol, atol=atol)
+            while solver.status == "running":
+                solver.step()
+                n_steps += 1
+                e = abs(fun.energy(solver.y) - H0) / abs(H0)
+                if not e <= max_err:
+                    max_err = e if np.isfinite(e) else math.inf
+            if solver.status != "finished":
+                ok = False
+                break
+            t0, y = t_bound, solver.y.copy()
+            if t_probe is not None and t_bound == t_probe:
+                probe = y[:2 * chain.N].copy()
+        elapsed = time.perf_counter() - start
+        if elapsed < best:
+            best = elapsed
+        if result is None:
+            v = np.linalg.norm(y[2 * chain.N:]) if tangent else math.nan
+            result = RunResult(
+                method=method, rtol=float(rtol), n_steps=n_steps, force_evaluations=fun.nfev,
+                max_energy_error=max_err, final_energy_error=abs(fun.energy(y) - H0) / abs(H0),
+                lambda_final=float(np.log(v) / t_final) if tangent and ok else math.nan,
+                state_probe=probe if probe is not None else (y[:2 * chain.N].copy() if t_probe is None else None),
+                stable=ok, t_stopped=math.nan if ok else float(t0))
+        if elapsed >= repeat_below:
+            break
+    result.seconds = best
+    return result
+
+
+def phase_space_error(state, reference) -> float:
+    """Relative phase-space error |x - x_ref| / |x_ref| of x = (u, p) (Euclidean norm over the
+    2N components in the units of DESIGN section 1; dimensionless)."""
+    if state is None:
+        return math.nan
+    return float(np.linalg.norm(state - reference) / np.linalg.norm(reference))
