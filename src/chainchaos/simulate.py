@@ -86,7 +86,8 @@ def sample_steps(t_final: float, dt: float, per_decade: int, t_first: float) -> 
 class ProgressReporter:
     """Prints simulated time, percent done and estimated time left to stderr, every few seconds."""
 
-    def __init__(self, name: str, t_final: float, every: float = 5.0, stream=sys.stderr):
+    def __init__(self, name: str, t_final: float, every: float = 5.0, stream=None):
+        # sys.stderr is looked up when printing, so a redirected stderr (the job's log) is honoured
         self.name, self.t_final, self.every, self.stream = name, t_final, every, stream
         self.start = self.last = wallclock.perf_counter()
 
@@ -98,7 +99,7 @@ class ProgressReporter:
         elapsed = now - self.start
         left = elapsed * (1.0 - fraction) / fraction if fraction > 0 else float("nan")
         print(f"[{self.name}] t = {t:.6g} / {self.t_final:g} ({100 * fraction:5.1f}%), "
-              f"elapsed {elapsed:.1f} s, left ~{left:.1f} s", file=self.stream, flush=True)
+              f"elapsed {elapsed:.1f} s, left ~{left:.1f} s", file=self.stream or sys.stderr, flush=True)
 
 
 def simulate(chain, params: SceneParameters, progress=None) -> xr.Dataset:
@@ -232,3 +233,16 @@ def _dataset(chain, params, model, times, steps, Q, Pm, DQ, DP, log_growth, gap_
         final_energy_error=float(energy_error[-1]), max_energy_error=float(energy_error.max()),
     )
     return ds
+
+
+def warm_up() -> str:
+    """Compile (or load from the on-disk cache) every kernel a scene uses; returns the cache dir."""
+    import os
+
+    from chainchaos.chain import random_chain
+
+    chain = random_chain(0, 2.0, 4)
+    for model in ("hertz", "fput"):
+        observables = OBSERVABLES if model == "hertz" else tuple(o for o in OBSERVABLES if o not in GAPS)
+        simulate(chain, SceneParameters(model, 0.01, 1.0, 0.1, observables=observables, excited_site=2))
+    return os.environ.get("NUMBA_CACHE_DIR", "")

@@ -48,7 +48,7 @@ class RunResult:
     max_open_gaps: int = 0
     open_fraction: float = 0.0
     bonds_ever_open: int = 0
-    energy_errors: np.ndarray | None = field(default=None, repr=False)
+    energy_errors: np.ndarray | None = field(default=None, repr=False)  # signed, per check
 
 
 @njit(cache=True)
@@ -56,7 +56,7 @@ def run_chunks(model, q, p, dq, dp, inv_mass, mass, A, delta, K2, K3, K4, kicks,
                chunk_steps, tangent, H0, err, err_offset, stop_error, track_gaps, gap_steps, diagnostics,
                f, k, g, V):
     """Advance ``n_chunks`` chunks of ``chunk_steps`` steps with :func:`advance`, recording the
-    relative energy error after each chunk in err[err_offset + i].
+    signed relative energy error (H - H0) / |H0| after each chunk in err[err_offset + i].
 
     Returns -1, or the index of the chunk after which the state was non-finite or the energy
     error exceeded ``stop_error`` (the run then stops).
@@ -64,10 +64,11 @@ def run_chunks(model, q, p, dq, dp, inv_mass, mass, A, delta, K2, K3, K4, kicks,
     for i in range(n_chunks):
         bad = advance(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, drifts, dt, chunk_steps,
                       tangent, chunk_steps, track_gaps, gap_steps, diagnostics, f, k, g)
-        e = abs(energy_kernel(model, q, p, mass, A, delta, K2, K3, K4, V) - H0) / abs(H0)
+        e = (energy_kernel(model, q, p, mass, A, delta, K2, K3, K4, V) - H0) / abs(H0)
         err[err_offset + i] = e
-        if bad >= 0 or not e <= stop_error:
-            err[err_offset + i] = np.inf if bad >= 0 else e
+        if bad >= 0 or not abs(e) <= stop_error:
+            if bad >= 0 or not np.isfinite(e):
+                err[err_offset + i] = np.inf
             return i
     return -1
 
@@ -123,7 +124,7 @@ def run_scheme(model: int, chain, energy: float, scheme: str, dt: float, t_final
         diagnostics = np.zeros(2)
         gap_steps = np.zeros(N + 1, dtype=np.int64)
         scratch = [np.empty(N + 1) for _ in range(4)]
-        probe, offset, stopped, steps_done = None, 0, -1, 0
+        probe, offset, stop_index, steps_done = None, 0, -1, 0
         start = time.perf_counter()
         for si, seg in enumerate(segments):
             for n_chunks, c in seg:
@@ -131,33 +132,34 @@ def run_scheme(model: int, chain, energy: float, scheme: str, dt: float, t_final
                                  s.kicks, s.drifts, dt, n_chunks, c, tangent, H0, err, offset, stop_error,
                                  track_gaps, gap_steps, diagnostics, *scratch)
                 if bad >= 0:
-                    stopped = steps_done + (bad + 1) * c
+                    stop_index = offset + bad
+                    steps_done += (bad + 1) * c
                     break
                 offset += n_chunks
                 steps_done += n_chunks * c
-            if stopped >= 0:
+            if stop_index >= 0:
                 break
             if si == 0:
                 probe = np.concatenate([q, p])
         elapsed = time.perf_counter() - start
         best = min(best, elapsed)
-        if elapsed >= repeat_below or stopped >= 0:
+        if elapsed >= repeat_below or stop_index >= 0:
             break
 
-    done = stopped if stopped >= 0 else n_total
-    checked = err[:offset + (1 if stopped >= 0 else 0)] if stopped >= 0 else err
+    stable = stop_index < 0
+    signed = err if stable else err[:stop_index + 1]
+    checked = np.abs(signed)
     result = RunResult(
-        method=scheme, dt=float(dt), seconds=best, n_steps=int(done),
-        force_evaluations=int(done * s.force_evaluations),
+        method=scheme, dt=float(dt), seconds=best, n_steps=int(steps_done),
+        force_evaluations=int(steps_done * s.force_evaluations),
         max_energy_error=float(np.max(checked)) if checked.size else 0.0,
         final_energy_error=float(checked[-1]) if checked.size else 0.0,
-        lambda_final=float(diagnostics[0] / t_final) if tangent and stopped < 0 else math.nan,
-        state_probe=probe if stopped < 0 or (probe is not None) else None,
-        stable=stopped < 0, t_stopped=float(done * dt) if stopped >= 0 else math.nan,
-        energy_errors=checked.copy() if keep_errors else None)
+        lambda_final=float(diagnostics[0] / t_final) if tangent and stable else math.nan,
+        state_probe=probe, stable=stable, t_stopped=math.nan if stable else float(steps_done * dt),
+        energy_errors=signed.copy() if keep_errors else None)
     if track_gaps:
         result.max_open_gaps = int(diagnostics[1])
-        result.open_fraction = float(gap_steps.sum() / (done * (N + 1)))
+        result.open_fraction = float(gap_steps.sum() / (max(steps_done, 1) * (N + 1)))
         result.bonds_ever_open = int(np.count_nonzero(gap_steps))
     return result
 

@@ -1,0 +1,28 @@
+# Reproduction of Ngapasare, Theocharis, Richoux, Skokos & Achilleos, "Chaos and Anderson
+# localisation in disordered classical chains: Hertzian vs FPUT models".
+#
+#   snakemake --cores 2 all                                   paper scale
+#   snakemake --cores 2 all --configfile config/quick.yaml    quick scale
+#   snakemake --cores 2 results/figures/fig4d.pdf             one panel and what it needs
+
+from snakemake.utils import min_version, validate
+
+min_version("9.0")
+
+
+configfile: "config/config.yaml"
+
+
+validate(config, "config/schema.yaml")
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/chain.smk"
+include: "workflow/rules/simulate.smk"
+include: "workflow/rules/figures.smk"
+
+
+rule all:
+    default_target: True
+    input:
+        ALL_TARGETS,

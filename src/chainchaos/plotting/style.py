@@ -1,0 +1,142 @@
+"""The figure style of the paper: sizes, fonts, colours, axis labels, and byte-stable saving.
+
+Sizes follow a two-column journal: a single panel is one column (3.4 in) wide, a composite of
+several panels per row spans both columns (7.0 in). The model is nondimensional (DESIGN section 1),
+so the labels give times in units of 1/omega_max and frequencies in units of omega_max.
+"""
+
+import contextlib
+import os
+import tempfile
+from pathlib import Path
+
+import matplotlib
+
+# Before pyplot can be imported anywhere: figures are only ever written to files.
+matplotlib.use("Agg")
+
+COLUMN_WIDTH = 3.4  # in, one column: a single panel
+PAGE_WIDTH = 7.0  # in, both columns: composites
+PANEL_HEIGHT = 2.55  # in, a single panel
+ROW_HEIGHT = {1: 2.55, 2: 2.45, 3: 2.1, 4: 1.8}  # in, a composite row by its number of panels
+DPI = 300
+
+RC = {
+    "font.family": "DejaVu Sans",  # shipped with matplotlib, so the files do not depend on the host
+    "mathtext.fontset": "dejavusans",
+    "font.size": 8,
+    "axes.labelsize": 8,
+    "axes.titlesize": 8,
+    "legend.fontsize": 6.5,
+    "xtick.labelsize": 7,
+    "ytick.labelsize": 7,
+    "axes.linewidth": 0.6,
+    "xtick.major.width": 0.6,
+    "ytick.major.width": 0.6,
+    "xtick.minor.width": 0.4,
+    "ytick.minor.width": 0.4,
+    "lines.linewidth": 1.0,
+    "axes.titlepad": 3.0,
+    "legend.frameon": False,
+    "legend.handlelength": 1.8,
+    "pdf.fonttype": 42,  # embedded TrueType: text stays text for the journal
+    "savefig.dpi": DPI,
+    "figure.dpi": 100,
+}
+
+# One colour map for every density map (energy density, DVD, modal energies); floor of its log scale.
+MAP_CMAP = "viridis"
+MAP_FLOOR = 1e-8
+GAP_CMAP = "viridis"  # open bonds light (yellow), as in the paper's Fig. 7
+
+HERTZ_RED = "#c62828"
+FPUT_BLUE = "#1565c0"
+MODEL_COLOURS = {"hertz": HERTZ_RED, "fput": FPUT_BLUE}
+MODEL_NAMES = {"hertz": "Hertz", "fput": "FPUT"}
+# Several energies of one model in a panel: lower energies solid and lighter, higher ones dashed.
+ENERGY_LINESTYLES = ("-", "--", "-.", ":")
+ENERGY_SHADES = (0.0, 0.35, 0.55, 0.7)  # fraction of white mixed in, by energy rank, highest first
+RAW_ALPHA = 0.22  # raw values drawn faintly behind a smoothed curve
+# DVD profile times, in order (the paper's Fig. 5: red, magenta, blue, black), on the map and profiles.
+PROFILE_COLOURS = ("#d62728", "#c71fc7", "#1f5fd6", "black")
+PROFILE_LINESTYLES = (":", "--", "-", "-.")
+
+TIME_LABEL = r"$t$ [$1/\omega_{\max}$]"
+SITE_LABEL = r"$n$ (site)"
+BOND_LABEL = r"$n$ (bond between sites $n-1$ and $n$)"
+MODE_LABEL = r"$k$ (mode)"
+RANK_LABEL = r"$k$ (rank)"
+FREQUENCY_LABEL = r"$\omega_k$ [$\omega_{\max}$]"
+ENERGY_DENSITY_LABEL = r"$h_n$"
+DVD_LABEL = r"$w_n$"
+MODE_ENERGY_LABEL = r"$v_k = E_k / \sum_j E_j$"
+P_LABEL = r"$P$"
+PD_LABEL = r"$P_{\rm D}$"
+MEAN_P_LABEL = r"$\langle P \rangle$"
+MLCE_LABEL = r"$\Lambda$ [$\omega_{\max}$]"
+ETA_LABEL = r"$\eta$"
+GAP_FRACTION_LABEL = "fraction of time open"
+GAP_COUNT_LABEL = "number of gaps"
+
+PDF_METADATA = {"CreationDate": None, "ModDate": None, "Creator": "chainchaos"}
+PNG_METADATA = {"Software": "chainchaos"}  # matplotlib writes no timestamp into PNG files
+
+
+def context():
+    """The style as a context: plotting and saving run inside it, so importing the package leaves
+    the caller's rcParams alone."""
+    return matplotlib.rc_context(RC)
+
+
+def composite_size(rows: int, columns: int) -> tuple[float, float]:
+    """Figure size (in) of a composite: one column wide for a single column of panels, else two."""
+    width = COLUMN_WIDTH if columns == 1 else PAGE_WIDTH
+    return width, rows * ROW_HEIGHT.get(columns, ROW_HEIGHT[4])
+
+
+def model_colour(model: str) -> str:
+    return MODEL_COLOURS[model]
+
+
+def scene_label(model: str, energy: float) -> str:
+    """E.g. ``Hertz, $H = 0.25$``."""
+    return f"{MODEL_NAMES[model]}, $H = {energy:g}$"
+
+
+def time_text(t: float) -> str:
+    """A time to three significant digits as mathtext (no dollars): 16.8, 10^{3}, 1.68\\times10^{4}."""
+    text = f"{t:.3g}"
+    if "e" not in text:
+        return text
+    mantissa, exponent = text.split("e")
+    power = f"10^{{{int(exponent)}}}"
+    return power if mantissa == "1" else rf"{mantissa}\times{power}"
+
+
+def save_figure(fig, path_stem) -> tuple[Path, Path]:
+    """Write ``<path_stem>.pdf`` and ``<path_stem>.png`` byte-stably and atomically.
+
+    Same figure, same bytes: fixed dpi, no dates in the PDF, no timestamps in the PNG. Each file is
+    written to a temporary file in the target directory and renamed into place, so an interrupted
+    run leaves no complete-looking file. Returns the two paths.
+    """
+    stem = Path(path_stem)
+    stem.parent.mkdir(parents=True, exist_ok=True)
+    paths = Path(f"{stem}.pdf"), Path(f"{stem}.png")
+    with context():
+        _write_atomically(fig, paths[0], "pdf", PDF_METADATA)
+        _write_atomically(fig, paths[1], "png", PNG_METADATA)
+    return paths
+
+
+def _write_atomically(fig, path: Path, fmt: str, metadata: dict) -> None:
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as stream:
+            fig.savefig(stream, format=fmt, dpi=DPI, metadata=metadata)
+        os.chmod(tmp, 0o644)  # mkstemp creates 0600; figures are for everyone to read
+        os.replace(tmp, path)
+    except BaseException:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(tmp)
+        raise

@@ -1,0 +1,38 @@
+# One target per panel of the paper, and the composite figures.
+
+
+wildcard_constraints:
+    panel="|".join(paper.PANELS),
+    number="|".join(str(n) for n in FIGURES),
+
+
+rule plot_panel:
+    input:
+        unpack(lambda wildcards: panel_inputs(wildcards.panel)),
+    output:
+        pdf=result("figures", "fig{panel}.pdf"),
+        png=result("figures", "fig{panel}.png"),
+    params:
+        dpi=config["figures"]["dpi"],
+    log:
+        log_file("plot_panel", "fig{panel}"),
+    benchmark:
+        benchmark_file("plot_panel", "fig{panel}")
+    script:
+        "../scripts/plot_panel.py"
+
+
+rule plot_figure:
+    input:
+        unpack(lambda wildcards: figure_inputs(int(wildcards.number))),
+    output:
+        pdf=result("figures", "fig{number}.pdf"),
+        png=result("figures", "fig{number}.png"),
+    params:
+        dpi=config["figures"]["dpi"],
+    log:
+        log_file("plot_figure", "fig{number}"),
+    benchmark:
+        benchmark_file("plot_figure", "fig{number}")
+    script:
+        "../scripts/plot_figure.py"

@@ -1,0 +1,33 @@
+# One simulation per scene, each computing only the observables its panels use.
+
+
+wildcard_constraints:
+    scene="|".join(re.escape(name) for name in SCENES),
+
+
+rule compile_kernels:
+    """Compile the Numba kernels once into the on-disk cache before the simulations fan out."""
+    output:
+        flag=result("kernels_compiled.txt"),
+    log:
+        log_file("compile_kernels"),
+    benchmark:
+        benchmark_file("compile_kernels")
+    script:
+        "../scripts/compile_kernels.py"
+
+
+rule simulate_scene:
+    input:
+        chain=result("chain", "chain.nc"),
+        kernels=result("kernels_compiled.txt"),
+    output:
+        scene=result("scenes", "{scene}.nc"),
+    params:
+        scene=lambda wildcards: scene_parameters(wildcards.scene),
+    log:
+        log_file("simulate_scene", "{scene}"),
+    benchmark:
+        benchmark_file("simulate_scene", "{scene}")
+    script:
+        "../scripts/simulate_scene.py"
