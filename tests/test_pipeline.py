@@ -1,0 +1,118 @@
+"""The pipeline end to end at quick scale, its incremental behaviour, and config validation.
+
+The quick run writes into a temporary results directory (config key `results`), so it neither
+needs nor touches the project's own results/.
+"""
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+from matplotlib.image import imread
+
+from chainchaos import paper
+
+ROOT = Path(__file__).resolve().parents[1]
+QUICK = ["--configfile", "config/quick.yaml"]
+
+
+def snakemake(*args, timeout=1500):
+    done = subprocess.run([sys.executable, "-m", "snakemake", "--cores", "2", "--nolock", *args], cwd=ROOT,
+                          capture_output=True, text=True, timeout=timeout)
+    return done.returncode, done.stdout + done.stderr
+
+
+def planned_jobs(output: str) -> dict[str, int]:
+    """Job counts from the 'Job stats' table of a (dry) run."""
+    table = output.split("Job stats:")[-1]
+    return {m.group(1): int(m.group(2)) for m in re.finditer(r"^(\w+)\s+(\d+)$", table, re.M) if m.group(1) != "total"}
+
+
+@pytest.fixture(scope="module")
+def quick(tmp_path_factory):
+    results = tmp_path_factory.mktemp("quick_results")
+    code, out = snakemake(*QUICK, "--config", f"results={results}")
+    assert code == 0, out[-6000:]
+    return results
+
+
+@pytest.mark.slow
+def test_every_panel_and_figure_exists_and_is_not_blank(quick):
+    names = [f"fig{p}" for p in paper.PANELS] + [f"fig{n}" for n in paper.LAYOUTS]
+    for name in names:
+        pdf, png = quick / "figures" / f"{name}.pdf", quick / "figures" / f"{name}.png"
+        assert pdf.stat().st_size > 1000 and pdf.read_bytes()[:5] == b"%PDF-", name
+        pixels = imread(png)
+        assert pixels.std() > 0.01, f"{name}.png is blank"
+
+
+@pytest.mark.slow
+def test_each_scene_holds_what_its_panels_asked_for(quick):
+    for name, scene in paper.scenes().items():
+        with xr.open_dataset(quick / "scenes" / f"{name}.nc") as ds:
+            asked = set(paper.scene_observables(name))
+            written = {v for v in ds.data_vars if v in _contract_variables()}
+            assert written == asked | {"energy_error"}, name
+            assert ds.attrs["model"] == scene.model and ds.attrs["energy"] == scene.energy
+            assert ds.attrs["final_energy_error"] < 1e-2
+            assert np.all(np.isin(10.0 ** np.arange(0, 4), ds.time.values))
+
+
+def _contract_variables():
+    from chainchaos.simulate import OBSERVABLES
+
+    return set(OBSERVABLES)
+
+
+@pytest.mark.slow
+def test_deleted_panel_reruns_only_its_plot_rule(quick):
+    (quick / "figures" / "fig4d.pdf").unlink()
+    code, out = snakemake(str(quick / "figures" / "fig4d.pdf"), *QUICK, "--config", f"results={quick}", "-n")
+    assert code == 0, out
+    assert planned_jobs(out) == {"plot_panel": 1}
+
+
+@pytest.mark.slow
+def test_changed_scene_parameter_reruns_only_that_scene(quick, tmp_path):
+    override = tmp_path / "override.yaml"
+    override.write_text("scenes:\n  hertz_H1.8:\n    dt: 0.005\n")
+    code, out = snakemake(*QUICK, str(override), "--config", f"results={quick}", "-n")
+    assert code == 0, out
+    jobs = planned_jobs(out)
+    assert jobs["simulate_scene"] == 1 and "hertz_H1.8.nc" in out
+    affected = paper.panels_of_scene("hertz_H1.8")
+    assert jobs["plot_panel"] == len(affected)
+    assert jobs["plot_figure"] == len({p[:-1] for p in affected})
+    assert "compute_ensemble" not in jobs and "select_chain" not in jobs
+
+
+def test_paper_scale_dry_run_plans_every_scene(tmp_path):
+    code, out = snakemake("-n", "--config", f"results={tmp_path}")
+    assert code == 0, out[-4000:]
+    jobs = planned_jobs(out)
+    assert jobs["simulate_scene"] == len(paper.scenes()) and jobs["plot_panel"] == len(paper.PANELS)
+
+
+@pytest.mark.parametrize("yaml_text, key", [
+    ("simulation:\n  dt: -0.1\n", "dt"),
+    ("simulation:\n  integrator: rk4\n", "integrator"),
+    ("simulation:\n  t_final: ten\n", "t_final"),
+    ("chain:\n  N: 1\n", "N"),
+])
+def test_bad_config_is_refused_naming_the_key(tmp_path, yaml_text, key):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(yaml_text)
+    code, out = snakemake("-n", "--configfile", "config/config.yaml", str(bad))
+    assert code != 0
+    assert f"['{key}']" in out and "Error validating config" in out
+
+
+def test_unknown_scene_override_is_refused(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("scenes:\n  hertz_H9.9:\n    dt: 0.001\n")
+    code, out = snakemake("-n", "--configfile", "config/config.yaml", str(bad))
+    assert code != 0 and "hertz_H9.9" in out and "allowed" in out
