@@ -65,9 +65,9 @@ def _cmd_simulate(args) -> None:
 def _cmd_bench(args) -> None:
     from chainchaos.bench import kernel_report
 
-    report = kernel_report(args.model, args.integrator, args.N, args.steps)
+    report = kernel_report(args.model, args.integrator, args.N, args.steps, args.repeats)
     print(json.dumps(report, indent=2) if args.json else
-          "\n".join(f"{key}: {value:.1f}" if isinstance(value, float) else f"{key}: {value}"
+          "\n".join(f"{key}: {value:.4g}" if isinstance(value, float) else f"{key}: {value}"
                     for key, value in report.items()))
 
 
@@ -130,7 +130,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--model", choices=sorted(MODELS), default="hertz")
     p.add_argument("--integrator", choices=sorted(SCHEMES), default="SRKN6b")
     p.add_argument("--N", type=int, default=40, help="number of beads (default 40)")
-    p.add_argument("--steps", type=int, default=200000, help="steps per timing (default 200000)")
+    p.add_argument("--steps", type=int, default=10000, help="steps per timing (default 10000)")
+    p.add_argument("--repeats", type=int, default=50, help="timings; the best is reported (default 50)")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=_cmd_bench)
     return parser

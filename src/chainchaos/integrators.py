@@ -20,7 +20,7 @@ import numpy as np
 from numba import njit
 
 from chainchaos.errors import require
-from chainchaos.models import bond_forces
+from chainchaos.models import HERTZ, fput_force, fput_stiffness, hertz_force, hertz_force_stiffness
 
 
 @dataclass(frozen=True)
@@ -115,27 +115,9 @@ def get_scheme(name: str) -> Scheme:
     return SCHEMES[name]
 
 
-@njit(cache=True, inline="always")
-def _kick(p, dp, f, k, dq, c, tangent):
-    """p_n += c (f_n - f_{n+1}); with tangent dp_n += c (g_n - g_{n+1}), g_b = k_b (dq_{b-1} - dq_b)
-    formed on the fly (dq_{-1} = dq_N = 0: the wall terms are taken out of the loop)."""
-    N = p.shape[0]
-    for n in range(N):
-        p[n] += c * (f[n] - f[n + 1])
-    if tangent:
-        dp[0] += c * (-k[0] * dq[0] - k[1] * (dq[0] - dq[1]))
-        for n in range(1, N - 1):
-            dp[n] += c * (k[n] * (dq[n - 1] - dq[n]) - k[n + 1] * (dq[n] - dq[n + 1]))
-        dp[N - 1] += c * (k[N - 1] * (dq[N - 2] - dq[N - 1]) - k[N] * dq[N - 1])
-
-
-@njit(cache=True, inline="always")
-def _drift(q, p, dq, dp, inv_mass, c, tangent):
-    for n in range(q.shape[0]):
-        q[n] += c * inv_mass[n] * p[n]
-    if tangent:
-        for n in range(q.shape[0]):
-            dq[n] += c * inv_mass[n] * dp[n]
+#: Doubles per SIMD register (AVX-512; a multiple of AVX2's 4). The engine pads the bond loop to
+#: a multiple of it, so the square roots of the Hertz force run in full vectors, no scalar tail.
+SIMD_WIDTH = 8
 
 
 @njit(cache=True)
@@ -151,19 +133,6 @@ def _renormalise(dq, dp):
 
 
 @njit(cache=True)
-def _count_gaps(q, delta, gap_steps):
-    N = q.shape[0]
-    n_open = 0
-    for b in range(N + 1):
-        left = q[b - 1] if b > 0 else 0.0
-        right = q[b] if b < N else 0.0
-        if delta[b] + left - right < 0.0:
-            gap_steps[b] += 1
-            n_open += 1
-    return n_open
-
-
-@njit(cache=True)
 def advance(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, drifts, dt, n_steps,
             tangent, check_every, track_gaps, gap_steps, diagnostics, f, k, g):
     """Advance the state (q, p) and, if ``tangent``, the deviation vector (dq, dp) by n_steps.
@@ -171,33 +140,91 @@ def advance(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, drifts, 
     Every ``check_every`` steps and at the end the state is checked for finiteness and the
     deviation vector is renormalised, its log growth added to diagnostics[0]. With
     ``track_gaps`` the number of steps each Hertz bond ends open is added to gap_steps and the
-    largest number of simultaneously open bonds is kept in diagnostics[1].
+    largest number of simultaneously open bonds is kept in diagnostics[1]. f and k (N+1) are
+    left holding the last bond forces and stiffnesses; g (N+1) is unused.
     Returns -1, or the number of steps done when a non-finite state stopped the run.
+
+    Speed (benchmarks/kernel_vs_c.py): the displacements and their deviations live in
+    U = (0, q, 0, ...) and DQ = (0, dq, 0, ...) with the walls, and the bond parameters are
+    zero-padded to L >= N+1 bonds, L a multiple of SIMD_WIDTH (padding bonds carry zero force), so
+    the loops carry no branch and the force loop no scalar tail; q and dq are written back on
+    exit. The loops are written out here, not in helpers taking arrays: a Numba call passes every
+    array field by value and an inlined one adds reference counting to the loop. The per-bond
+    force laws come from chainchaos.models and are compiled into this function; the cache directory
+    is keyed by the kernels' source (chainchaos._numba_cache), so an edit there recompiles it.
     """
+    N = q.shape[0]
+    L = (N + SIMD_WIDTH) // SIMD_WIDTH * SIMD_WIDTH
+    work = np.zeros((9, L + 2))
+    U, DQ = work[0], work[8]
+    U[1:N + 1] = q
+    DQ[1:N + 1] = dq
+    F, K, A_, delta_, K2_, K3_, K4_ = work[1], work[2], work[3], work[4], work[5], work[6], work[7]
+    A_[:N + 1] = A
+    delta_[:N + 1] = delta
+    K2_[:N + 1] = K2
+    K3_[:N + 1] = K3
+    K4_[:N + 1] = K4
+    hertz = model == HERTZ
     n_stages = drifts.shape[0]
     force_valid = False
+    bad = -1
     for step in range(n_steps):
         for i in range(n_stages + 1):
-            c = kicks[i]
+            c = kicks[i] * dt
             if c != 0.0:
                 if not force_valid:
-                    bond_forces(model, q, A, delta, K2, K3, K4, f, k, tangent)
+                    # bond b = 0..L-1 between U[b] and U[b+1]: force F[b], stiffness K[b]
+                    if hertz and tangent:
+                        for b in range(L):
+                            F[b], K[b] = hertz_force_stiffness(A_[b], delta_[b] + U[b] - U[b + 1])
+                    elif hertz:
+                        for b in range(L):
+                            F[b] = hertz_force(A_[b], delta_[b] + U[b] - U[b + 1])
+                    elif tangent:
+                        for b in range(L):
+                            D = U[b] - U[b + 1]
+                            F[b] = fput_force(K2_[b], K3_[b], K4_[b], D)
+                            K[b] = fput_stiffness(K2_[b], K3_[b], K4_[b], D)
+                    else:
+                        for b in range(L):
+                            F[b] = fput_force(K2_[b], K3_[b], K4_[b], U[b] - U[b + 1])
                     force_valid = True
-                _kick(p, dp, f, k, dq, c * dt, tangent)
+                # kick: p_n += c (F_n - F_{n+1});  dp_n += c (G_n - G_{n+1}), G_b = K_b (dq_{b-1} - dq_b)
+                for n in range(N):
+                    p[n] += c * (F[n] - F[n + 1])
+                if tangent:
+                    for n in range(N):
+                        dp[n] += c * (K[n] * (DQ[n] - DQ[n + 1]) - K[n + 1] * (DQ[n + 1] - DQ[n + 2]))
             if i < n_stages:
-                _drift(q, p, dq, dp, inv_mass, drifts[i] * dt, tangent)
+                # drift: u_n += c p_n / m_n;  dq_n += c dp_n / m_n
+                c = drifts[i] * dt
+                for n in range(N):
+                    U[n + 1] += c * inv_mass[n] * p[n]
+                if tangent:
+                    for n in range(N):
+                        DQ[n + 1] += c * inv_mass[n] * dp[n]
                 force_valid = False
-        if track_gaps:
-            n_open = _count_gaps(q, delta, gap_steps)
+        if track_gaps:  # open Hertz bonds: delta_b + D_b < 0
+            n_open = 0
+            for b in range(N + 1):
+                is_open = delta_[b] + U[b] - U[b + 1] < 0.0
+                gap_steps[b] += is_open
+                n_open += is_open
             if n_open > diagnostics[1]:
                 diagnostics[1] = n_open
         if (step + 1) % check_every == 0 or step + 1 == n_steps:
             s = 0.0
-            for n in range(q.shape[0]):
-                s += q[n] + p[n]
+            for n in range(N):
+                s += U[n + 1] + p[n]
             if tangent:
-                diagnostics[0] += _renormalise(dq, dp)
-                s += dq[0]
+                diagnostics[0] += _renormalise(DQ[1:N + 1], dp)
+                s += DQ[1]
             if not np.isfinite(s):
-                return step + 1
-    return -1
+                bad = step + 1
+                break
+    q[:] = U[1:N + 1]
+    dq[:] = DQ[1:N + 1]
+    f[:N + 1] = F[:N + 1]
+    k[:N + 1] = K[:N + 1]
+    return bad

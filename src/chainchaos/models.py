@@ -36,53 +36,52 @@ def coefficients(model: int, chain) -> tuple[np.ndarray, np.ndarray, np.ndarray]
 
 
 @njit(cache=True, inline="always")
-def bond_forces(model, u, A, delta, K2, K3, K4, f, k, with_stiffness):
-    """Fill f[b] (and k[b] if ``with_stiffness``) for every bond at displacements u.
-
-    The two wall bonds (u_{-1} = u_N = 0) are done outside the loops, which carry no branch.
-    """
-    N = u.shape[0]
-    if model == HERTZ:
-        f[0], k0 = _hertz(A[0], delta[0] - u[0])
-        f[N], kN = _hertz(A[N], delta[N] + u[N - 1])
-        if with_stiffness:
-            k[0], k[N] = k0, kN
-            for b in range(1, N):
-                x = max(delta[b] + u[b - 1] - u[b], 0.0)
-                s = np.sqrt(x)
-                f[b] = A[b] * x * s
-                k[b] = 1.5 * A[b] * s
-        else:
-            for b in range(1, N):
-                x = max(delta[b] + u[b - 1] - u[b], 0.0)
-                f[b] = A[b] * x * np.sqrt(x)
-    else:
-        f[0], k0 = _fput(K2[0], K3[0], K4[0], -u[0])
-        f[N], kN = _fput(K2[N], K3[N], K4[N], u[N - 1])
-        if with_stiffness:
-            k[0], k[N] = k0, kN
-            for b in range(1, N):
-                D = u[b - 1] - u[b]
-                f[b] = D * (K2[b] - D * (K3[b] - D * K4[b]))
-                k[b] = K2[b] - D * (2.0 * K3[b] - 3.0 * K4[b] * D)
-        else:
-            for b in range(1, N):
-                D = u[b - 1] - u[b]
-                f[b] = D * (K2[b] - D * (K3[b] - D * K4[b]))
+def hertz_force(A, overlap):
+    """Hertz bond force A [overlap]_+^(3/2), overlap = delta + D."""
+    x = max(overlap, 0.0)
+    return A * x * np.sqrt(x)
 
 
-@njit(cache=True)
-def _hertz(A, overlap):
-    """(force, stiffness) of one Hertz bond with overlap delta + D."""
+@njit(cache=True, inline="always")
+def hertz_force_stiffness(A, overlap):
+    """(force, stiffness df/dD) of a Hertz bond: (A x^(3/2), (3/2) A x^(1/2)), x = [overlap]_+."""
     x = max(overlap, 0.0)
     s = np.sqrt(x)
     return A * x * s, 1.5 * A * s
 
 
+@njit(cache=True, inline="always")
+def fput_force(K2, K3, K4, D):
+    """FPUT bond force K2 D - K3 D^2 + K4 D^3 at compression D."""
+    return D * (K2 - D * (K3 - D * K4))
+
+
+@njit(cache=True, inline="always")
+def fput_stiffness(K2, K3, K4, D):
+    """FPUT bond stiffness df/dD = K2 - 2 K3 D + 3 K4 D^2."""
+    return K2 - D * (2.0 * K3 - 3.0 * K4 * D)
+
+
 @njit(cache=True)
-def _fput(K2, K3, K4, D):
-    """(force, stiffness) of one FPUT bond with compression D."""
-    return D * (K2 - D * (K3 - D * K4)), K2 - D * (2.0 * K3 - 3.0 * K4 * D)
+def bond_forces(model, u, A, delta, K2, K3, K4, f, k, with_stiffness):
+    """Fill f[b] (and k[b] if ``with_stiffness``) for every bond b = 0..N at displacements u (N,).
+
+    The stepping engine (integrators.advance) runs the same per-bond kernels in its own padded,
+    branch-free loop; this is the plain version for everything else.
+    """
+    N = u.shape[0]
+    for b in range(N + 1):
+        left = u[b - 1] if b > 0 else 0.0
+        right = u[b] if b < N else 0.0
+        if model == HERTZ:
+            if with_stiffness:
+                f[b], k[b] = hertz_force_stiffness(A[b], delta[b] + left - right)
+            else:
+                f[b] = hertz_force(A[b], delta[b] + left - right)
+        else:
+            f[b] = fput_force(K2[b], K3[b], K4[b], left - right)
+            if with_stiffness:
+                k[b] = fput_stiffness(K2[b], K3[b], K4[b], left - right)
 
 
 @njit(cache=True)

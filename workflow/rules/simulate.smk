@@ -1,12 +1,18 @@
 # One simulation per scene, each computing only the observables its panels use.
 
 
+from chainchaos._numba_cache import kernel_sources
+
+
 wildcard_constraints:
     scene="|".join(re.escape(name) for name in SCENES),
 
 
 rule compile_kernels:
-    """Compile the Numba kernels once into the on-disk cache before the simulations fan out."""
+    """Compile the Numba kernels once into the on-disk cache before the simulations fan out.
+    An edit to a kernel's source reruns it, and so the scenes."""
+    input:
+        sources=[str(path) for path in kernel_sources()],
     output:
         flag=result("kernels_compiled.txt"),
     log:

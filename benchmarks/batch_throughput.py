@@ -1,0 +1,96 @@
+"""Throughput of the batch engine (chainchaos.batch) against the single-trajectory engine
+(chainchaos.integrators.advance) at N = 40: trajectories x steps per second, both models, with the
+tangent map (the scan's configuration: SRKN6b, Hertz with gap counting).
+
+    python benchmarks/batch_throughput.py [--steps 20000] [--lanes 8 16 32 64] [--json out.json]
+
+Each measurement runs after a warm-up call (compilation or cache load excluded) and is the best
+of ``--repeats`` timings. The ratio printed is batch throughput / single throughput.
+"""
+
+import argparse
+import json
+import time
+
+import numpy as np
+
+from chainchaos import random_chain
+from chainchaos.batch import Batch
+from chainchaos.initial import initial_deviation, initial_state
+from chainchaos.integrators import advance, get_scheme
+from chainchaos.models import coefficients, model_id
+
+
+def states(model, chain, B, site=21):
+    energies = np.geomspace(0.2, 5.0, B)
+    qs, ps = zip(*[initial_state(model, chain, float(E), site)[:2] for E in energies])
+    dq, dp = initial_deviation(chain.N, 0)
+    return np.stack(qs, 1), np.stack(ps, 1), np.tile(dq[:, None], (1, B)), np.tile(dp[:, None], (1, B))
+
+
+def single_rate(name, chain, steps, dt, integrator, tangent, repeats):
+    model = model_id(name)
+    scheme = get_scheme(integrator)
+    K2, K3, K4 = coefficients(model, chain)
+    q0, p0, dq0, dp0 = (a[:, 0].copy() for a in states(model, chain, 1))
+    N = chain.N
+    best = np.inf
+    for r in range(repeats + 1):
+        q, p, dq, dp = q0.copy(), p0.copy(), dq0.copy(), dp0.copy()
+        diag, gaps = np.zeros(2), np.zeros(N + 1, dtype=np.int64)
+        f, k, g = np.empty(N + 1), np.empty(N + 1), np.empty(N + 1)
+        n = 10 if r == 0 else steps
+        t0 = time.perf_counter()
+        advance(model, q, p, dq, dp, 1.0 / chain.mass, chain.A, chain.delta, K2, K3, K4, scheme.kicks,
+                scheme.drifts, dt, n, tangent, 1000, name == "hertz", gaps, diag, f, k, g)
+        if r > 0:
+            best = min(best, time.perf_counter() - t0)
+    return steps / best
+
+
+def batch_rate(name, chain, B, steps, dt, integrator, tangent, repeats):
+    q, p, dq, dp = states(model_id(name), chain, B)
+    best = np.inf
+    for r in range(repeats + 1):
+        b = Batch(name, [chain] * B, q, p, dq, dp, integrator=integrator, dt=dt, tangent=tangent,
+                  track_gaps=name == "hertz", check_every=1000)
+        n = 10 if r == 0 else steps
+        t0 = time.perf_counter()
+        b.advance(n)
+        if r > 0:
+            best = min(best, time.perf_counter() - t0)
+    return B * steps / best
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--steps", type=int, default=20000)
+    ap.add_argument("--lanes", type=int, nargs="+", default=[8, 16, 32, 64])
+    ap.add_argument("--dt", type=float, default=5e-3)
+    ap.add_argument("--integrator", default="SRKN6b")
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--no-tangent", action="store_true")
+    ap.add_argument("--json", help="also write the results here")
+    a = ap.parse_args(argv)
+    chain = random_chain(879, 5.0, 40)
+    tangent = not a.no_tangent
+    rows = []
+    print(f"N = {chain.N}, {a.integrator}, dt = {a.dt}, tangent = {tangent}, {a.steps} steps")
+    print(f"{'model':6} {'engine':8} {'lanes':>5} {'traj*steps/s':>14} {'us/step/traj':>13} {'ratio':>6}")
+    for name in ("hertz", "fput"):
+        single = single_rate(name, chain, a.steps, a.dt, a.integrator, tangent, a.repeats)
+        print(f"{name:6} {'single':8} {1:5d} {single:14.4g} {1e6 / single:13.3f} {1.0:6.2f}")
+        rows.append({"model": name, "engine": "single", "lanes": 1, "rate": single, "ratio": 1.0})
+        for B in a.lanes:
+            rate = batch_rate(name, chain, B, a.steps, a.dt, a.integrator, tangent, a.repeats)
+            print(f"{name:6} {'batch':8} {B:5d} {rate:14.4g} {1e6 / rate:13.3f} {rate / single:6.2f}")
+            rows.append({"model": name, "engine": "batch", "lanes": B, "rate": rate, "ratio": rate / single})
+    if a.json:
+        with open(a.json, "w") as fh:
+            json.dump({"N": chain.N, "integrator": a.integrator, "dt": a.dt, "tangent": tangent,
+                       "steps": a.steps, "results": rows}, fh, indent=1)
+    return rows
+
+
+if __name__ == "__main__":
+    main()
