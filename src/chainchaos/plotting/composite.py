@@ -1,5 +1,6 @@
 """The composite figures: the panels of figure N laid out as in the paper (paper.LAYOUTS)."""
 
+import numpy as np
 from matplotlib.figure import Figure
 
 from chainchaos import paper
@@ -16,10 +17,20 @@ def plot_figure(number: int, data: dict) -> Figure:
     columns = max(len(row) for row in rows)
     with style.context():
         fig = Figure(figsize=style.composite_size(len(rows), columns), layout="constrained")
-        grid = fig.add_gridspec(len(rows), columns)
-        for r, row in enumerate(rows):
+        # One subfigure per row: a row of line plots is not squeezed to the colour-bar margins
+        # of a row of maps below it.
+        for row, subfigure in zip(rows, np.atleast_1d(fig.subfigures(len(rows), 1))):
+            grid = subfigure.add_gridspec(1, columns)
             for c, letter in enumerate(row):
-                ax = fig.add_subplot(grid[r, c])
+                ax = subfigure.add_subplot(grid[0, c])
                 draw_panel(ax, f"{number}{letter}", data)
-                ax.set_title(f"({letter})", loc="left", fontweight="bold")
+                _letter(ax, letter)
     return fig
+
+
+def _letter(ax, letter: str) -> None:
+    """The panel letter in bold, followed by the panel's own title, at the top left (a centred
+    title would collide with the letter in a narrow panel)."""
+    title = ax.get_title()
+    ax.set_title("")
+    ax.set_title(rf"$\bf{{({letter})}}$ {title}".rstrip(), loc="left")

@@ -12,13 +12,14 @@ import numpy as np
 import xarray as xr
 from matplotlib.colors import LogNorm, Normalize, to_rgb
 from matplotlib.figure import Figure
-from matplotlib.ticker import LogLocator, MaxNLocator
+from matplotlib.ticker import LogLocator, MaxNLocator, NullLocator
 from statsmodels.nonparametric.smoothers_lowess import lowess
 
 from chainchaos import paper
 from chainchaos.plotting import style
 
 LOWESS_FRACTION = 0.08  # share of the samples in each local fit (about half a decade at 40 per decade)
+LOWESS_MIN_SAMPLES = 5
 
 # --------------------------------------------------------------------------- helpers
 
@@ -37,39 +38,51 @@ def _log_edges(t: np.ndarray) -> np.ndarray:
 
 
 def _index_edges(index: np.ndarray) -> np.ndarray:
+    """Cell edges around consecutive integers (sites, bonds, modes)."""
     return np.concatenate((index - 0.5, [index[-1] + 0.5]))
+
+
+def _index_locator():
+    """Ticks of a site, bond or mode axis: a few round integers (10, 20, 30, 40 for N = 40)."""
+    return MaxNLocator(nbins=5, integer=True, steps=[1, 2, 5, 10])
+
+
+def _sparse_log_ticks(axis) -> None:
+    """A few labelled decades and no minor ticks: the log axes of densities span eight decades."""
+    axis.set_major_locator(LogLocator(numticks=5))
+    axis.set_minor_locator(NullLocator())
 
 
 def _time_axis(ax, t_min: float, t_max: float) -> None:
     ax.set_xscale("log")
     ax.set_xlim(t_min, t_max)
     ax.set_xlabel(style.TIME_LABEL)
-    ax.xaxis.set_major_locator(LogLocator(numticks=5))  # at most ~5 labelled decades: narrow panels
+    # Every second decade labelled once a run spans more than four: readable in narrow panels.
+    ax.xaxis.set_major_locator(LogLocator(numticks=5))
 
 
 def _draw_map(ax, values: xr.DataArray, y_dim: str, norm, cmap: str, colour_label: str,
-              y_label: str):
+              y_label: str) -> None:
     """``values(time, y_dim)`` as a colour map, time (log) to the right, with a colour bar."""
     values = _after_start(values).transpose("time", y_dim)
-    t = values.time.values
-    y = values[y_dim].values
-    mesh = ax.pcolormesh(_log_edges(t), _index_edges(y), values.values.T, norm=norm, cmap=cmap,
-                         shading="flat", rasterized=True)
-    _time_axis(ax, *_log_edges(t)[[0, -1]])
+    t_edges = _log_edges(values.time.values)
+    # Rasterised: a PDF viewer draws an image, not ten thousand cells.
+    mesh = ax.pcolormesh(t_edges, _index_edges(values[y_dim].values), values.values.T, norm=norm,
+                         cmap=cmap, shading="flat", rasterized=True)
+    _time_axis(ax, t_edges[0], t_edges[-1])
     ax.set_ylabel(y_label)
-    ax.yaxis.set_major_locator(MaxNLocator(nbins=5, integer=True))
+    ax.yaxis.set_major_locator(_index_locator())
     bar = ax.figure.colorbar(mesh, ax=ax, pad=0.02, fraction=0.08, aspect=25)
     bar.set_label(colour_label)
     if isinstance(norm, LogNorm):
-        bar.ax.yaxis.set_major_locator(LogLocator(numticks=5))
-    return mesh
+        _sparse_log_ticks(bar.ax.yaxis)
 
 
-def _log_density_map(ax, values: xr.DataArray, y_dim: str, colour_label: str, y_label: str):
+def _log_density_map(ax, values: xr.DataArray, y_dim: str, colour_label: str, y_label: str) -> None:
     """A density normalised to 1 on a logarithmic colour scale from MAP_FLOOR to 1 (values
     below the floor, zeros among them, take the floor's colour)."""
     clipped = values.clip(min=style.MAP_FLOOR)
-    return _draw_map(ax, clipped, y_dim, LogNorm(style.MAP_FLOOR, 1.0), style.MAP_CMAP, colour_label,
+    _draw_map(ax, clipped, y_dim, LogNorm(style.MAP_FLOOR, 1.0), style.MAP_CMAP, colour_label,
                      y_label)
 
 
@@ -100,8 +113,17 @@ def _scene_title(ax, ds: xr.Dataset) -> None:
 def _smoothed_curve(ax, t: np.ndarray, y: np.ndarray, color, linestyle="-", label=None) -> None:
     """LOWESS smoothing of y against log10 t, with the raw values faintly behind it."""
     ax.plot(t, y, color=color, linewidth=0.5, alpha=style.RAW_ALPHA)
-    fit = lowess(y, np.log10(t), frac=LOWESS_FRACTION, return_sorted=True)
+    fraction = max(LOWESS_FRACTION, LOWESS_MIN_SAMPLES / t.size)  # short runs: still a real fit
+    fit = lowess(y, np.log10(t), frac=fraction, return_sorted=True)
     ax.plot(10.0 ** fit[:, 0], fit[:, 1], color=color, linestyle=linestyle, linewidth=1.2, label=label)
+
+
+def _legend_above_data(ax, ncol: int = 1, room: float = 0.3) -> None:
+    """Legend at the top left, in headroom added above the data so that it covers no curve; a
+    fixed place also keeps PDF and PNG alike (loc="best" may choose differently per renderer)."""
+    bottom, top = ax.get_ylim()
+    ax.set_ylim(bottom, top + room * (top - bottom))
+    ax.legend(loc="upper left", ncol=ncol)
 
 
 def _time_range(datasets) -> tuple[float, float]:
@@ -112,6 +134,12 @@ def _time_range(datasets) -> tuple[float, float]:
 def _nearest_sample(t: np.ndarray, wanted: float) -> int:
     """Index of the sample (t > 0) nearest to ``wanted`` in log t: samples are log-spaced."""
     return int(np.argmin(np.abs(np.log(t) - np.log(wanted))))
+
+
+def _profile_line(i: int) -> dict:
+    """Colour and dash of the i-th DVD profile time, the same on the map and the profiles."""
+    return {"color": style.PROFILE_COLOURS[i % len(style.PROFILE_COLOURS)],
+            "linestyle": style.PROFILE_LINESTYLES[i % len(style.PROFILE_LINESTYLES)]}
 
 
 def _profile_samples(ds: xr.Dataset, times) -> list[tuple[float, int | None]]:
@@ -132,7 +160,7 @@ def draw_ensemble_participation(ax, ensemble: xr.Dataset) -> None:
     for alpha, colour in zip(alphas, colours):
         mean = ensemble.mean_participation.sel(alpha=alpha)
         std = ensemble.std_participation.sel(alpha=alpha)
-        ax.errorbar(ensemble.rank.values, mean.values, yerr=std.values, color=colour, marker="o",
+        ax.errorbar(ensemble["rank"].values, mean.values, yerr=std.values, color=colour, marker="o",
                     markersize=2, linewidth=0.8, elinewidth=0.5, capsize=1.2,
                     label=rf"$\alpha = {alpha:g}$")
     ax.set_xlabel(style.RANK_LABEL)
@@ -188,7 +216,7 @@ def draw_participation(ax, *scenes: xr.Dataset) -> None:
         _smoothed_curve(ax, after.time.values, after.participation.values, **line)
     _time_axis(ax, *_time_range(scenes))
     ax.set_ylabel(style.P_LABEL)
-    ax.legend(loc="best")
+    _legend_above_data(ax, ncol=2)
 
 
 def draw_participation_with_dvd(ax, ds: xr.Dataset) -> None:
@@ -202,7 +230,7 @@ def draw_participation_with_dvd(ax, ds: xr.Dataset) -> None:
     _time_axis(ax, t[0], t[-1])
     ax.set_ylabel(f"{style.P_LABEL}, {style.PD_LABEL}")
     ax.set_ylim(bottom=0)
-    ax.legend(loc="best")
+    _legend_above_data(ax, ncol=2)
     _scene_title(ax, ds)
 
 
@@ -217,6 +245,8 @@ def draw_mlce(ax, *scenes: xr.Dataset) -> None:
         after = _after_start(ds)
         t, mlce = after.time.values, after.mlce.values
         positive = mlce > 0  # a log axis cannot show Lambda <= 0
+        if len(scenes) == 1:
+            line["label"] = None  # the title names the scene
         ax.plot(t[positive], mlce[positive], linewidth=1.0, **line)
         late = np.flatnonzero((t >= 1.0) & positive)
         if late.size:
@@ -242,9 +272,7 @@ def draw_dvd_map(ax, ds: xr.Dataset, mark_times=()) -> None:
     t = _after_start(ds).time.values
     for i, (_, index) in enumerate(_profile_samples(ds, mark_times)):
         if index is not None:
-            ax.axvline(t[index], color=style.PROFILE_COLOURS[i % len(style.PROFILE_COLOURS)],
-                       linestyle=style.PROFILE_LINESTYLES[i % len(style.PROFILE_LINESTYLES)],
-                       linewidth=1.0)
+            ax.axvline(t[index], linewidth=1.0, **_profile_line(i))
     _scene_title(ax, ds)
 
 
@@ -256,19 +284,17 @@ def draw_dvd_profiles(ax, ds: xr.Dataset, times=()) -> None:
     t = after.time.values
     sites = after.site.values
     for i, (wanted, index) in enumerate(_profile_samples(ds, times)):
-        colour = style.PROFILE_COLOURS[i % len(style.PROFILE_COLOURS)]
-        if index is None:
+        if index is None:  # an invisible handle: the legend names the time left out
             ax.plot([], [], " ", label=rf"$t = {style.time_text(wanted)}$ beyond run "
                                        rf"($t_{{\rm final}} = {style.time_text(t[-1])}$)")
             continue
         profile = np.clip(after.dvd.isel(time=index).values, style.MAP_FLOOR, None)
-        ax.plot(sites, profile, color=colour,
-                linestyle=style.PROFILE_LINESTYLES[i % len(style.PROFILE_LINESTYLES)],
-                label=rf"$t = {style.time_text(t[index])}$")
+        ax.plot(sites, profile, label=rf"$t = {style.time_text(t[index])}$", **_profile_line(i))
     ax.set_yscale("log")
     ax.set_ylim(style.MAP_FLOOR, 1.0)
     ax.set_xlim(sites[0] - 0.5, sites[-1] + 0.5)
-    ax.yaxis.set_major_locator(LogLocator(numticks=5))
+    _sparse_log_ticks(ax.yaxis)
+    ax.xaxis.set_major_locator(_index_locator())
     ax.set_xlabel(style.SITE_LABEL)
     ax.set_ylabel(style.DVD_LABEL)
     ax.legend(loc="lower center")
@@ -300,20 +326,22 @@ def draw_gap_map(ax, ds: xr.Dataset) -> None:
 
 def draw_gap_count(ax, ds: xr.Dataset) -> None:
     """Number of open gaps at each sample against log time, and the largest number since the
-    previous sample as a light step line where it is recorded (Figs. 7c,d)."""
+    previous sample as a light step area where it is recorded (Figs. 7c,d)."""
     after = _after_start(ds)
     t = after.time.values
     colour = style.model_colour(ds.attrs["model"])
+    top = int(after.n_gaps.max())
     if "n_gaps_max" in after:
         ax.fill_between(t, after.n_gaps_max.values, step="pre", color=_lighten(colour, 0.75),
                         linewidth=0, label="largest since previous sample")
+        top = max(top, int(after.n_gaps_max.max()))
     ax.plot(t, after.n_gaps.values, color=colour, linewidth=0.8, marker="o", markersize=1.2,
             label="at the sample")
     _time_axis(ax, t[0], t[-1])
     ax.set_ylabel(style.GAP_COUNT_LABEL)
-    ax.set_ylim(bottom=0)
+    ax.set_ylim(0, 1.45 * max(top, 1))  # headroom for the legend above the counts
     ax.yaxis.set_major_locator(MaxNLocator(integer=True))
-    ax.legend(loc="upper left")
+    ax.legend(loc="upper left", ncol=2)
     _scene_title(ax, ds)
 
 
@@ -328,11 +356,14 @@ def draw_eta(ax, ds: xr.Dataset, equipartition: bool = False) -> None:
     ax.plot(t, after.eta.values, color=style.model_colour(ds.attrs["model"]), linewidth=0.8)
     if equipartition:
         value = float(ds.eta.attrs["equipartition_value"])
-        ax.axhline(value, color="black", linestyle="--", linewidth=0.8,
-                   label=rf"$\langle\eta\rangle = {value:.3f}$")
-        ax.legend(loc="lower left")
+        ax.axhline(value, color="black", linestyle="--", linewidth=0.8)
+        # Labelled at the left end, where eta is still near 1 and the line runs free.
+        ax.annotate(rf"$\langle\eta\rangle = {value:.3f}$", (0.03, value),
+                    xycoords=ax.get_yaxis_transform(), xytext=(0, 2), textcoords="offset points",
+                    va="bottom", ha="left", fontsize=style.RC["legend.fontsize"])
     _time_axis(ax, t[0], t[-1])
     ax.set_ylabel(style.ETA_LABEL)
+    ax.set_ylim(bottom=0)
     _scene_title(ax, ds)
 
 
@@ -405,7 +436,6 @@ def draw_panel(ax, panel_id: str, data: dict) -> None:
 
 def plot_panel(panel_id: str, data: dict) -> Figure:
     """Panel ``panel_id`` (e.g. "4d") alone on a new one-column figure."""
-    _panel(panel_id)
     with style.context():
         fig = Figure(figsize=(style.COLUMN_WIDTH, style.PANEL_HEIGHT), layout="constrained")
         draw_panel(fig.add_subplot(), panel_id, data)

@@ -26,7 +26,7 @@ RC = {
     "mathtext.fontset": "dejavusans",
     "font.size": 8,
     "axes.labelsize": 8,
-    "axes.titlesize": 8,
+    "axes.titlesize": 7,
     "legend.fontsize": 6.5,
     "xtick.labelsize": 7,
     "ytick.labelsize": 7,
@@ -39,6 +39,7 @@ RC = {
     "axes.titlepad": 3.0,
     "legend.frameon": False,
     "legend.handlelength": 1.8,
+    "legend.columnspacing": 1.0,
     "pdf.fonttype": 42,  # embedded TrueType: text stays text for the journal
     "savefig.dpi": DPI,
     "figure.dpi": 100,
@@ -63,13 +64,13 @@ PROFILE_LINESTYLES = (":", "--", "-", "-.")
 
 TIME_LABEL = r"$t$ [$1/\omega_{\max}$]"
 SITE_LABEL = r"$n$ (site)"
-BOND_LABEL = r"$n$ (bond between sites $n-1$ and $n$)"
+BOND_LABEL = r"$n$ (bond, sites $n-1$ to $n$)"
 MODE_LABEL = r"$k$ (mode)"
 RANK_LABEL = r"$k$ (rank)"
 FREQUENCY_LABEL = r"$\omega_k$ [$\omega_{\max}$]"
 ENERGY_DENSITY_LABEL = r"$h_n$"
 DVD_LABEL = r"$w_n$"
-MODE_ENERGY_LABEL = r"$v_k = E_k / \sum_j E_j$"
+MODE_ENERGY_LABEL = r"$v_k$"
 P_LABEL = r"$P$"
 PD_LABEL = r"$P_{\rm D}$"
 MEAN_P_LABEL = r"$\langle P \rangle$"
@@ -95,6 +96,7 @@ def composite_size(rows: int, columns: int) -> tuple[float, float]:
 
 
 def model_colour(model: str) -> str:
+    """Hertz red or FPUT blue."""
     return MODEL_COLOURS[model]
 
 
@@ -113,27 +115,38 @@ def time_text(t: float) -> str:
     return power if mantissa == "1" else rf"{mantissa}\times{power}"
 
 
-def save_figure(fig, path_stem) -> tuple[Path, Path]:
+def save_figure(fig, path_stem, dpi: int = DPI) -> tuple[Path, Path]:
     """Write ``<path_stem>.pdf`` and ``<path_stem>.png`` byte-stably and atomically.
 
-    Same figure, same bytes: fixed dpi, no dates in the PDF, no timestamps in the PNG. Each file is
-    written to a temporary file in the target directory and renamed into place, so an interrupted
-    run leaves no complete-looking file. Returns the two paths.
+    Same figure, same bytes: a fixed ``dpi`` (of the PNG and of the PDF's rasterised maps), no
+    dates in the PDF, no timestamps in the PNG, and the layout computed once and then kept (see
+    ``_freeze_layout``). Each file is written to a temporary file in the target directory and
+    renamed into place, so an interrupted run leaves no complete-looking file. Returns the paths.
     """
     stem = Path(path_stem)
     stem.parent.mkdir(parents=True, exist_ok=True)
     paths = Path(f"{stem}.pdf"), Path(f"{stem}.png")
     with context():
-        _write_atomically(fig, paths[0], "pdf", PDF_METADATA)
-        _write_atomically(fig, paths[1], "png", PNG_METADATA)
+        _freeze_layout(fig)
+        _write_atomically(fig, paths[0], "pdf", dpi, PDF_METADATA)
+        _write_atomically(fig, paths[1], "png", dpi, PNG_METADATA)
     return paths
 
 
-def _write_atomically(fig, path: Path, fmt: str, metadata: dict) -> None:
+def _freeze_layout(fig) -> None:
+    """Run the figure's layout engine once and keep its result. Constrained layout starts from the
+    current positions, so every draw would shift them slightly: a frozen layout gives the PDF and
+    the PNG the same positions and every later save the same bytes."""
+    if fig.get_layout_engine() is not None:
+        fig.draw_without_rendering()
+        fig.set_layout_engine("none")
+
+
+def _write_atomically(fig, path: Path, fmt: str, dpi: int, metadata: dict) -> None:
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     try:
         with os.fdopen(fd, "wb") as stream:
-            fig.savefig(stream, format=fmt, dpi=DPI, metadata=metadata)
+            fig.savefig(stream, format=fmt, dpi=dpi, metadata=metadata)
         os.chmod(tmp, 0o644)  # mkstemp creates 0600; figures are for everyone to read
         os.replace(tmp, path)
     except BaseException:
