@@ -20,9 +20,11 @@ include: "workflow/rules/common.smk"
 include: "workflow/rules/chain.smk"
 include: "workflow/rules/simulate.smk"
 include: "workflow/rules/figures.smk"
+include: "workflow/rules/numerics.smk"
 
 
 rule all:
     default_target: True
     input:
         ALL_TARGETS,
+        NUMERICS_TARGETS,

@@ -11,7 +11,7 @@ the derived units. The physics is the package's own Numba force kernel
 import numpy as np
 from numba import njit
 
-from chainchaos.models import bond_forces, bond_potentials
+from chainchaos.models import bond_forces, bond_potentials, coefficients
 
 
 @njit(cache=True)
@@ -64,7 +64,8 @@ class RightHandSide:
     def __init__(self, model: int, chain, tangent: bool = False):
         self.model, self.chain, self.tangent = int(model), chain, bool(tangent)
         self.N = chain.N
-        self._args = (self.model, 1.0 / chain.mass, chain.A, chain.delta, chain.K2, chain.K3, chain.K4,
+        self.K = coefficients(self.model, chain)
+        self._args = (self.model, 1.0 / chain.mass, chain.A, chain.delta, *self.K,
                       self.tangent, np.empty(self.N + 1), np.empty(self.N + 1))
         self.size = (4 if tangent else 2) * self.N
         self.nfev = 0
@@ -79,7 +80,7 @@ class RightHandSide:
         """Total energy of the state part of ``y``."""
         c, N = self.chain, self.N
         return float(energy_kernel(self.model, np.ascontiguousarray(y[:N]), np.ascontiguousarray(y[N:2 * N]),
-                                   c.mass, c.A, c.delta, c.K2, c.K3, c.K4, np.empty(N + 1)))
+                                   c.mass, c.A, c.delta, *self.K, np.empty(N + 1)))
 
 
 def rhs(model: int, chain, tangent: bool = False) -> RightHandSide:

@@ -8,7 +8,11 @@ initial deviation vector (:func:`chainchaos.initial.initial_deviation`). It reco
 - the phase-space state (u, p) at t_probe (units of DESIGN section 1),
 - the finite-time mLCE Lambda(t_final) (units of omega_max, i.e. 1 / time unit),
 - the wall-clock seconds of the integration (time.perf_counter; the best of ``repeats`` runs when
-  one run is shorter than ``repeat_below`` seconds, so that short runs are not timer noise).
+  one run is shorter than ``repeat_below`` seconds, so that short runs are not timer noise), and
+  the process CPU seconds of the same run (time.process_time, less sensitive to other load).
+
+Call :func:`warm_up` once per process before timing: the first call of a Numba kernel with new
+argument types loads or compiles it.
 
 Times are in units of 1/omega_max of the homogeneous linear chain (DESIGN section 1).
 """
@@ -24,6 +28,7 @@ from scipy import integrate
 from chainchaos.errors import require
 from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.integrators import advance, get_scheme
+from chainchaos.models import coefficients
 from chainchaos.numerics.rhs import RightHandSide, energy_kernel
 
 IVP_METHODS = ("RK45", "DOP853")
@@ -37,6 +42,7 @@ class RunResult:
     dt: float = math.nan
     rtol: float = math.nan
     seconds: float = math.nan
+    cpu_seconds: float = math.nan
     n_steps: int = 0
     force_evaluations: int = 0
     max_energy_error: float = math.nan
@@ -114,7 +120,7 @@ def run_scheme(model: int, chain, energy: float, scheme: str, dt: float, t_final
     q0, p0, _ = initial_state(model, chain, energy, excited_site)
     dq0, dp0 = initial_deviation(chain.N, deviation_seed) if tangent else (np.zeros(chain.N), np.zeros(chain.N))
     N = chain.N
-    inv_mass, K2, K3, K4 = 1.0 / chain.mass, chain.K2, chain.K3, chain.K4
+    inv_mass, (K2, K3, K4) = 1.0 / chain.mass, coefficients(model, chain)
     H0 = float(energy_kernel(model, q0, p0, chain.mass, chain.A, chain.delta, K2, K3, K4, np.empty(N + 1)))
 
     best = math.inf
@@ -125,7 +131,7 @@ def run_scheme(model: int, chain, energy: float, scheme: str, dt: float, t_final
         gap_steps = np.zeros(N + 1, dtype=np.int64)
         scratch = [np.empty(N + 1) for _ in range(4)]
         probe, offset, stop_index, steps_done = None, 0, -1, 0
-        start = time.perf_counter()
+        start, cpu_start = time.perf_counter(), time.process_time()
         for si, seg in enumerate(segments):
             for n_chunks, c in seg:
                 bad = run_chunks(model, q, p, dq, dp, inv_mass, chain.mass, chain.A, chain.delta, K2, K3, K4,
@@ -141,8 +147,9 @@ def run_scheme(model: int, chain, energy: float, scheme: str, dt: float, t_final
                 break
             if si == 0:
                 probe = np.concatenate([q, p])
-        elapsed = time.perf_counter() - start
-        best = min(best, elapsed)
+        elapsed, cpu = time.perf_counter() - start, time.process_time() - cpu_start
+        if elapsed < best:
+            best, best_cpu = elapsed, cpu
         if elapsed >= repeat_below or stop_index >= 0:
             break
 
@@ -150,7 +157,7 @@ def run_scheme(model: int, chain, energy: float, scheme: str, dt: float, t_final
     signed = err if stable else err[:stop_index + 1]
     checked = np.abs(signed)
     result = RunResult(
-        method=scheme, dt=float(dt), seconds=best, n_steps=int(steps_done),
+        method=scheme, dt=float(dt), seconds=best, cpu_seconds=best_cpu, n_steps=int(steps_done),
         force_evaluations=int(steps_done * s.force_evaluations),
         max_energy_error=float(np.max(checked)) if checked.size else 0.0,
         final_energy_error=float(checked[-1]) if checked.size else 0.0,
@@ -195,7 +202,7 @@ def run_solve_ivp(model: int, chain, energy: float, method: str, rtol: float, t_
     for attempt in range(max(1, repeats)):
         fun.nfev = 0
         y, t0, n_steps, max_err, probe, ok = y0.copy(), 0.0, 0, 0.0, None, True
-        start = time.perf_counter()
+        start, cpu_start = time.perf_counter(), time.process_time()
         for t_bound in bounds:
             solver = solver_class(fun, t0, y, t_bound, rtol=rtol, atol=atol)
             while solver.status == "running":
@@ -210,9 +217,9 @@ def run_solve_ivp(model: int, chain, energy: float, method: str, rtol: float, t_
             t0, y = t_bound, solver.y.copy()
             if t_probe is not None and t_bound == t_probe:
                 probe = y[:2 * chain.N].copy()
-        elapsed = time.perf_counter() - start
+        elapsed, cpu = time.perf_counter() - start, time.process_time() - cpu_start
         if elapsed < best:
-            best = elapsed
+            best, best_cpu = elapsed, cpu
         if result is None:
             v = np.linalg.norm(y[2 * chain.N:]) if tangent else math.nan
             result = RunResult(
@@ -223,8 +230,18 @@ def run_solve_ivp(model: int, chain, energy: float, method: str, rtol: float, t_
                 stable=ok, t_stopped=math.nan if ok else float(t0))
         if elapsed >= repeat_below:
             break
-    result.seconds = best
+    result.seconds, result.cpu_seconds = best, best_cpu
     return result
+
+
+def warm_up(chain, models=(0, 1)) -> None:
+    """Load (or compile) every Numba kernel the measured runs use, with the argument types of
+    ``chain``, so that no timed run pays for compilation."""
+    for model in models:
+        for tangent in (False, True):
+            run_scheme(model, chain, 0.01, "verlet", 0.1, 0.2, 0.1, tangent=tangent, repeats=1, track_gaps=True)
+            run_scheme(model, chain, 0.01, "verlet", 0.1, 0.2, 0.1, tangent=tangent, repeats=1)
+            run_solve_ivp(model, chain, 0.01, "RK45", 1e-3, 0.2, 0.1, tangent=tangent, repeats=1)
 
 
 def phase_space_error(state, reference) -> float:

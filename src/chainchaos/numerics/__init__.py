@@ -1,0 +1,42 @@
+"""Numerical accuracy and stability of the integrators (the project's issue 5).
+
+Small, orthogonal pieces, all in the nondimensional units of DESIGN section 1 (times in
+1/omega_max of the homogeneous linear chain, relative energy errors |H(t) - H(0)| / H(0)):
+
+- :mod:`~chainchaos.numerics.rhs`: the equations of motion (and their tangent extension) as a
+  compiled right-hand side ``rhs(t, y)`` for scipy's solve_ivp, built on the package's kernels.
+- :mod:`~chainchaos.numerics.runs`: one measured run of a splitting scheme (``run_scheme``) or
+  of solve_ivp's RK45/DOP853 (``run_solve_ivp``): energy error, phase-space state, Lambda, seconds.
+- :mod:`~chainchaos.numerics.work_precision`: error against run time over steps and tolerances
+  (``work_precision``), observed orders (``observed_order``, ``order_table``).
+- :mod:`~chainchaos.numerics.stability`: linear stability bounds of the schemes, the largest
+  stable step by bisection (``largest_stable_dt``), the near-sonic-vacuum chain
+  (``sonic_vacuum_chain``), long-time energy drift (``energy_drift``), the FPUT Taylor-sign escape.
+- :mod:`~chainchaos.numerics.advice`: the energy error of the production step per scene.
+- :mod:`~chainchaos.numerics.tables` and :mod:`~chainchaos.numerics.plots`: CSV/LaTeX tables and
+  the two figures (imported on demand: they pull in matplotlib).
+"""
+
+from chainchaos.numerics.advice import step_advice
+from chainchaos.numerics.rhs import RightHandSide, rhs
+from chainchaos.numerics.runs import RunResult, phase_space_error, run_scheme, run_solve_ivp, warm_up
+from chainchaos.numerics.stability import (
+    PrecompressedChain,
+    chain_at_alpha,
+    energy_drift,
+    largest_stable_dt,
+    linear_instability_intervals,
+    linear_omega_max,
+    linear_stability_bound,
+    sonic_vacuum_chain,
+    stability_scan,
+    taylor_sign_probe,
+)
+from chainchaos.numerics.work_precision import observed_order, order_table, work_precision
+
+__all__ = [
+    "RightHandSide", "rhs", "RunResult", "run_scheme", "run_solve_ivp", "phase_space_error", "warm_up",
+    "work_precision", "observed_order", "order_table", "linear_stability_bound", "linear_instability_intervals",
+    "linear_omega_max", "largest_stable_dt", "stability_scan", "chain_at_alpha", "PrecompressedChain",
+    "sonic_vacuum_chain", "energy_drift", "taylor_sign_probe", "step_advice",
+]

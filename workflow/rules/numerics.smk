@@ -1,0 +1,178 @@
+# Numerical accuracy and stability of the integrators (issue 5), on the chosen chain:
+# work precision of every scheme and of solve_ivp, observed orders, largest stable steps, the
+# near-sonic-vacuum limit, long-time energy drift, FPUT with the Taylor sign of K4, and the
+# energy error of the production step per scene. Settings: the `numerics` block of the config.
+
+if "numerics" not in config:
+    raise ValueError("config lacks the `numerics` block that workflow/rules/numerics.smk reads "
+                     "(see config/config.yaml)")
+
+NUMERICS = config["numerics"]
+# The scheme of the production runs: advice, drift and the Taylor-sign probe measure that one.
+NUMERICS_INTEGRATOR = NUMERICS.get("integrator") or config["simulation"]["integrator"]
+WP_CASES = {f"{c['model']}_H{float(c['energy']):g}": c for c in NUMERICS["work_precision"]["cases"]}
+
+NUMERICS_TARGETS = [
+    result("figures", "work_precision.pdf"),
+    result("figures", "work_precision.png"),
+    result("figures", "stability.pdf"),
+    result("figures", "stability.png"),
+    result("tables", "work_precision.csv"),
+    result("tables", "work_precision.tex"),
+    result("tables", "work_precision_runs.csv"),
+    result("tables", "stability.csv"),
+    result("tables", "stability.tex"),
+    result("tables", "step_advice.csv"),
+    result("tables", "step_advice.tex"),
+    result("numerics", "work_precision.nc"),
+]
+
+
+wildcard_constraints:
+    wp_case="|".join(re.escape(c) for c in WP_CASES),
+
+
+rule numerics_work_precision_case:
+    """Error against run time of every scheme and solve_ivp method for one case."""
+    input:
+        chain=result("chain", "chain.nc"),
+        kernels=result("kernels_compiled.txt"),
+    output:
+        data=result("numerics", "work_precision", "{wp_case}.nc"),
+    params:
+        model=lambda wildcards: WP_CASES[wildcards.wp_case]["model"],
+        energy=lambda wildcards: float(WP_CASES[wildcards.wp_case]["energy"]),
+        settings={k: v for k, v in NUMERICS["work_precision"].items() if k != "cases"},
+    log:
+        log_file("numerics_work_precision_case", "{wp_case}"),
+    benchmark:
+        benchmark_file("numerics_work_precision_case", "{wp_case}")
+    script:
+        "../scripts/numerics_work_precision.py"
+
+
+rule numerics_work_precision:
+    """All cases in one file, and the table of observed orders (CSV, LaTeX)."""
+    input:
+        cases=[result("numerics", "work_precision", f"{c}.nc") for c in WP_CASES],
+    output:
+        data=result("numerics", "work_precision.nc"),
+        orders_csv=result("tables", "work_precision.csv"),
+        orders_tex=result("tables", "work_precision.tex"),
+        runs_csv=result("tables", "work_precision_runs.csv"),
+    log:
+        log_file("numerics_work_precision"),
+    benchmark:
+        benchmark_file("numerics_work_precision")
+    script:
+        "../scripts/numerics_merge_work_precision.py"
+
+
+rule numerics_plot_work_precision:
+    input:
+        data=result("numerics", "work_precision.nc"),
+    output:
+        pdf=result("figures", "work_precision.pdf"),
+        png=result("figures", "work_precision.png"),
+    log:
+        log_file("numerics_plot_work_precision"),
+    benchmark:
+        benchmark_file("numerics_plot_work_precision")
+    script:
+        "../scripts/numerics_plot_work_precision.py"
+
+
+rule numerics_stability:
+    """Largest stable step of every scheme over alpha and H, and near the sonic vacuum."""
+    input:
+        chain=result("chain", "chain.nc"),
+        kernels=result("kernels_compiled.txt"),
+    output:
+        data=result("numerics", "stability.nc"),
+    params:
+        settings=NUMERICS["stability"],
+    log:
+        log_file("numerics_stability"),
+    benchmark:
+        benchmark_file("numerics_stability")
+    script:
+        "../scripts/numerics_stability.py"
+
+
+rule numerics_energy_drift:
+    """The long run: energy error of the production scheme and step up to t_final (progress in the log)."""
+    input:
+        chain=result("chain", "chain.nc"),
+        kernels=result("kernels_compiled.txt"),
+    output:
+        data=result("numerics", "energy_drift.nc"),
+    params:
+        settings=NUMERICS["drift"],
+        integrator=NUMERICS_INTEGRATOR,
+    log:
+        log_file("numerics_energy_drift"),
+    benchmark:
+        benchmark_file("numerics_energy_drift")
+    script:
+        "../scripts/numerics_energy_drift.py"
+
+
+rule numerics_taylor_sign:
+    """FPUT with K4 < 0: bounded, escape stopped by the guard, or unreachable energy."""
+    input:
+        chain=result("chain", "chain.nc"),
+        kernels=result("kernels_compiled.txt"),
+    output:
+        data=result("numerics", "taylor_sign.nc"),
+    params:
+        settings=NUMERICS["taylor"],
+        integrator=NUMERICS_INTEGRATOR,
+    log:
+        log_file("numerics_taylor_sign"),
+    benchmark:
+        benchmark_file("numerics_taylor_sign")
+    script:
+        "../scripts/numerics_taylor_sign.py"
+
+
+rule numerics_step_advice:
+    """Energy error per scene at the production step and at larger ones."""
+    input:
+        chain=result("chain", "chain.nc"),
+        kernels=result("kernels_compiled.txt"),
+    output:
+        data=result("numerics", "step_advice.nc"),
+        csv=result("tables", "step_advice.csv"),
+        tex=result("tables", "step_advice.tex"),
+    params:
+        settings=NUMERICS["advice"],
+        scenes=[[s.model, float(s.energy)] for s in SCENES.values()],
+        integrator=NUMERICS_INTEGRATOR,
+        k4_sign=config["simulation"].get("k4_sign", 1),
+    log:
+        log_file("numerics_step_advice"),
+    benchmark:
+        benchmark_file("numerics_step_advice")
+    script:
+        "../scripts/numerics_step_advice.py"
+
+
+rule numerics_plot_stability:
+    input:
+        stability=result("numerics", "stability.nc"),
+        drift=result("numerics", "energy_drift.nc"),
+        taylor=result("numerics", "taylor_sign.nc"),
+        advice=result("numerics", "step_advice.nc"),
+    output:
+        pdf=result("figures", "stability.pdf"),
+        png=result("figures", "stability.png"),
+        csv=result("tables", "stability.csv"),
+        tex=result("tables", "stability.tex"),
+    params:
+        integrator=NUMERICS_INTEGRATOR,
+    log:
+        log_file("numerics_plot_stability"),
+    benchmark:
+        benchmark_file("numerics_plot_stability")
+    script:
+        "../scripts/numerics_plot_stability.py"
