@@ -149,7 +149,8 @@ def simulate(chain, params: SceneParameters, progress=None) -> xr.Dataset:
                       scheme.kicks, scheme.drifts, params.dt, int(steps[i] - steps[i - 1]), tangent,
                       params.check_every, track_gaps, counts, diagnostics, f, k, g)
         if bad >= 0:
-            raise SimulationError(params.name, (steps[i - 1] + bad) * params.dt, "non-finite state",
+            raise SimulationError(params.name, (steps[i - 1] + bad) * params.dt,
+                                  "non-finite state (the orbit escaped to infinity or the step is unstable)",
                                   float("nan"))
         Q[i], Pm[i], DQ[i], DP[i] = q, p, dq, dp
         log_growth[i] = diagnostics[0]
