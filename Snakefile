@@ -21,6 +21,7 @@ include: "workflow/rules/chain.smk"
 include: "workflow/rules/simulate.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/numerics.smk"
+include: "workflow/rules/scan.smk"
 
 
 rule all:
@@ -28,3 +29,4 @@ rule all:
     input:
         ALL_TARGETS,
         NUMERICS_TARGETS,
+        SCAN_TARGETS,

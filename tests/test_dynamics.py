@@ -5,7 +5,7 @@ import pytest
 
 from chainchaos.initial import initial_state
 from chainchaos.integrators import SCHEMES, advance, get_scheme
-from chainchaos.models import FPUT, HARMONIC, HERTZ, coefficients, open_gaps, total_energy
+from chainchaos.models import FPUT, HERTZ, coefficients, open_gaps, total_energy
 from chainchaos.simulate import SceneParameters, sample_steps, simulate
 
 

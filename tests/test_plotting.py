@@ -3,6 +3,8 @@ Datasets that follow the data contract (DESIGN section 7), and their byte-stable
 
 import io
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 import xarray as xr
@@ -255,11 +257,11 @@ def test_interrupted_save_leaves_no_complete_looking_file(data, tmp_path, monkey
     fig = plot_panel("2d", data)
     savefig = fig.savefig
 
-    def fail_on_png(stream, format, **kwargs):
+    def fail_on_png(target, format, **kwargs):
         if format == "png":
-            stream.write(b"\x89PNG partial")
+            Path(target).write_bytes(b"\x89PNG partial")
             raise KeyboardInterrupt
-        savefig(stream, format=format, **kwargs)
+        savefig(target, format=format, **kwargs)
 
     monkeypatch.setattr(fig, "savefig", fail_on_png)
     with pytest.raises(KeyboardInterrupt):

@@ -7,7 +7,7 @@ import sys
 import numpy as np
 import xarray as xr
 
-from chainchaos.io import chain_dataset, write_netcdf
+from chainchaos.io import write_netcdf
 from chainchaos.simulate import OBSERVABLES, SceneParameters, simulate
 
 

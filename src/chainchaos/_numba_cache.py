@@ -4,14 +4,14 @@ Numba reads ``NUMBA_CACHE_DIR`` when it is first imported, so this runs before a
 package imports numba. A checkout (editable install) caches in ``<project>/.numba_cache/<key>``,
 so every job of the pipeline reuses the kernels compiled once; an installed wheel falls back to
 the user's cache directory. Numba invalidates a cached function only when its own file changes,
-yet ``integrators.advance`` compiles in the force laws of ``models.py``: the key, a hash of every
-module of the package that uses Numba, makes any edit to a kernel start a fresh cache instead of
-loading a stale one. An explicit ``NUMBA_CACHE_DIR`` always wins.
+yet the engines (``integrators``, ``batch``, ``numerics``) compile in the force laws of ``models``
+and the helpers of ``integrators``: the key, a hash of those shared kernel modules, makes an edit
+there start a fresh cache instead of loading a stale one. An explicit ``NUMBA_CACHE_DIR`` always
+wins.
 """
 
 import hashlib
 import os
-import re
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parent
@@ -23,10 +23,13 @@ def project_root() -> Path | None:
     return root if (root / "pyproject.toml").is_file() else None
 
 
+#: Modules whose Numba functions are compiled into functions of other modules.
+SHARED_KERNEL_MODULES = ("models.py", "integrators.py")
+
+
 def kernel_sources() -> list[Path]:
-    """The package's modules that compile Numba kernels."""
-    uses_numba = re.compile(r"^\s*(from|import) numba\b", re.M)
-    return sorted(p for p in PACKAGE.rglob("*.py") if uses_numba.search(p.read_text(encoding="utf-8")))
+    """The shared kernel modules: an edit to one of them invalidates kernels in other files."""
+    return [PACKAGE / name for name in SHARED_KERNEL_MODULES]
 
 
 def kernel_key() -> str:

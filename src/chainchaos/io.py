@@ -1,5 +1,6 @@
 """NetCDF input and output: chain files, atomic writes (DESIGN section 7)."""
 
+import contextlib
 import os
 import tempfile
 from pathlib import Path
@@ -16,21 +17,37 @@ CHAIN_VARIABLES = ("radius", "mass", "A", "delta", "K2", "K3", "K4", "frequency"
                    "mode_participation")
 
 
-def write_netcdf(ds: xr.Dataset, path) -> Path:
-    """Write ``ds`` to ``path`` atomically: a temporary file in the same directory, renamed on
-    success and removed on any failure, so an interrupted write leaves no complete-looking file."""
+@contextlib.contextmanager
+def atomic_output(path):
+    """Yield a temporary path beside ``path``; when the block succeeds it becomes ``path`` (readable
+    by all, mode 0644), on any failure it is removed, so an interrupted write leaves no file that
+    looks complete."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    encoding = {name: {"zlib": True, "complevel": 4} for name, v in ds.data_vars.items() if v.ndim > 0}
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     os.close(fd)
     try:
-        ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
+        yield Path(tmp)
+        os.chmod(tmp, 0o644)
         os.replace(tmp, path)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
-    return path
+
+
+def write_netcdf(ds: xr.Dataset, path) -> Path:
+    """Write ``ds`` to ``path`` atomically (zlib-compressed variables)."""
+    encoding = {name: {"zlib": True, "complevel": 4} for name, v in ds.data_vars.items() if v.ndim > 0}
+    with atomic_output(path) as tmp:
+        ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
+    return Path(path)
+
+
+def write_text(text: str, path) -> Path:
+    """Write ``text`` to ``path`` atomically."""
+    with atomic_output(path) as tmp:
+        tmp.write_text(text, encoding="utf-8", newline="")
+    return Path(path)
 
 
 def chain_dataset(chain: Chain, extra_attrs: dict | None = None) -> xr.Dataset:

@@ -7,28 +7,11 @@ Every writer is atomic (temporary file in the target directory, then rename) and
 import csv
 import io
 import math
-import os
-import tempfile
-from pathlib import Path
 
 import numpy as np
 
+from chainchaos.io import write_text
 from chainchaos.numerics.work_precision import STATUS, order_table
-
-
-def write_text(text: str, path) -> Path:
-    """Write ``text`` to ``path`` atomically."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", newline="") as f:
-            f.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
 
 
 def _fmt(v) -> str:

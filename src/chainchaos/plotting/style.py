@@ -5,15 +5,14 @@ several panels per row spans both columns (7.0 in). The model is nondimensional 
 so the labels give times in units of 1/omega_max and frequencies in units of omega_max.
 """
 
-import contextlib
-import os
-import tempfile
 from pathlib import Path
 
 import matplotlib
 
 # Before pyplot can be imported anywhere: figures are only ever written to files.
 matplotlib.use("Agg")
+
+from chainchaos.io import atomic_output  # noqa: E402
 
 COLUMN_WIDTH = 3.4  # in, one column: a single panel
 PAGE_WIDTH = 7.0  # in, both columns: composites
@@ -143,13 +142,5 @@ def _freeze_layout(fig) -> None:
 
 
 def _write_atomically(fig, path: Path, fmt: str, dpi: int, metadata: dict) -> None:
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as stream:
-            fig.savefig(stream, format=fmt, dpi=dpi, metadata=metadata)
-        os.chmod(tmp, 0o644)  # mkstemp creates 0600; figures are for everyone to read
-        os.replace(tmp, path)
-    except BaseException:
-        with contextlib.suppress(FileNotFoundError):
-            os.unlink(tmp)
-        raise
+    with atomic_output(path) as tmp:
+        fig.savefig(tmp, format=fmt, dpi=dpi, metadata=metadata)

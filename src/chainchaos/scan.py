@@ -1,0 +1,661 @@
+"""Energy scans and disorder statistics of delocalization and chaos (issue 7).
+
+Many short trajectories, each reduced to a handful of numbers:
+
+- ``participation_final``: the participation number P of the energy density averaged over the
+  samples of the last decade of time (t >= t_final / 10);
+- ``mlce_final``: the finite-time mLCE Lambda(t_final), and ``log_growth_final`` = Lambda t =
+  ln(|v(t)|/|v(0)|) at t_final;
+- ``eta_final``: the normalised spectral entropy eta averaged over the last decade;
+- ``max_gaps``: the largest number of simultaneously open Hertz bonds over the run (FPUT: -1);
+- ``delocalization_onset``: the first sample time with P(t) > ``p_delocalized`` (NaN if never);
+- ``chaos_onset``: the first sample time at which the chaos criterion holds (NaN if never).
+
+Criteria (config values, stated in every output file):
+
+- delocalized: ``participation_final > p_delocalized`` (default 10: the initial excitation has
+  P ~ 1-3, an equipartitioned chain of N = 40 beads P ~ 20-27).
+- chaotic: Lambda(t) t no longer bounded by the regular-orbit law. For a regular orbit the
+  deviation vector grows at most linearly, Lambda(t) ~ ln(t)/t, so ln|v(t)| - ln(1 + t) stays
+  bounded; the orbit is called chaotic at time t when
+  ``log_growth(t) - ln(1 + t) > chaos_margin`` (default 5: |v| exceeds linear growth by a factor
+  e^5 ~ 150). ``chaotic`` means the criterion holds at t_final. A chaotic orbit with mLCE
+  lambda is detected once lambda t ~ chaos_margin + ln t: lambda ~ 1e-3 (the paper's Hertz
+  H = 1.8) needs t ~ 2e4, so a short scan (quick scale, t = 1e3) reports only strong chaos.
+
+Trajectories are run with the batch engine (``chainchaos.batch``), ``batch_size`` lanes at a time
+(per-trajectory chain parameters, so different realizations share a batch), or one at a time by
+``integrators.advance`` (``engine: single``); both give identical results. A trajectory whose
+state turns non-finite or whose relative energy error exceeds ``max_energy_error`` is kept with
+``valid = 0`` and left out of the statistics.
+
+Excitation of a realization (``select_excitation``): among the ``high_frequency_modes`` highest
+linear modes, those whose energy-density maximum lies within ``centre_window`` sites of the chain
+centre (N+1)/2; the one with the smallest participation number is chosen, and its maximum bead is
+excited alone (u = u0 at that bead, p = 0), as in the paper. If no high mode peaks near the centre,
+the most localized high mode anywhere is taken and ``selection_fallback`` is set.
+"""
+
+from dataclasses import asdict, dataclass, field, fields
+
+import numpy as np
+import xarray as xr
+
+from chainchaos import observables as obs
+from chainchaos.batch import LANE_MULTIPLE, Batch
+from chainchaos.chain import GENERATOR, random_chain
+from chainchaos.errors import ParameterError, require
+from chainchaos.initial import initial_deviation, initial_state
+from chainchaos.integrators import advance, get_scheme
+from chainchaos.linear import (mode_energy_density, modal_energies, normal_modes,
+                               participation_number)
+from chainchaos.models import (HERTZ, coefficients, energy_density, model_id, open_gaps,
+                               total_energy)
+from chainchaos.provenance import provenance_attrs
+from chainchaos.simulate import sample_steps
+
+MODELS = ("hertz", "fput")
+
+SELECTION_RULE = ("among the high_frequency_modes highest linear modes, those whose energy-density maximum "
+                  "lies within centre_window sites of the chain centre (N+1)/2; the one with the smallest "
+                  "participation number is chosen and its maximum bead alone is displaced (p = 0)")
+
+#: The paper's thresholds (section III): Hertz chaotic from H ~ 0.5 (localized chaos), always
+#: delocalized and chaotic for H >= 1.8; FPUT delocalized and chaotic first at H = 2.9, always
+#: chaotic for H > 2.8 (delocalization alternates with localization above).
+PAPER_THRESHOLDS = {
+    ("hertz", "chaos"): 0.5,
+    ("hertz", "delocalization"): 1.8,
+    ("fput", "chaos"): 2.8,
+    ("fput", "delocalization"): 2.9,
+}
+
+
+@dataclass
+class ScanSettings:
+    """Integration and classification settings of a scan (times in units of 1/omega_max)."""
+
+    t_final: float = 1e5
+    dt: float = 5e-3
+    integrator: str = "SRKN6b"
+    samples_per_decade: int = 10
+    t_first_sample: float = 1.0
+    check_every: int = 1000
+    k4_sign: int = 1
+    deviation_seed: int = 0
+    max_energy_error: float = 1e-2
+    p_delocalized: float = 10.0
+    chaos_margin: float = 5.0
+    batch_size: int = 16
+    engine: str = "single"
+
+    def __post_init__(self):
+        get_scheme(self.integrator)
+        for key in ("t_final", "dt", "t_first_sample", "max_energy_error", "p_delocalized", "chaos_margin"):
+            value = getattr(self, key)
+            require(isinstance(value, (int, float)) and np.isfinite(value) and value > 0, key, value,
+                    "a finite number > 0")
+        require(self.dt <= self.t_final, "dt", self.dt, f"<= t_final = {self.t_final}")
+        require(self.k4_sign in (1, -1), "k4_sign", self.k4_sign, "+1 or -1")
+        require(self.engine in ("batch", "single"), "engine", self.engine, "'batch' or 'single'")
+        require(int(self.batch_size) >= 1, "batch_size", self.batch_size, ">= 1")
+
+    @classmethod
+    def from_config(cls, block: dict) -> "ScanSettings":
+        names = {f.name for f in fields(cls)}
+        return cls(**{k: v for k, v in block.items() if k in names})
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """One run: a model, an energy, a chain and the bead excited."""
+
+    model: str
+    energy: float
+    chain: object = field(repr=False)
+    site: int
+    tag: tuple = ()
+
+
+# ----------------------------------------------------------------------------------------------
+# Realizations: the excitation rule
+# ----------------------------------------------------------------------------------------------
+
+def select_excitation(chain, high_frequency_modes: int = 14, centre_window: int = 5,
+                      convention: str = "potential") -> dict:
+    """The most localized high-frequency mode near the centre of ``chain`` and its maximum bead.
+
+    Candidates are the ``high_frequency_modes`` highest modes (k > N - high_frequency_modes)
+    whose energy-density maximum bead n satisfies |n - (N+1)/2| <= ``centre_window``; the one with
+    the smallest participation number wins (P from ``linear.mode_energy_density``, ``convention``).
+    Returns mode (1-based), site (1-based bead of the maximum), participation, fallback (True if
+    no candidate peaked near the centre and the most localized high mode anywhere was taken).
+    """
+    N = chain.N
+    require(1 <= high_frequency_modes <= N, "high_frequency_modes", high_frequency_modes, f"1..{N}")
+    require(centre_window >= 0, "centre_window", centre_window, ">= 0")
+    omega, U = normal_modes(chain)
+    h = mode_energy_density(chain, omega, U, convention)
+    P = participation_number(h)
+    peak = np.argmax(h, axis=0) + 1
+    high = np.arange(N - high_frequency_modes, N)
+    near = high[np.abs(peak[high] - (N + 1) / 2.0) <= centre_window]
+    fallback = near.size == 0
+    pool = high if fallback else near
+    k = int(pool[np.argmin(P[pool])])
+    return {"mode": k + 1, "site": int(peak[k]), "participation": float(P[k]), "fallback": bool(fallback),
+            "frequency": float(omega[k])}
+
+
+# ----------------------------------------------------------------------------------------------
+# Running trajectories
+# ----------------------------------------------------------------------------------------------
+
+class _SingleLoop:
+    """The Batch interface on top of the single-trajectory engine, one lane after the other."""
+
+    def __init__(self, model, chains, q, p, dq, dp, integrator, dt, tangent, track_gaps, check_every):
+        self.model = model_id(model)
+        self.chains = chains
+        self.scheme = get_scheme(integrator)
+        self.q, self.p, self.dq, self.dp = (np.ascontiguousarray(a, dtype=float).copy() for a in (q, p, dq, dp))
+        N, B = self.q.shape
+        self.dt, self.tangent, self.track_gaps, self.check_every = dt, tangent, track_gaps, check_every
+        self.gap_steps = np.zeros((N + 1, B), dtype=np.int64)
+        self.max_gaps = np.zeros(B, dtype=np.int64)
+        self.log_growth = np.zeros(B)
+        self.bad = np.full(B, -1, dtype=np.int64)
+        self.steps = 0
+        self._coef = [coefficients(self.model, c) for c in chains]
+
+    def advance(self, n_steps):
+        N, B = self.q.shape
+        for j in range(B):
+            c = self.chains[j]
+            q, p, dq, dp = (np.ascontiguousarray(a[:, j]) for a in (self.q, self.p, self.dq, self.dp))
+            diag = np.array([self.log_growth[j], float(self.max_gaps[j])])
+            gaps = np.ascontiguousarray(self.gap_steps[:, j])
+            f, k, g = np.empty(N + 1), np.empty(N + 1), np.empty(N + 1)
+            K2, K3, K4 = self._coef[j]
+            bad = advance(self.model, q, p, dq, dp, 1.0 / c.mass, c.A, c.delta, K2, K3, K4, self.scheme.kicks,
+                          self.scheme.drifts, self.dt, int(n_steps), self.tangent, self.check_every,
+                          self.track_gaps, gaps, diag, f, k, g)
+            self.q[:, j], self.p[:, j], self.dq[:, j], self.dp[:, j] = q, p, dq, dp
+            self.gap_steps[:, j] = gaps
+            self.log_growth[j], self.max_gaps[j] = diag[0], int(diag[1])
+            if bad >= 0 and self.bad[j] < 0:
+                self.bad[j] = self.steps + bad
+        self.steps += int(n_steps)
+
+
+def _lane_padded(items, multiple):
+    """Pad a list to a multiple of ``multiple`` by repeating its last element (padding discarded)."""
+    n = len(items)
+    target = -(-n // multiple) * multiple
+    return items + [items[-1]] * (target - n)
+
+
+def run_trajectories(trajectories: list[Trajectory], settings: ScanSettings, progress=None) -> list[dict]:
+    """Integrate every trajectory and reduce it to the scan observables (module docstring).
+
+    Trajectories are grouped by model and run ``settings.batch_size`` at a time. Returns one
+    dict per trajectory, in the input order.
+    """
+    results = [None] * len(trajectories)
+    for name in MODELS:
+        index = [i for i, t in enumerate(trajectories) if t.model == name]
+        for start in range(0, len(index), settings.batch_size):
+            chunk = index[start:start + settings.batch_size]
+            out = _run_batch(name, [trajectories[i] for i in chunk], settings)
+            for i, r in zip(chunk, out):
+                results[i] = r
+            if progress is not None:
+                progress(sum(r is not None for r in results), len(trajectories))
+    unknown = [t.model for t, r in zip(trajectories, results) if r is None]
+    require(not unknown, "model", sorted(set(unknown)), f"one of {MODELS}")
+    return results
+
+
+def _run_batch(name: str, trajs: list[Trajectory], settings: ScanSettings) -> list[dict]:
+    model = model_id(name)
+    n_real = len(trajs)
+    chains = [t.chain.with_k4_sign(settings.k4_sign) for t in trajs]
+    N = chains[0].N
+    lanes = list(range(n_real))
+    u0s, ok0 = [], []
+    qs, ps = [], []
+    for t, c in zip(trajs, chains):
+        try:
+            q, p, u0 = initial_state(model, c, float(t.energy), int(t.site))
+            ok0.append(True)
+        except ParameterError:
+            q, p, u0 = np.zeros(N), np.zeros(N), np.nan
+            ok0.append(False)
+        qs.append(q), ps.append(p), u0s.append(u0)
+    if settings.engine == "batch":
+        lanes = _lane_padded(lanes, LANE_MULTIPLE)
+    dq, dp = initial_deviation(N, settings.deviation_seed)
+    B = len(lanes)
+    Q0 = np.stack([qs[i] for i in lanes], 1)
+    P0 = np.stack([ps[i] for i in lanes], 1)
+    lane_chains = [chains[i] for i in lanes]
+    tangent, gaps = True, model == HERTZ
+    args = dict(integrator=settings.integrator, dt=settings.dt, tangent=tangent, track_gaps=gaps,
+                check_every=settings.check_every)
+    DQ0, DP0 = np.tile(dq[:, None], (1, B)), np.tile(dp[:, None], (1, B))
+    if settings.engine == "batch":
+        engine = Batch(model, lane_chains, Q0, P0, DQ0, DP0, **args)
+    else:
+        engine = _SingleLoop(name, lane_chains, Q0, P0, DQ0, DP0, **args)
+
+    steps = sample_steps(settings.t_final, settings.dt, settings.samples_per_decade, settings.t_first_sample)
+    times = steps * settings.dt
+    S = steps.size
+    modes = [normal_modes(c) for c in chains]
+    H0 = np.array([float(total_energy(model, c, q, p)) for c, q, p in zip(chains, qs, ps)])
+    Pt = np.full((S, n_real), np.nan)
+    Gt = np.zeros((S, n_real))
+    Et = np.full((S, n_real), np.nan)
+    err = np.zeros((S, n_real))
+    gaps_now = np.zeros((S, n_real), dtype=np.int64)
+
+    def sample(i):
+        for j in range(n_real):
+            q, p = engine.q[:, j], engine.p[:, j]
+            c = chains[j]
+            if not (np.all(np.isfinite(q)) and np.all(np.isfinite(p))):
+                err[i, j] = np.inf
+                continue
+            h = energy_density(model, c, q, p)
+            Pt[i, j] = participation_number(h)
+            omega, U = modes[j]
+            E = modal_energies(c, omega, U, q, p)
+            Et[i, j] = obs.spectral_entropy(E)
+            err[i, j] = abs(float(total_energy(model, c, q, p)) - H0[j]) / abs(H0[j]) if ok0[j] else np.inf
+            if gaps:
+                gaps_now[i, j] = int(open_gaps(c, q).sum())
+        Gt[i] = engine.log_growth[:n_real]
+
+    sample(0)
+    max_gaps0 = gaps_now[0].copy()
+    for i in range(1, S):
+        engine.advance(int(steps[i] - steps[i - 1]))
+        sample(i)
+
+    S0 = Et[0]
+    eta = obs.normalised_entropy(Et, S0[None, :], N)
+    last = times >= times[-1] / 10.0
+    with np.errstate(invalid="ignore"):
+        excess = Gt - np.log1p(times)[:, None]
+    out = []
+    for j, t in enumerate(trajs):
+        valid = bool(ok0[j] and engine.bad[j] < 0 and np.all(err[:, j] <= settings.max_energy_error))
+        P_fin = float(np.mean(Pt[last, j]))
+        deloc = np.nonzero(Pt[:, j] > settings.p_delocalized)[0]
+        chaos = np.nonzero(excess[1:, j] > settings.chaos_margin)[0] + 1
+        out.append({
+            "participation_final": P_fin,
+            "participation_last": float(Pt[-1, j]),
+            "mlce_final": float(Gt[-1, j] / times[-1]),
+            "log_growth_final": float(Gt[-1, j]),
+            "eta_final": float(np.mean(eta[last, j])),
+            "max_gaps": int(max(engine.max_gaps[j], max_gaps0[j])) if gaps else -1,
+            "delocalized": bool(P_fin > settings.p_delocalized),
+            "chaotic": bool(excess[-1, j] > settings.chaos_margin),
+            "delocalization_onset": float(times[deloc[0]]) if deloc.size else np.nan,
+            "chaos_onset": float(times[chaos[0]]) if chaos.size else np.nan,
+            "energy_error_max": float(np.max(err[:, j])),
+            "u0": float(u0s[j]),
+            "valid": valid,
+            "times": times,
+            "participation": Pt[:, j].copy(),
+            "log_growth": Gt[:, j].copy(),
+            "eta": eta[:, j].copy(),
+        })
+    return out
+
+
+# ----------------------------------------------------------------------------------------------
+# Configuration: grids, groups of trajectories per job
+# ----------------------------------------------------------------------------------------------
+
+def energy_grid(block: dict) -> np.ndarray:
+    """Energies of a scan block: ``n_energies`` values from ``energy_min`` to ``energy_max``,
+    log-spaced (``spacing: log``, default) or linear; rounded to 6 significant digits so that
+    they print and compare cleanly."""
+    n, lo, hi = int(block["n_energies"]), float(block["energy_min"]), float(block["energy_max"])
+    require(n >= 1, "n_energies", n, ">= 1")
+    require(0 < lo <= hi, "energy_min", lo, f"0 < energy_min <= energy_max = {hi}")
+    grid = np.geomspace(lo, hi, n) if block.get("spacing", "log") == "log" else np.linspace(lo, hi, n)
+    return np.array([float(f"{e:.6g}") for e in grid])
+
+
+def items(kind: str, scan_cfg: dict) -> list[tuple]:
+    """Every trajectory of a scan kind, in the fixed order the groups cut: (model, energy index)
+    for ``energy_scan``, (model, realization index, energy index) for ``disorder``."""
+    block = scan_cfg[kind]
+    models = list(block.get("models", MODELS))
+    n_e = len(energy_grid(block))
+    if kind == "energy_scan":
+        return [(m, e) for m in models for e in range(n_e)]
+    require(kind == "disorder", "scan kind", kind, "'energy_scan' or 'disorder'")
+    return [(m, r, e) for m in models for r in range(int(block["realizations"])) for e in range(n_e)]
+
+
+def n_groups(kind: str, scan_cfg: dict) -> int:
+    """Number of jobs of a scan kind: ceil(trajectories / trajectories_per_job)."""
+    per = int(scan_cfg[kind]["trajectories_per_job"])
+    return max(1, -(-len(items(kind, scan_cfg)) // per))
+
+
+def group_items(kind: str, scan_cfg: dict, group: int) -> list[tuple]:
+    per = int(scan_cfg[kind]["trajectories_per_job"])
+    all_items = items(kind, scan_cfg)
+    require(0 <= group < n_groups(kind, scan_cfg), "group", group, f"0..{n_groups(kind, scan_cfg) - 1}")
+    return all_items[group * per:(group + 1) * per]
+
+
+def settings_for(kind: str, scan_cfg: dict) -> ScanSettings:
+    """The ``scan.settings`` block overridden by the kind's own keys (t_final, dt, ...)."""
+    merged = {**scan_cfg.get("settings", {}), **scan_cfg[kind]}
+    return ScanSettings.from_config(merged)
+
+
+def realization_chain(scan_cfg: dict, r: int, N: int = 40):
+    block = scan_cfg["disorder"]
+    return random_chain(int(block.get("first_seed", 0)) + r, float(block.get("alpha", 5.0)), N,
+                        float(block.get("wall_radius", 1.0)))
+
+
+def selection_kwargs(scan_cfg: dict) -> dict:
+    sel = scan_cfg["disorder"].get("selection", {})
+    return {"high_frequency_modes": int(sel.get("high_frequency_modes", 14)),
+            "centre_window": int(sel.get("centre_window", 5)),
+            "convention": sel.get("convention", "potential")}
+
+
+# ----------------------------------------------------------------------------------------------
+# Group datasets and their merge
+# ----------------------------------------------------------------------------------------------
+
+SCALARS = {
+    "participation_final": ("participation number P averaged over the last decade of time", "f8"),
+    "mlce_final": ("finite-time mLCE Lambda(t_final)", "f8"),
+    "log_growth_final": ("Lambda(t_final) t_final = ln(|v(t_final)|/|v(0)|)", "f8"),
+    "eta_final": ("normalised spectral entropy eta averaged over the last decade of time", "f8"),
+    "max_gaps": ("largest number of simultaneously open gaps over the run (-1: FPUT, no gaps)", "i4"),
+    "delocalized": ("1 if participation_final > p_delocalized", "i1"),
+    "chaotic": ("1 if ln|v(t_final)| - ln(1 + t_final) > chaos_margin", "i1"),
+    "delocalization_onset": ("first sample time with P(t) > p_delocalized (NaN: never)", "f8"),
+    "chaos_onset": ("first sample time with ln|v(t)| - ln(1 + t) > chaos_margin (NaN: never)", "f8"),
+    "energy_error_max": ("largest relative energy error |H(t) - H(0)|/H(0) at the samples", "f8"),
+    "u0": ("initial displacement of the excited bead", "f8"),
+    "valid": ("1 if the run stayed finite with energy error <= max_energy_error", "i1"),
+}
+SERIES = {"participation": "participation number P(t)", "log_growth": "ln(|v(t)|/|v(0)|) = Lambda(t) t",
+          "eta": "normalised spectral entropy eta(t)"}
+
+
+def criteria_attrs(settings: ScanSettings) -> dict:
+    return {
+        "p_delocalized": float(settings.p_delocalized),
+        "chaos_margin": float(settings.chaos_margin),
+        "delocalization_criterion": (f"delocalized if P averaged over the last decade of time "
+                                     f"(t >= t_final/10) exceeds p_delocalized = {settings.p_delocalized:g}"),
+        "chaos_criterion": (f"chaotic if ln(|v(t)|/|v(0)|) - ln(1 + t) > chaos_margin = "
+                            f"{settings.chaos_margin:g} at t = t_final: Lambda(t) t no longer bounded "
+                            f"by the regular-orbit law |v| ~ t"),
+    }
+
+
+def _group_dataset(kind, its, results, settings, extra_vars, attrs, series=False):
+    n = len(its)
+    data = {}
+    for key, (long_name, dtype) in SCALARS.items():
+        data[key] = ("trajectory", np.array([r[key] for r in results]).astype(dtype),
+                     {"units": "1", "long_name": long_name})
+    data["model"] = ("trajectory", np.array([i[0] for i in its], dtype=object), {"long_name": "model"})
+    data.update(extra_vars)
+    coords = {"trajectory": np.arange(n)}
+    if series and results:
+        coords["time"] = results[0]["times"]
+        for key, long_name in SERIES.items():
+            data[key] = (("trajectory", "time"), np.stack([r[key] for r in results]),
+                         {"units": "1", "long_name": long_name})
+    ds = xr.Dataset(data, coords=coords)
+    if "time" in ds.coords:
+        ds.time.attrs.update(units="1", standard_name="time", long_name="time",
+                             comment="nondimensional time, unit 1/omega_max of the homogeneous linear chain")
+    ds.attrs.update(provenance_attrs({"kind": kind, **asdict(settings)}))
+    ds.attrs.update(criteria_attrs(settings))
+    ds.attrs.update(integrator=settings.integrator, dt=float(settings.dt), t_final=float(settings.t_final),
+                    K4_sign=float(settings.k4_sign), deviation_seed=int(settings.deviation_seed))
+    ds.attrs.update(attrs)
+    return ds
+
+
+def energy_scan_group(chain, scan_cfg: dict, group: int, progress=None) -> xr.Dataset:
+    """Run one job's share of the energy scan on ``chain`` (excited at ``energy_scan.site``)."""
+    settings = settings_for("energy_scan", scan_cfg)
+    block = scan_cfg["energy_scan"]
+    grid = energy_grid(block)
+    site = int(block.get("site", 21))
+    its = group_items("energy_scan", scan_cfg, group)
+    trajs = [Trajectory(m, float(grid[e]), chain, site) for m, e in its]
+    results = run_trajectories(trajs, settings, progress)
+    extra = {"energy_index": ("trajectory", np.array([e for _, e in its], dtype=np.int32), {"units": "1"}),
+             "energy": ("trajectory", np.array([grid[e] for _, e in its]), {"units": "1", "long_name": "total energy H"})}
+    return _group_dataset("energy_scan", its, results, settings, extra,
+                          {"group": int(group), "excited_site": site,
+                           "seed": -1 if chain.seed is None else int(chain.seed)}, series=True)
+
+
+def disorder_group(scan_cfg: dict, group: int, N: int = 40, progress=None) -> xr.Dataset:
+    """Run one job's share of the disorder statistics: realization r is random_chain(first_seed
+    + r, alpha), excited at the bead chosen by ``select_excitation``."""
+    settings = settings_for("disorder", scan_cfg)
+    grid = energy_grid(scan_cfg["disorder"])
+    its = group_items("disorder", scan_cfg, group)
+    sel_kw = selection_kwargs(scan_cfg)
+    chains, picks = {}, {}
+    for _, r, _ in its:
+        if r not in chains:
+            chains[r] = realization_chain(scan_cfg, r, N)
+            picks[r] = select_excitation(chains[r], **sel_kw)
+    trajs = [Trajectory(m, float(grid[e]), chains[r], picks[r]["site"]) for m, r, e in its]
+    results = run_trajectories(trajs, settings, progress)
+    extra = {
+        "energy_index": ("trajectory", np.array([e for *_, e in its], dtype=np.int32), {"units": "1"}),
+        "realization": ("trajectory", np.array([r for _, r, _ in its], dtype=np.int32), {"units": "1"}),
+        "energy": ("trajectory", np.array([grid[e] for *_, e in its]), {"units": "1", "long_name": "total energy H"}),
+        "excited_mode": ("trajectory", np.array([picks[r]["mode"] for _, r, _ in its], dtype=np.int32), {"units": "1"}),
+        "excited_site": ("trajectory", np.array([picks[r]["site"] for _, r, _ in its], dtype=np.int32), {"units": "1"}),
+        "excited_mode_participation": ("trajectory", np.array([picks[r]["participation"] for _, r, _ in its]), {"units": "1"}),
+        "selection_fallback": ("trajectory", np.array([picks[r]["fallback"] for _, r, _ in its], dtype=np.int8), {"units": "1"}),
+    }
+    return _group_dataset("disorder", its, results, settings, extra, {"group": int(group)})
+
+
+def wilson_interval(k, n, z: float = 1.959963984540054):
+    """Wilson score interval of a binomial proportion k/n (95% by default); NaN where n = 0."""
+    k, n = np.asarray(k, float), np.asarray(n, float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        phat = k / n
+        denom = 1 + z**2 / n
+        centre = (phat + z**2 / (2 * n)) / denom
+        half = z * np.sqrt(phat * (1 - phat) / n + z**2 / (4 * n**2)) / denom
+    return np.clip(centre - half, 0, 1), np.clip(centre + half, 0, 1)
+
+
+def _grid_array(groups, key, shape, index_fn, fill):
+    dtype = groups[0][key].dtype
+    out = np.full(shape, fill, dtype=float if np.issubdtype(dtype, np.floating) else dtype)
+    for ds in groups:
+        for t in range(ds.sizes["trajectory"]):
+            out[index_fn(ds, t)] = ds[key].values[t]
+    return out
+
+
+def merge_energy_scan(groups: list[xr.Dataset], scan_cfg: dict, chain=None) -> xr.Dataset:
+    """The energy scan of all groups on the grid (model, energy), series on (model, energy, time)."""
+    block = scan_cfg["energy_scan"]
+    grid = energy_grid(block)
+    models = list(block.get("models", MODELS))
+    settings = settings_for("energy_scan", scan_cfg)
+    mi = {m: i for i, m in enumerate(models)}
+
+    def idx(ds, t):
+        return mi[str(ds["model"].values[t])], int(ds["energy_index"].values[t])
+
+    data = {}
+    shape = (len(models), grid.size)
+    for key, (long_name, dtype) in SCALARS.items():
+        fill = np.nan if dtype == "f8" else -1
+        data[key] = (("model", "energy"), _grid_array(groups, key, shape, idx, fill),
+                     {**groups[0][key].attrs})
+    times = groups[0]["time"].values
+    for key in SERIES:
+        arr = np.full(shape + (times.size,), np.nan)
+        for ds in groups:
+            for t in range(ds.sizes["trajectory"]):
+                arr[idx(ds, t)] = ds[key].values[t]
+        data[key] = (("model", "energy", "time"), arr, {**groups[0][key].attrs})
+    ds = xr.Dataset(data, coords={"model": models, "energy": grid, "time": times})
+    ds.energy.attrs.update(units="1", long_name="total energy H (units of the reference contact energy scale)")
+    ds.time.attrs.update(groups[0].time.attrs)
+    ds.attrs.update(provenance_attrs({"kind": "energy_scan", "scan": scan_cfg}))
+    ds.attrs.update(criteria_attrs(settings))
+    ds.attrs.update(title="Energy scan: delocalization and chaos of a single-site excitation",
+                    integrator=settings.integrator, dt=float(settings.dt), t_final=float(settings.t_final),
+                    K4_sign=float(settings.k4_sign), excited_site=int(block.get("site", 21)),
+                    seed=int(groups[0].attrs.get("seed", -1)), n_groups=len(groups))
+    if chain is not None:
+        ds.attrs.update(alpha=float(chain.alpha))
+    return ds
+
+
+def merge_disorder(groups: list[xr.Dataset], scan_cfg: dict) -> xr.Dataset:
+    """Disorder statistics on (model, energy, realization) with probabilities of delocalization and
+    chaos per (model, energy), Wilson 95% bands, and onset-time quantiles over the valid runs."""
+    block = scan_cfg["disorder"]
+    grid = energy_grid(block)
+    models = list(block.get("models", MODELS))
+    R = int(block["realizations"])
+    settings = settings_for("disorder", scan_cfg)
+    mi = {m: i for i, m in enumerate(models)}
+
+    def idx(ds, t):
+        return (mi[str(ds["model"].values[t])], int(ds["energy_index"].values[t]), int(ds["realization"].values[t]))
+
+    shape = (len(models), grid.size, R)
+    data = {}
+    for key, (long_name, dtype) in SCALARS.items():
+        fill = np.nan if dtype == "f8" else -1
+        data[key] = (("model", "energy", "realization"), _grid_array(groups, key, shape, idx, fill),
+                     {**groups[0][key].attrs})
+    for key in ("excited_mode", "excited_site", "excited_mode_participation", "selection_fallback"):
+        # a property of the realization (the same for every model and energy)
+        dtype = groups[0][key].dtype
+        arr = np.full(R, np.nan if np.issubdtype(dtype, np.floating) else -1, dtype=dtype)
+        for g in groups:
+            arr[g["realization"].values] = g[key].values
+        data[key] = ("realization", arr, {"units": "1"})
+    valid = data["valid"][1] == 1
+    n = valid.sum(axis=-1)
+    quantiles = np.array([0.1, 0.25, 0.5, 0.75, 0.9])
+    for what in ("delocalized", "chaotic"):
+        k = ((data[what][1] == 1) & valid).sum(axis=-1)
+        lo, hi = wilson_interval(k, n)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            prob = np.where(n > 0, k / np.maximum(n, 1), np.nan)
+        data[f"probability_{what}"] = (("model", "energy"), prob,
+                                        {"units": "1", "long_name": f"fraction of valid realizations {what}"})
+        data[f"probability_{what}_lower"] = (("model", "energy"), lo,
+                                              {"units": "1", "long_name": "Wilson 95% interval, lower bound"})
+        data[f"probability_{what}_upper"] = (("model", "energy"), hi,
+                                              {"units": "1", "long_name": "Wilson 95% interval, upper bound"})
+        data[f"count_{what}"] = (("model", "energy"), k.astype(np.int32), {"units": "1"})
+    data["count_valid"] = (("model", "energy"), n.astype(np.int32), {"units": "1", "long_name": "valid realizations"})
+    for what, key, flag in (("delocalization", "delocalization_onset", "delocalized"),
+                            ("chaos", "chaos_onset", "chaotic")):
+        # over the valid runs classified delocalized (chaotic) at t_final only
+        onset = np.where(valid & (data[flag][1] == 1), data[key][1], np.nan)
+        q = np.full((len(models), grid.size, quantiles.size), np.nan)
+        for a in range(len(models)):
+            for e in range(grid.size):
+                x = onset[a, e][np.isfinite(onset[a, e])]
+                if x.size:
+                    q[a, e] = np.quantile(x, quantiles)
+        data[f"{what}_onset_quantiles"] = (("model", "energy", "quantile"), q, {
+            "units": "1", "long_name": f"quantiles of the {what} onset time over the valid realizations classified {flag}"})
+    ds = xr.Dataset(data, coords={"model": models, "energy": grid, "realization": np.arange(R),
+                                  "quantile": quantiles})
+    ds.energy.attrs.update(units="1", long_name="total energy H")
+    ds.realization.attrs.update(units="1", long_name=f"realization r: random_chain(first_seed + r, alpha)")
+    ds.attrs.update(provenance_attrs({"kind": "disorder", "scan": scan_cfg}))
+    ds.attrs.update(criteria_attrs(settings))
+    ds.attrs.update(title="Disorder statistics of delocalization and chaos", generator=GENERATOR,
+                    alpha=float(block.get("alpha", 5.0)), first_seed=int(block.get("first_seed", 0)),
+                    integrator=settings.integrator, dt=float(settings.dt), t_final=float(settings.t_final),
+                    K4_sign=float(settings.k4_sign), n_groups=len(groups),
+                    selection_rule=SELECTION_RULE, **{f"selection_{k}": v for k, v in selection_kwargs(scan_cfg).items()},
+                    confidence_interval="Wilson score interval, 95%")
+    return ds
+
+
+# ----------------------------------------------------------------------------------------------
+# Thresholds table
+# ----------------------------------------------------------------------------------------------
+
+def thresholds_table(ds: xr.Dataset) -> list[dict]:
+    """Per model and criterion: the lowest grid energy where it holds, the lowest energy above
+    which it holds at every grid energy, the fraction of grid energies where it holds, the
+    paper's value (PAPER_THRESHOLDS)."""
+    rows = []
+    E = ds.energy.values
+    for m in ds.model.values:
+        for what, key in (("delocalization", "delocalized"), ("chaos", "chaotic")):
+            flag = (ds[key].sel(model=m).values == 1) & (ds["valid"].sel(model=m).values == 1)
+            first = float(E[flag][0]) if flag.any() else np.nan
+            always = np.nan
+            if flag.any() and flag[-1]:
+                k = flag.size - 1
+                while k > 0 and flag[k - 1]:
+                    k -= 1
+                always = float(E[k])
+            rows.append({"model": str(m), "criterion": what, "first_energy": first, "always_above": always,
+                         "fraction": float(flag.mean()), "paper": PAPER_THRESHOLDS.get((str(m), what), np.nan)})
+    return rows
+
+
+def thresholds_csv(rows: list[dict], ds: xr.Dataset) -> str:
+    lines = [f"# {ds.attrs['delocalization_criterion']}", f"# {ds.attrs['chaos_criterion']}",
+             f"# t_final = {ds.attrs['t_final']:g}, dt = {ds.attrs['dt']:g}, {ds.sizes['energy']} energies "
+             f"{ds.energy.values[0]:g}..{ds.energy.values[-1]:g}",
+             "model,criterion,first_energy,always_above,fraction_of_grid,paper_value"]
+    for r in rows:
+        lines.append(f"{r['model']},{r['criterion']},{_g(r['first_energy'])},{_g(r['always_above'])},"
+                     f"{r['fraction']:.3f},{_g(r['paper'])}")
+    return "\n".join(lines) + "\n"
+
+
+def thresholds_tex(rows: list[dict], ds: xr.Dataset) -> str:
+    def tex(x):
+        return "--" if not np.isfinite(x) else f"{x:.3g}"
+
+    names = {"hertz": "Hertz", "fput": "FPUT"}
+    body = "\n".join(f"{names.get(r['model'], r['model'])} & {r['criterion']} & {tex(r['first_energy'])} & "
+                     f"{tex(r['always_above'])} & {r['fraction']:.2f} & {tex(r['paper'])} \\\\" for r in rows)
+    return (
+        "% generated by chainchaos (workflow/scripts/scan_thresholds.py); do not edit\n"
+        "\\begin{tabular}{llcccc}\n\\hline\n"
+        "model & criterion & first $H$ & all $H \\geq$ & fraction & paper \\\\\n\\hline\n"
+        f"{body}\n\\hline\n\\end{{tabular}}\n"
+        f"% delocalized: $\\bar P > {ds.attrs['p_delocalized']:g}$ ($P$ averaged over $t \\geq t_f/10$);\n"
+        f"% chaotic: $\\ln(\\|v(t_f)\\|/\\|v(0)\\|) - \\ln(1 + t_f) > {ds.attrs['chaos_margin']:g}$,"
+        f" $t_f = {ds.attrs['t_final']:g}$\n"
+    )
+
+
+def _g(x):
+    return "" if not np.isfinite(x) else f"{x:.6g}"

@@ -1,0 +1,119 @@
+"""The batch engine (chainchaos.batch) against the single-trajectory engine, lane by lane."""
+
+import numpy as np
+import pytest
+
+from chainchaos import random_chain
+from chainchaos.batch import Batch, lane_parameters
+from chainchaos.initial import initial_deviation, initial_state
+from chainchaos.integrators import SCHEMES, advance, get_scheme
+from chainchaos.models import coefficients, model_id
+
+N = 40
+
+
+def single_run(name, chain, q, p, dq, dp, integrator, dt, n_steps, tangent, check_every, gaps):
+    model = model_id(name)
+    scheme = get_scheme(integrator)
+    K2, K3, K4 = coefficients(model, chain)
+    q, p, dq, dp = q.copy(), p.copy(), dq.copy(), dp.copy()
+    diag, gap_steps = np.zeros(2), np.zeros(N + 1, dtype=np.int64)
+    f, k, g = np.empty(N + 1), np.empty(N + 1), np.empty(N + 1)
+    bad = advance(model, q, p, dq, dp, 1.0 / chain.mass, chain.A, chain.delta, K2, K3, K4, scheme.kicks,
+                  scheme.drifts, dt, n_steps, tangent, check_every, gaps, gap_steps, diag, f, k, g)
+    return q, p, dq, dp, diag, gap_steps, bad
+
+
+def lanes(name, chains, energies, sites):
+    model = model_id(name)
+    states = [initial_state(model, c, E, s)[:2] for c, E, s in zip(chains, energies, sites)]
+    q = np.stack([s[0] for s in states], 1)
+    p = np.stack([s[1] for s in states], 1)
+    dq, dp = initial_deviation(N, 3)
+    B = len(chains)
+    return q, p, np.tile(dq[:, None], (1, B)), np.tile(dp[:, None], (1, B))
+
+
+@pytest.mark.parametrize("name", ["hertz", "fput"])
+@pytest.mark.parametrize("integrator", ["SRKN6b", "ABA864", "verlet"])
+def test_every_lane_matches_the_single_engine(name, integrator):
+    """Different chains, energies and excited beads per lane, with the tangent map and (Hertz)
+    gap counting: states, deviation vectors, log growth and gap counts agree to round-off."""
+    chains = [random_chain(s, 5.0) for s in (879, 5346, 11, 12, 13)]
+    energies = [0.25, 0.5, 1.8, 4.0, 9.0]
+    sites = [21, 21, 15, 30, 20]
+    gaps = name == "hertz"
+    q, p, dq, dp = lanes(name, chains, energies, sites)
+    batch = Batch(name, chains, q, p, dq, dp, integrator=integrator, dt=0.01, tangent=True, track_gaps=gaps,
+                  check_every=37)
+    batch.advance(600)
+    batch.advance(400)
+    for j in range(len(chains)):
+        sq, sp, sdq, sdp, diag, gap_steps, bad = q[:, j], p[:, j], dq[:, j], dp[:, j], np.zeros(2), None, -1
+        log_growth, max_gaps = 0.0, 0
+        gsum = np.zeros(N + 1, dtype=np.int64)
+        for n in (600, 400):  # the same call pattern: renormalisation at the end of each call
+            sq, sp, sdq, sdp, diag, gap_steps, bad = single_run(name, chains[j], sq, sp, sdq, sdp, integrator,
+                                                                0.01, n, True, 37, gaps)
+            log_growth += diag[0]
+            max_gaps = max(max_gaps, int(diag[1]))
+            gsum += gap_steps
+            assert bad == -1
+        scale = np.abs(sq).max()
+        np.testing.assert_allclose(batch.q[:, j], sq, rtol=0, atol=1e-12 * scale)
+        np.testing.assert_allclose(batch.p[:, j], sp, rtol=0, atol=1e-12 * max(np.abs(sp).max(), 1e-300))
+        np.testing.assert_allclose(batch.dq[:, j], sdq, rtol=0, atol=1e-10)
+        np.testing.assert_allclose(batch.dp[:, j], sdp, rtol=0, atol=1e-10)
+        assert batch.log_growth[j] == pytest.approx(log_growth, rel=1e-10, abs=1e-10)
+        if gaps:
+            assert batch.max_gaps[j] == max_gaps
+            np.testing.assert_array_equal(batch.gap_steps[:, j], gsum)
+    assert (batch.bad == -1).all()
+    if gaps:
+        assert batch.max_gaps.max() >= 2  # the high energies do open gaps: the check is not vacuous
+
+
+def test_without_tangent_the_deviation_stays_zero_and_states_match():
+    chains = [random_chain(879, 5.0)] * 3
+    q, p, _, _ = lanes("fput", chains, [0.5, 2.9, 8.7381], [21, 21, 21])
+    batch = Batch("fput", chains, q, p, tangent=False, dt=0.02)
+    batch.advance(500)
+    assert not batch.dq.any() and not batch.dp.any() and not batch.log_growth.any()
+    for j in range(3):
+        z = np.zeros(N)
+        sq, sp, *_ = single_run("fput", chains[j], q[:, j], p[:, j], z, z, "SRKN6b", 0.02, 500, False, 1000, False)
+        np.testing.assert_allclose(batch.q[:, j], sq, rtol=0, atol=1e-13)
+
+
+def test_a_diverging_lane_is_reported_and_leaves_the_others_alone():
+    """FPUT with the Taylor sign of K4 escapes at high energy; one such lane goes non-finite."""
+    chain = random_chain(879, 5.0).with_k4_sign(-1)
+    q = np.zeros((N, 2))
+    q[20, 0] = 0.3
+    q[20, 1] = 40.0  # far beyond the barrier of the quartic: escapes to infinity
+    batch = Batch("fput", [chain, chain], q, np.zeros((N, 2)), dp=np.full((N, 2), 0.1), dt=0.01, check_every=10)
+    with np.errstate(all="ignore"):
+        batch.advance(2000)
+    assert batch.bad[0] == -1 and batch.bad[1] > 0
+    assert np.isfinite(batch.q[:, 0]).all()
+    z = np.zeros(N)
+    dp = np.full(N, 0.1)
+    sq, *_ = single_run("fput", chain, q[:, 0], np.zeros(N), z, dp, "SRKN6b", 0.01, 2000, True, 10, False)
+    np.testing.assert_allclose(batch.q[:, 0], sq, rtol=0, atol=1e-12)
+
+
+def test_lane_parameters_are_trajectory_innermost():
+    chains = [random_chain(s, 5.0) for s in range(3)]
+    P = lane_parameters(model_id("hertz"), chains)
+    assert P["A"].shape == (N + 1, 3) and P["inv_mass"].shape == (N, 3)
+    assert all(a.flags.c_contiguous for a in P.values())
+    np.testing.assert_array_equal(P["delta"][:, 2], chains[2].delta)
+
+
+def test_every_scheme_runs_in_the_batch_engine():
+    chain = random_chain(879, 5.0)
+    q, p, dq, dp = lanes("hertz", [chain], [1.0], [21])
+    for name in SCHEMES:
+        b = Batch("hertz", [chain], q, p, dq, dp, integrator=name, dt=0.01)
+        b.advance(50)
+        assert np.isfinite(b.q).all() and b.bad[0] == -1

@@ -1,0 +1,148 @@
+"""Energy scans and disorder statistics (chainchaos.scan): reductions, criteria, grouping, merge."""
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from chainchaos import random_chain, scan
+
+CFG = {
+    "settings": {"dt": 0.02, "samples_per_decade": 8, "p_delocalized": 10.0, "chaos_margin": 5.0,
+                 "batch_size": 8, "engine": "batch"},
+    "energy_scan": {"n_energies": 4, "energy_min": 0.2, "energy_max": 8.0, "t_final": 300.0,
+                    "trajectories_per_job": 3, "site": 21},
+    "disorder": {"n_energies": 2, "energy_min": 0.5, "energy_max": 8.0, "realizations": 3, "t_final": 200.0,
+                 "trajectories_per_job": 5, "alpha": 5.0, "first_seed": 100,
+                 "selection": {"high_frequency_modes": 14, "centre_window": 5}},
+}
+
+
+@pytest.fixture(scope="module")
+def chain():
+    return random_chain(5346, 5.0)
+
+
+def test_groups_cover_every_trajectory_once():
+    for kind in ("energy_scan", "disorder"):
+        n = scan.n_groups(kind, CFG)
+        seen = [it for g in range(n) for it in scan.group_items(kind, CFG, g)]
+        assert seen == scan.items(kind, CFG)
+        assert len(set(seen)) == len(seen)
+    assert scan.n_groups("energy_scan", CFG) == 3  # 8 trajectories, 3 per job
+    assert scan.n_groups("disorder", CFG) == 3  # 12 trajectories, 5 per job
+
+
+def test_energy_grid_is_log_spaced_and_rounded():
+    grid = scan.energy_grid({"n_energies": 100, "energy_min": 0.1, "energy_max": 10})
+    assert grid[0] == 0.1 and grid[-1] == 10.0 and grid.size == 100
+    assert np.allclose(np.diff(np.log(grid)), np.log(100) / 99, rtol=0, atol=1e-5)
+
+
+def test_selection_rule_picks_a_localized_high_mode_near_the_centre(chain):
+    pick = scan.select_excitation(chain, high_frequency_modes=14, centre_window=5)
+    assert pick["mode"] > chain.N - 14 and abs(pick["site"] - (chain.N + 1) / 2) <= 5 and not pick["fallback"]
+    from chainchaos.linear import mode_energy_density, normal_modes, participation_number
+
+    omega, U = normal_modes(chain)
+    h = mode_energy_density(chain, omega, U)
+    P = participation_number(h)
+    near = [k for k in range(chain.N - 14, chain.N) if abs(np.argmax(h[:, k]) + 1 - 20.5) <= 5]
+    assert pick["participation"] == pytest.approx(min(P[near]))
+    # with no candidate near the centre the most localized high mode is taken, flagged
+    assert scan.select_excitation(chain, high_frequency_modes=1, centre_window=0)["fallback"] in (True, False)
+
+
+def test_engines_agree_and_criteria_follow_their_definitions(chain):
+    settings = scan.ScanSettings(t_final=400.0, dt=0.02, samples_per_decade=8, p_delocalized=6.0, chaos_margin=2.0)
+    trajs = [scan.Trajectory(m, E, chain, 21) for m in ("hertz", "fput") for E in (0.2, 3.0)]
+    a = scan.run_trajectories(trajs, settings)
+    b = scan.run_trajectories(trajs, scan.ScanSettings(**{**settings.__dict__, "engine": "single"}))
+    for ra, rb in zip(a, b):
+        for key in ("participation_final", "mlce_final", "eta_final", "max_gaps"):
+            assert ra[key] == pytest.approx(rb[key], rel=1e-9, abs=1e-12)
+    for t, r in zip(trajs, a):
+        assert r["valid"] and r["energy_error_max"] < 1e-3
+        last = r["times"] >= r["times"][-1] / 10
+        assert r["participation_final"] == pytest.approx(np.mean(r["participation"][last]))
+        assert r["delocalized"] == (r["participation_final"] > 6.0)
+        excess = r["log_growth"][-1] - np.log1p(r["times"][-1])
+        assert r["chaotic"] == (excess > 2.0)
+        assert r["mlce_final"] == pytest.approx(r["log_growth"][-1] / r["times"][-1])
+        assert (r["max_gaps"] >= 0) == (t.model == "hertz")
+        if np.isfinite(r["delocalization_onset"]):
+            i = np.searchsorted(r["times"], r["delocalization_onset"])
+            assert r["participation"][i] > 6.0 and (r["participation"][:i] <= 6.0).all()
+    low, high = a[0], a[1]  # Hertz: the low energy stays localized, the high one spreads with gaps
+    assert low["participation_final"] < 4 and high["participation_final"] > low["participation_final"]
+    assert high["max_gaps"] > low["max_gaps"]
+
+
+def test_energy_scan_groups_merge_onto_the_grid(chain):
+    groups = [scan.energy_scan_group(chain, CFG, g) for g in range(scan.n_groups("energy_scan", CFG))]
+    ds = scan.merge_energy_scan(groups, CFG, chain)
+    assert ds.participation_final.dims == ("model", "energy")
+    assert ds.participation.dims == ("model", "energy", "time")
+    assert list(ds.model.values) == ["hertz", "fput"] and ds.sizes["energy"] == 4
+    assert np.isfinite(ds.participation_final).all() and (ds.valid == 1).all()
+    assert (ds.max_gaps.sel(model="fput") == -1).all() and (ds.max_gaps.sel(model="hertz") >= 0).all()
+    for key in ("git_commit", "parameters", "chainchaos_version", "delocalization_criterion", "chaos_criterion"):
+        assert key in ds.attrs
+    rows = scan.thresholds_table(ds)
+    assert {(r["model"], r["criterion"]) for r in rows} == set(scan.PAPER_THRESHOLDS)
+    csv = scan.thresholds_csv(rows, ds)
+    assert "model,criterion,first_energy,always_above" in csv and "p_delocalized = 10" in csv
+    assert "\\begin{tabular}" in scan.thresholds_tex(rows, ds)
+
+
+def test_thresholds_table_reads_first_and_always_above():
+    E = np.array([0.1, 0.2, 0.5, 1.0, 2.0])
+    flags = np.array([[0, 1, 0, 1, 1], [0, 0, 0, 0, 0]], dtype=np.int8)
+    ds = xr.Dataset({"delocalized": (("model", "energy"), flags), "chaotic": (("model", "energy"), flags[::-1]),
+                     "valid": (("model", "energy"), np.ones_like(flags))},
+                    coords={"model": ["hertz", "fput"], "energy": E})
+    rows = {(r["model"], r["criterion"]): r for r in scan.thresholds_table(ds)}
+    assert rows["hertz", "delocalization"]["first_energy"] == 0.2
+    assert rows["hertz", "delocalization"]["always_above"] == 1.0
+    assert np.isnan(rows["hertz", "chaos"]["first_energy"])
+    assert rows["fput", "chaos"]["fraction"] == pytest.approx(0.6)
+
+
+def test_disorder_statistics_with_binomial_bands():
+    groups = [scan.disorder_group(CFG, g) for g in range(scan.n_groups("disorder", CFG))]
+    ds = scan.merge_disorder(groups, CFG)
+    assert ds.participation_final.dims == ("model", "energy", "realization")
+    assert ds.sizes["realization"] == 3 and (ds.count_valid == 3).all()
+    for what in ("delocalized", "chaotic"):
+        p, lo, hi = (ds[f"probability_{what}{s}"].values for s in ("", "_lower", "_upper"))
+        assert ((lo <= p + 1e-12) & (p <= hi + 1e-12)).all() and (lo >= 0).all() and (hi <= 1).all()
+        k = ((ds[what] == 1) & (ds.valid == 1)).sum("realization").values
+        np.testing.assert_allclose(p, k / 3)
+    # the excited bead of each realization follows the selection rule
+    for r in range(3):
+        pick = scan.select_excitation(random_chain(100 + r, 5.0), 14, 5)
+        assert int(ds.excited_site[r]) == pick["site"] and int(ds.excited_mode[r]) == pick["mode"]
+    assert ds.delocalization_onset_quantiles.dims == ("model", "energy", "quantile")
+    assert "selection_rule" in ds.attrs and ds.attrs["confidence_interval"].startswith("Wilson")
+
+
+def test_wilson_interval_known_values():
+    lo, hi = scan.wilson_interval(0, 10)
+    assert lo == 0 and hi == pytest.approx(0.2775, abs=1e-3)
+    lo, hi = scan.wilson_interval(5, 10)
+    assert lo == pytest.approx(0.2366, abs=1e-3) and hi == pytest.approx(0.7634, abs=1e-3)
+    lo, hi = scan.wilson_interval(0, 0)
+    assert np.isnan(lo) and np.isnan(hi)
+
+
+def test_scan_figures_are_byte_stable(tmp_path, chain):
+    from chainchaos import scan_plots
+
+    groups = [scan.energy_scan_group(chain, CFG, g) for g in range(scan.n_groups("energy_scan", CFG))]
+    ds = scan.merge_energy_scan(groups, CFG, chain)
+    dis = scan.merge_disorder([scan.disorder_group(CFG, g) for g in range(scan.n_groups("disorder", CFG))], CFG)
+    for name, fig_fn, data in (("e", scan_plots.energy_scan_figure, ds), ("d", scan_plots.disorder_figure, dis)):
+        scan_plots.save(fig_fn(data), tmp_path / f"{name}1")
+        scan_plots.save(fig_fn(data), tmp_path / f"{name}2")
+        a, b = (tmp_path / f"{name}1.pdf").read_bytes(), (tmp_path / f"{name}2.pdf").read_bytes()
+        assert a[:5] == b"%PDF-" and a == b and b"CreationDate" not in a
+        assert (tmp_path / f"{name}1.png").read_bytes() == (tmp_path / f"{name}2.png").read_bytes()

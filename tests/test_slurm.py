@@ -1,0 +1,214 @@
+"""The quick-scale scan through a real single-node SLURM (snakemake-executor-plugin-slurm).
+
+Runs when ``CI`` is set or when asked for with ``CHAINCHAOS_SLURM_TEST=1``. As root it installs
+Debian's ``slurm-wlm`` and ``munge`` if missing, starts ``munged``, ``slurmctld`` and ``slurmd``
+with a throw-away configuration (state, logs and ports of its own), submits the quick-scale scan
+targets with ``snakemake --profile profiles/slurm`` into a temporary results directory, checks the
+outputs and that the jobs went through SLURM, and stops the daemons it started, by their PIDs.
+It is skipped, saying why, when not root, without apt, without the executor plugin, or when the
+daemons do not come up (e.g. a container that forbids them).
+"""
+
+import importlib.util
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+import xarray as xr
+
+ROOT = Path(__file__).resolve().parents[1]
+WANTED = bool(os.environ.get("CI")) or os.environ.get("CHAINCHAOS_SLURM_TEST") == "1"
+CTLD_PORT, SLURMD_PORT = 16817, 16818  # not the defaults: never meet a system SLURM
+MARKER = "# chainchaos tests/test_slurm.py: throw-away single-node configuration"
+TARGETS = ["scan/energy_scan.nc", "scan/disorder_statistics.nc", "scan/thresholds.csv", "scan/thresholds.tex",
+           "figures/energy_scan.pdf", "figures/energy_scan.png", "figures/disorder_statistics.pdf",
+           "figures/disorder_statistics.png"]
+
+pytestmark = [
+    pytest.mark.slow,
+    pytest.mark.skipif(not WANTED, reason="SLURM test runs in CI (CI set) or with CHAINCHAOS_SLURM_TEST=1"),
+]
+
+
+def _run(cmd, timeout=60, **kw):
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, **kw)
+
+
+def _ensure_packages():
+    if all(shutil.which(b) for b in ("slurmctld", "slurmd", "munged", "sbatch", "squeue")):
+        return
+    if os.geteuid() != 0:
+        pytest.skip("SLURM is not installed and installing slurm-wlm/munge needs root")
+    if not shutil.which("apt-get"):
+        pytest.skip("SLURM is not installed and apt-get is unavailable to install slurm-wlm and munge")
+    env = {**os.environ, "DEBIAN_FRONTEND": "noninteractive"}
+    done = _run(["apt-get", "install", "-y", "-qq", "slurm-wlm", "munge"], timeout=600, env=env)
+    if done.returncode != 0:
+        _run(["apt-get", "update", "-qq"], timeout=600, env=env)
+        done = _run(["apt-get", "install", "-y", "-qq", "slurm-wlm", "munge"], timeout=600, env=env)
+    if done.returncode != 0:
+        pytest.skip(f"apt-get could not install slurm-wlm and munge: {done.stderr[-500:]}")
+
+
+def _munge_works():
+    if not shutil.which("munge"):
+        return False
+    try:
+        cred = _run(["munge", "-n"], timeout=10)
+        return cred.returncode == 0 and _run(["unmunge"], input=cred.stdout, timeout=10).returncode == 0
+    except (OSError, subprocess.SubprocessError):
+        return False
+
+
+def _read_pid(path, wait=15.0):
+    end = time.monotonic() + wait
+    while time.monotonic() < end:
+        try:
+            return int(Path(path).read_text().split()[0])
+        except (OSError, ValueError, IndexError):
+            time.sleep(0.2)
+    return None
+
+
+def _stop(pid):
+    if pid is None:
+        return
+    try:
+        os.kill(pid, signal.SIGTERM)
+    except ProcessLookupError:
+        return
+    for _ in range(50):
+        try:
+            os.kill(pid, 0)
+        except ProcessLookupError:
+            return
+        time.sleep(0.1)
+    try:
+        os.kill(pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+
+
+@pytest.fixture(scope="module")
+def slurm(tmp_path_factory):
+    """A running single-node SLURM: yields the environment (SLURM_CONF) for its clients."""
+    if os.geteuid() != 0:
+        pytest.skip("starting munged, slurmctld and slurmd needs root")
+    if importlib.util.find_spec("snakemake_executor_plugin_slurm") is None:
+        pytest.skip("snakemake-executor-plugin-slurm is not installed (pip install -e '.[workflow]')")
+    _ensure_packages()
+    base = tmp_path_factory.mktemp("slurm")
+    started = []  # PIDs of the daemons this fixture started, stopped in reverse order
+    owned = []  # files this fixture wrote outside its temporary directory
+    try:
+        # munge: reuse a running one, else start our own (Debian's package ships the key)
+        if not _munge_works():
+            if not Path("/etc/munge/munge.key").exists() and shutil.which("mungekey"):
+                _run(["mungekey", "--create"], timeout=30)
+                shutil.chown("/etc/munge/munge.key", "munge", "munge")
+            run_dir = Path("/run/munge")
+            run_dir.mkdir(parents=True, exist_ok=True)
+            shutil.chown(run_dir, "munge", "munge")
+            done = _run(["runuser", "-u", "munge", "--", "munged", "--pid-file", str(run_dir / "munged.pid")])
+            if done.returncode != 0:
+                pytest.skip(f"munged did not start: {done.stderr.strip()[-300:]}")
+            started.append(_read_pid(run_dir / "munged.pid"))
+            if not _munge_works():
+                pytest.skip("munged started but credentials do not verify")
+        host = socket.gethostname().split(".")[0]
+        try:
+            socket.gethostbyname(host)
+        except OSError:
+            with open("/etc/hosts", "a") as fh:  # the notes: the short host name must resolve
+                fh.write(f"127.0.0.1 {host}\n")
+        node = _run(["slurmd", "-C"]).stdout.splitlines()[0]
+        (base / "state").mkdir()
+        (base / "spool").mkdir()
+        # srun inside a job step reads the default path (SLURM_CONF does not reach it): use
+        # /etc/slurm/slurm.conf unless a real configuration is there, and remove it afterwards
+        conf = Path("/etc/slurm/slurm.conf")
+        if conf.exists() and MARKER not in conf.read_text():
+            pytest.skip(f"{conf} exists (a system SLURM?): not replacing it with the test's configuration")
+        conf.parent.mkdir(parents=True, exist_ok=True)
+        owned.append(conf)
+        conf.write_text("\n".join([
+            MARKER,
+            "ClusterName=chainchaos",
+            f"SlurmctldHost={host}",
+            f"SlurmctldPort={CTLD_PORT}",
+            f"SlurmdPort={SLURMD_PORT}",
+            "SlurmUser=root",
+            "AuthType=auth/munge",
+            f"StateSaveLocation={base / 'state'}",
+            f"SlurmdSpoolDir={base / 'spool'}",
+            f"SlurmctldPidFile={base / 'slurmctld.pid'}",
+            f"SlurmdPidFile={base / 'slurmd.pid'}",
+            f"SlurmctldLogFile={base / 'slurmctld.log'}",
+            f"SlurmdLogFile={base / 'slurmd.log'}",
+            "ProctrackType=proctrack/linuxproc",
+            "TaskPlugin=task/none",
+            "SelectType=select/cons_tres",
+            "SelectTypeParameters=CR_Core",
+            "AccountingStorageType=accounting_storage/none",
+            "JobAcctGatherType=jobacct_gather/none",
+            "MinJobAge=300",
+            "ReturnToService=2",
+            node,
+            "PartitionName=debug Nodes=ALL Default=YES MaxTime=INFINITE State=UP",
+        ]) + "\n")
+        env = {**os.environ, "SLURM_CONF": str(conf)}
+        for daemon, pidfile in (("slurmctld", "slurmctld.pid"), ("slurmd", "slurmd.pid")):
+            done = _run([daemon, "-f", str(conf)], env=env)
+            if done.returncode != 0:
+                pytest.skip(f"{daemon} did not start: {done.stderr.strip()[-300:]}")
+            started.append(_read_pid(base / pidfile))
+        deadline = time.monotonic() + 60
+        state = ""
+        while time.monotonic() < deadline:
+            state = _run(["sinfo", "-h", "-o", "%T"], env=env, timeout=20).stdout.strip()
+            if state.startswith("idle"):
+                break
+            time.sleep(1)
+        else:
+            log = (base / "slurmctld.log").read_text()[-800:] if (base / "slurmctld.log").exists() else ""
+            pytest.skip(f"the SLURM node did not become idle (state {state!r}); slurmctld log: {log}")
+        yield env
+    finally:
+        for pid in reversed(started):
+            _stop(pid)
+        for path in owned:
+            path.unlink(missing_ok=True)
+
+
+def test_quick_scan_runs_through_slurm(slurm, tmp_path):
+    results = tmp_path / "results"
+    start = time.monotonic()
+    cmd = ["timeout", "-k", "15", "420", sys.executable, "-m", "snakemake", "--profile", "profiles/slurm",
+           "--nolock", "--jobs", "2", "--latency-wait", "5",
+           "--default-resources", "slurm_partition=debug", "mem_mb=1000", "runtime=30", "cpus_per_task=1",
+           "--slurm-status-command", "squeue", "--slurm-init-seconds-before-status-checks", "5",
+           "--configfile", "config/quick.yaml", "--config", f"results={results}",
+           "--", *[str(results / t) for t in TARGETS]]
+    done = subprocess.run(cmd, cwd=ROOT, env=slurm, capture_output=True, text=True, timeout=480)
+    out = done.stdout + done.stderr
+    assert done.returncode == 0, out[-6000:]
+    elapsed = time.monotonic() - start
+    for t in TARGETS:
+        assert (results / t).stat().st_size > 100, t
+    with xr.open_dataset(results / "scan" / "energy_scan.nc") as ds:
+        assert ds.sizes["energy"] == 8 and set(ds.model.values) == {"hertz", "fput"}
+        assert (ds.valid == 1).all()
+    with xr.open_dataset(results / "scan" / "disorder_statistics.nc") as ds:
+        assert ds.sizes["realization"] == 4 and "probability_delocalized_lower" in ds
+    # the compute jobs went through SLURM: submitted with a SLURM job id, listed by squeue
+    submitted = [line for line in out.splitlines() if "SLURM" in line and "jobid" in line.lower()]
+    jobs = subprocess.run(["squeue", "-h", "--states=all", "-o", "%j %T"], env=slurm, capture_output=True,
+                          text=True, timeout=30).stdout.split("\n")
+    assert len([j for j in jobs if j.strip()]) >= 4, (jobs, submitted)
+    assert elapsed < 400, f"the quick scan through SLURM took {elapsed:.0f} s"

@@ -1,0 +1,213 @@
+# Energy scan and disorder statistics of delocalization and chaos (issue 7).
+#
+# Many short trajectories, grouped `trajectories_per_job` to a job so that the DAG stays at
+# hundreds of jobs at paper scale (chainchaos.scan.n_groups); each group file holds its
+# trajectories' scan observables, a merge rule puts them on the (model, energy[, realization])
+# grid. `resources:` (mem_mb, runtime in minutes) feed the SLURM profile (profiles/slurm/);
+# a group's runtime follows from its steps and the measured cost per step, `scan.us_per_step`.
+
+import math
+
+from chainchaos import scan as _scan
+
+SCAN = config["scan"]
+SCAN_KINDS = ("energy_scan", "disorder")
+SCAN_FILES = {"energy_scan": "energy_scan", "disorder": "disorder_statistics"}
+
+
+wildcard_constraints:
+    group=r"\d+",
+
+
+# Seconds of work each: on a cluster they run on the submitting host rather than wait in the queue.
+localrules:
+    merge_energy_scan,
+    merge_disorder,
+    plot_energy_scan,
+    plot_disorder_statistics,
+    scan_thresholds,
+
+
+def scan_params(kind):
+    """The part of the scan block a kind's jobs depend on: a change elsewhere reruns nothing here."""
+    return {"settings": SCAN.get("settings", {}), kind: SCAN[kind]}
+
+
+def scan_group_files(kind):
+    return [result("scan", "groups", kind, f"{g:04d}.nc") for g in range(_scan.n_groups(kind, SCAN))]
+
+
+def scan_runtime(kind, per_job=True):
+    """Minutes a group job may take: its trajectories x steps x measured cost, x3 and + 10 min
+    for sampling, start-up and a busy node."""
+    s = _scan.settings_for(kind, SCAN)
+    n = SCAN[kind]["trajectories_per_job"] if per_job else len(_scan.items(kind, SCAN))
+    seconds = n * (s.t_final / s.dt) * SCAN.get("us_per_step", 1.0) * 1e-6
+    return int(math.ceil(3 * seconds / 60)) + 10
+
+
+rule compile_scan_kernels:
+    """Compile the batch (and single-trajectory) kernels once before the group jobs fan out."""
+    output:
+        flag=result("scan", "kernels_compiled.txt"),
+    log:
+        log_file("compile_scan_kernels"),
+    benchmark:
+        benchmark_file("compile_scan_kernels")
+    resources:
+        mem_mb=2000,
+        runtime=15,
+    script:
+        "../scripts/scan_compile.py"
+
+
+rule scan_energy_group:
+    """One group of (model, energy) trajectories on the chosen chain."""
+    input:
+        chain=result("chain", "chain.nc"),
+        kernels=result("scan", "kernels_compiled.txt"),
+    output:
+        group=result("scan", "groups", "energy_scan", "{group}.nc"),
+    params:
+        kind="energy_scan",
+        scan=scan_params("energy_scan"),
+        N=config["chain"]["N"],
+    log:
+        log_file("scan_energy_group", "{group}"),
+    benchmark:
+        benchmark_file("scan_energy_group", "{group}")
+    resources:
+        mem_mb=1000,
+        runtime=scan_runtime("energy_scan"),
+    script:
+        "../scripts/scan_group.py"
+
+
+rule scan_disorder_group:
+    """One group of (model, realization, energy) trajectories on alpha = 5 realizations."""
+    input:
+        kernels=result("scan", "kernels_compiled.txt"),
+    output:
+        group=result("scan", "groups", "disorder", "{group}.nc"),
+    params:
+        kind="disorder",
+        scan=scan_params("disorder"),
+        N=config["chain"]["N"],
+    log:
+        log_file("scan_disorder_group", "{group}"),
+    benchmark:
+        benchmark_file("scan_disorder_group", "{group}")
+    resources:
+        mem_mb=1000,
+        runtime=scan_runtime("disorder"),
+    script:
+        "../scripts/scan_group.py"
+
+
+rule merge_energy_scan:
+    input:
+        groups=scan_group_files("energy_scan"),
+        chain=result("chain", "chain.nc"),
+    output:
+        merged=result("scan", "energy_scan.nc"),
+    params:
+        kind="energy_scan",
+        scan=scan_params("energy_scan"),
+    log:
+        log_file("merge_energy_scan"),
+    benchmark:
+        benchmark_file("merge_energy_scan")
+    resources:
+        mem_mb=2000,
+        runtime=15,
+    script:
+        "../scripts/scan_merge.py"
+
+
+rule merge_disorder:
+    input:
+        groups=scan_group_files("disorder"),
+    output:
+        merged=result("scan", "disorder_statistics.nc"),
+    params:
+        kind="disorder",
+        scan=scan_params("disorder"),
+    log:
+        log_file("merge_disorder"),
+    benchmark:
+        benchmark_file("merge_disorder")
+    resources:
+        mem_mb=2000,
+        runtime=15,
+    script:
+        "../scripts/scan_merge.py"
+
+
+rule plot_energy_scan:
+    input:
+        data=result("scan", "energy_scan.nc"),
+    output:
+        pdf=result("figures", "energy_scan.pdf"),
+        png=result("figures", "energy_scan.png"),
+    params:
+        kind="energy_scan",
+        dpi=config["figures"]["dpi"],
+    log:
+        log_file("plot_energy_scan"),
+    benchmark:
+        benchmark_file("plot_energy_scan")
+    resources:
+        mem_mb=2000,
+        runtime=10,
+    script:
+        "../scripts/scan_figure.py"
+
+
+rule plot_disorder_statistics:
+    input:
+        data=result("scan", "disorder_statistics.nc"),
+    output:
+        pdf=result("figures", "disorder_statistics.pdf"),
+        png=result("figures", "disorder_statistics.png"),
+    params:
+        kind="disorder",
+        dpi=config["figures"]["dpi"],
+    log:
+        log_file("plot_disorder_statistics"),
+    benchmark:
+        benchmark_file("plot_disorder_statistics")
+    resources:
+        mem_mb=2000,
+        runtime=10,
+    script:
+        "../scripts/scan_figure.py"
+
+
+rule scan_thresholds:
+    """Energies where the chain delocalizes and where it is chaotic, with the criteria."""
+    input:
+        data=result("scan", "energy_scan.nc"),
+    output:
+        csv=result("scan", "thresholds.csv"),
+        tex=result("scan", "thresholds.tex"),
+    log:
+        log_file("scan_thresholds"),
+    benchmark:
+        benchmark_file("scan_thresholds")
+    resources:
+        mem_mb=1000,
+        runtime=5,
+    script:
+        "../scripts/scan_thresholds.py"
+
+
+SCAN_TARGETS = [
+    result("scan", "energy_scan.nc"),
+    result("scan", "disorder_statistics.nc"),
+    result("scan", "thresholds.csv"),
+    result("scan", "thresholds.tex"),
+    result("figures", "energy_scan.pdf"),
+    result("figures", "energy_scan.png"),
+    result("figures", "disorder_statistics.pdf"),
+    result("figures", "disorder_statistics.png"),
+]
