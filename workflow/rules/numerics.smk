@@ -113,6 +113,9 @@ rule numerics_energy_drift:
         log_file("numerics_energy_drift"),
     benchmark:
         benchmark_file("numerics_energy_drift")
+    resources:
+        mem_mb=1000,
+        runtime=90,  # 2e9 steps: ~12 CPU-minutes, more on a busy node
     script:
         "../scripts/numerics_energy_drift.py"
 

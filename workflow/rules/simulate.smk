@@ -35,5 +35,8 @@ rule simulate_scene:
         log_file("simulate_scene", "{scene}"),
     benchmark:
         benchmark_file("simulate_scene", "{scene}")
+    resources:
+        mem_mb=1000,
+        runtime=60,  # paper scale: 2e8 steps, ~1-3 CPU-minutes
     script:
         "../scripts/simulate_scene.py"
