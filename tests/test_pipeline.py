@@ -32,12 +32,8 @@ def planned_jobs(output: str) -> dict[str, int]:
     return {m.group(1): int(m.group(2)) for m in re.finditer(r"^(\w+)\s+(\d+)$", table, re.M) if m.group(1) != "total"}
 
 
-@pytest.fixture(scope="module")
-def quick(tmp_path_factory):
-    results = tmp_path_factory.mktemp("quick_results")
-    code, out = snakemake(*QUICK, "--config", f"results={results}")
-    assert code == 0, out[-6000:]
-    return results
+# The `quick` fixture (the whole quick-scale pipeline in a temporary results directory) is in
+# conftest.py, shared with tests/test_claims.py.
 
 
 @pytest.mark.slow

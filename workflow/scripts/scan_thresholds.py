@@ -2,33 +2,18 @@
 
 import argparse
 import contextlib
-import os
-import tempfile
-from pathlib import Path
 
 import xarray as xr
 
 from chainchaos import scan
-
-
-def write_text(path, text):
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+from chainchaos.io import write_text
 
 
 def main(data, csv, tex):
     ds = xr.load_dataset(data)
     rows = scan.thresholds_table(ds)
-    write_text(csv, scan.thresholds_csv(rows, ds))
-    write_text(tex, scan.thresholds_tex(rows, ds))
+    write_text(scan.thresholds_csv(rows, ds), csv)
+    write_text(scan.thresholds_tex(rows, ds), tex)
 
 
 if "snakemake" in globals():

@@ -1,0 +1,361 @@
+"""The claims table (src/chainchaos/claims.py) and the manuscript build.
+
+Unit tests run the measurements on small constructed Datasets, each built so that a wrong
+criterion fails; the slow tests use the quick-scale results of the `quick` fixture (conftest.py),
+whose pipeline run already built the manuscript.
+"""
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+import yaml
+
+from chainchaos import claims as cl
+from chainchaos import paper, random_chain
+from chainchaos.io import chain_dataset, ensemble_dataset
+
+from conftest import QUICK_MANUSCRIPT
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def times(t_final=1e5, per_decade=20):
+    return np.concatenate([[0.0], np.logspace(-1, np.log10(t_final), int(per_decade * (np.log10(t_final) + 1)) + 1)])
+
+
+def series(t, **variables) -> xr.Dataset:
+    return xr.Dataset({k: ("time", np.asarray(v, dtype=float)) for k, v in variables.items()}, coords={"time": t})
+
+
+# ------------------------------------------------------------------ measurements
+
+
+def test_final_mean_uses_only_the_last_decade():
+    t = times(1e5)
+    ds = series(t, participation=np.where(t >= 1e4, 26.0, 2.0))
+    assert cl.final_mean(ds, "participation", 1.0) == pytest.approx(26.0)
+    assert 2.0 < cl.final_mean(ds, "participation", 2.0) < 26.0
+
+
+def test_spreading_onset_is_when_the_smoothed_p_doubles_after_the_transient():
+    t = times(1e5)
+    wiggle = 0.8 * np.sin(7 * np.arange(t.size))  # raw P oscillates between 1.2 and 2.8 before the onset
+    step = series(t, participation=np.where(t < 200, 2.0, 20.0))
+    assert cl.spreading_onset(step, factor=2.0, smoothing_decades=0.01, t_ref=10.0) == pytest.approx(t[t >= 200][0])
+    ds = series(t, participation=np.where(t < 200, 2.0 + wiggle, 20.0))
+    smoothed = cl.spreading_onset(ds, factor=2.0, smoothing_decades=0.5, t_ref=10.0)
+    assert 200 / 10**0.25 <= smoothed <= 200
+    # an early rise before t_ref is the transient, not the onset
+    early = series(t, participation=np.where(t < 5, 1.5, np.where(t < 200, 4.0, 20.0)))
+    assert cl.spreading_onset(early, 2.0, 0.01, 10.0) == pytest.approx(t[t >= 200][0])
+    assert cl.spreading_onset(series(t, participation=np.full(t.size, 2.0)), 2.0, 0.5) is None
+
+
+def test_saturation_time_reaches_the_fraction_of_the_final_value():
+    t = times(1e5)
+    P = np.clip(2 + 24 * (np.log10(np.maximum(t, 1e-9)) - 2) / 2, 2, 26)  # 2 at 1e2 rising to 26 at 1e4
+    ds = series(t, participation=P)
+    tsat = cl.saturation_time(ds, 0.9, smoothing_decades=0.01)
+    assert 3e3 < tsat < 1e4
+
+
+def test_regular_and_chaotic_orbits_are_told_apart_by_the_growth_of_the_deviation_vector():
+    t = times(1e5)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        regular = series(t, mlce=np.log(1 + t) / t)                  # |v| ~ t
+        slow_regular = series(t, mlce=0.3 * np.log(1 + t) / t)       # |v| ~ t^0.3: slope near -0.7
+        chaotic = series(t, mlce=1e-3 + np.log(1 + t) / t)           # |v| ~ t e^(1e-3 t)
+    assert cl.excess_growth(regular) == pytest.approx(0.0, abs=1e-9)
+    assert not cl.is_chaotic(regular, 5.0) and not cl.is_chaotic(slow_regular, 5.0)
+    assert cl.is_chaotic(chaotic, 5.0)
+    assert cl.excess_growth(chaotic) == pytest.approx(100.0)
+    assert not cl.is_chaotic(chaotic, 150.0)
+    assert cl.mlce_slope(regular) < -0.8 and cl.mlce_slope(chaotic) > -0.5
+    assert cl.final_mlce(chaotic) == pytest.approx(1e-3 + np.log(1 + 1e5) / 1e5)
+
+
+def test_chaos_onset_dates_the_departure_from_the_regular_law():
+    t = times(1e5)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # regular ~ 1/t until t_c = 1e3, then ln|v| grows linearly: Lambda -> 1e-2
+        log_v = np.where(t < 1e3, np.log(1 + t), np.log(1 + 1e3) + 1e-2 * (t - 1e3))
+        ds = series(t, mlce=log_v / t)
+    onset = cl.chaos_onset(ds, -0.5, 1.0)
+    assert 1e3 / 3 < onset < 3e3
+    with np.errstate(divide="ignore", invalid="ignore"):
+        assert cl.chaos_onset(series(t, mlce=np.log(1 + t) / t), -0.5, 1.0) is None
+
+
+def gap_scene(t, open_bonds_by_time, N=40):
+    """gap_fraction(time, bond): 0.5 on the listed bonds from the given time on."""
+    frac = np.zeros((t.size, N + 1))
+    for bond, start in open_bonds_by_time.items():
+        frac[t >= start, bond - 1] = 0.5
+    return xr.Dataset({"gap_fraction": (("time", "bond"), frac),
+                       "gap_open": (("time", "bond"), (frac > 0).astype(np.int8)),
+                       "n_gaps": ("time", (frac > 0).sum(axis=1)),
+                       "n_gaps_max": ("time", np.minimum((frac > 0).sum(axis=1), 1))},
+                      coords={"time": t, "bond": np.arange(1, N + 2)})
+
+
+def test_gap_measurements():
+    t = times(1e4)
+    ds = gap_scene(t, {21: 1.0, 22: 5.0, 25: 300.0})
+    assert list(cl.bonds_ever_open(ds)) == [21, 22, 25]
+    assert list(cl.bond_distance(np.array([19, 20, 21, 22, 23, 24]), 21)) == [2, 1, 0, 0, 1, 2]
+    assert cl.gap_spread_time(ds, 21, 2) == pytest.approx(t[t >= 300][0])
+    assert cl.gap_spread_time(gap_scene(t, {21: 1.0, 23: 1.0}), 21, 2) is None
+    assert cl.max_simultaneous_gaps(ds) == 1  # n_gaps_max (checked every step) wins over n_gaps
+    assert cl.max_simultaneous_gaps(ds.drop_vars("n_gaps_max")) == 3
+
+
+def test_dvd_site_fraction_counts_samples_peaked_near_the_site():
+    t = times(1e5)
+    w = np.full((t.size, 40), 1e-3)
+    peaks = np.where(np.arange(t.size) % 4 == 0, 30, 21)  # a quarter of the samples peak at 30
+    w[np.arange(t.size), peaks - 1] = 1.0
+    ds = xr.Dataset({"dvd": (("time", "site"), w)}, coords={"time": t, "site": np.arange(1, 41)})
+    assert cl.dvd_site_fraction(ds, 21, 1, 1.0) == pytest.approx(0.75, abs=0.06)
+
+
+def test_verdicts_follow_the_rules():
+    assert cl.decide(True) == cl.REPRODUCED
+    assert cl.decide(False) == cl.DIFFERS
+    assert cl.decide(None) == cl.UNTESTABLE
+    assert cl.decide(True, t_final=1e3, t_required=1e5) == cl.UNTESTABLE
+    assert cl.decide(False, t_final=1e3, t_required=1e5) == cl.UNTESTABLE
+    assert cl.decide(False, t_final=1e3, t_required=1e5, refutable_early=True) == cl.DIFFERS
+    assert cl.decide(True, t_final=1e3, t_required=1e5, refutable_early=True) == cl.UNTESTABLE
+    assert cl.decide(True, t_final=1e5, t_required=1e5) == cl.REPRODUCED
+
+
+def test_ensemble_and_chain_measurements():
+    ens = xr.Dataset({"mean_participation": (("alpha", "rank"), np.array([
+        np.linspace(40, 30, 40), np.r_[np.linspace(28, 4, 30), np.full(10, 2.1)],
+        np.r_[np.linspace(27, 4, 30), np.full(10, 2.2)]]))},
+        coords={"alpha": [1.0, 4.0, 5.0], "rank": np.arange(1, 41)})
+    assert cl.localized_mode_count(ens, 5.0, 3.0) == 10
+    assert cl.localized_level(ens, 4.0, 10) == pytest.approx(2.1)
+    assert cl.most_extended(ens, 5.0) == pytest.approx(27.0)
+    assert 0 < cl.limiting_curve_deviation(ens, 4.0) < 0.1
+    chain = chain_dataset(random_chain(879, 5.0))
+    h = cl.mode_energy_profile(chain, 34)
+    assert h.sum() == pytest.approx(1.0)
+    assert 1.0 / np.sum(h**2) == pytest.approx(float(chain["mode_participation"].values[33]))
+    assert cl.mode_peak_site(chain, 34) == 21
+
+
+def test_interior_mode_participation_is_at_least_two():
+    """The bound the manuscript states for the potential convention: no interior bead holds more
+    than half of a mode's energy, so P >= 2 (a mode's energy on a wall bond is the exception)."""
+    for seed in range(20):
+        chain = chain_dataset(random_chain(seed, 5.0))
+        for mode in range(1, 41):
+            h = cl.mode_energy_profile(chain, mode)
+            if np.argmax(h) not in (0, 39):
+                assert h.max() <= 0.5 + 1e-12
+
+
+def test_taylor_sign_barrier_blocks_the_high_fput_energies():
+    chain = chain_dataset(random_chain(879, 5.0))
+    barrier = cl.taylor_sign_barrier(chain, 21)
+    assert 0.5 < barrier < 8.7381
+    from chainchaos.errors import ParameterError
+    from chainchaos.initial import initial_displacement
+    from chainchaos.models import model_id
+
+    c = cl.chain_from_dataset(chain, -1.0)
+    initial_displacement(model_id("fput"), c, 0.9 * barrier, 21)
+    with pytest.raises(ParameterError):
+        initial_displacement(model_id("fput"), c, 1.1 * barrier, 21)
+
+
+# ------------------------------------------------------------------ the table on synthetic scenes
+
+
+def synthetic_scenes(t_final=1e5, u0=1.0410, hertz_spreads=True):
+    """Every scene of the paper with every variable a claim reads, shaped like the paper's story."""
+    t = times(t_final)
+    out = {}
+    for name, scene in paper.scenes().items():
+        spreading = (scene.model == "hertz" and scene.energy >= 1.8 and hertz_spreads) or \
+                    (scene.model == "fput" and scene.energy in (2.9, 8.7381))
+        chaotic = spreading or (scene.model == "hertz" and scene.energy == 0.5) or (scene.model == "fput"
+                                                                                    and scene.energy == 4.0)
+        P = np.where(spreading & (t > 2e2), 26.0, 1.8)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            mlce = np.log(1 + t) / t + (1e-3 if chaotic else 0.0)
+        eta = np.where(spreading & (t > 5e3), 0.12, 0.95 if scene.energy < 1 else 0.6)
+        w = np.full((t.size, 40), 1e-3)
+        w[:, 20] = 1.0
+        ds = xr.Dataset({"participation": ("time", P), "mlce": ("time", mlce),
+                         "dvd_participation": ("time", np.full(t.size, 20.0)), "dvd": (("time", "site"), w),
+                         "eta": ("time", eta, {"equipartition_value": 0.116}),
+                         "energy_error": ("time", np.full(t.size, 1e-9))},
+                        coords={"time": t, "site": np.arange(1, 41), "bond": np.arange(1, 42),
+                                "mode": np.arange(1, 41)})
+        if scene.model == "hertz":
+            frac = np.zeros((t.size, 41))
+            frac[:, 20] = 0.1
+            if spreading:
+                frac[t > 3e2, :] = 0.1
+            ds["gap_fraction"] = (("time", "bond"), frac)
+            ds["gap_open"] = (("time", "bond"), (frac > 0).astype(np.int8))
+            ds["n_gaps"] = ("time", (frac > 0).sum(axis=1))
+            ds["n_gaps_max"] = ("time", (frac > 0).sum(axis=1))
+        ds.attrs.update(model=scene.model, energy=scene.energy, u0=u0, dt=5e-4, integrator="SRKN6b",
+                        t_final=t_final, max_energy_error=1e-9, final_energy_error=1e-9)
+        out[name] = ds
+    return out
+
+
+@pytest.fixture(scope="module")
+def chain_and_ensemble():
+    return chain_dataset(random_chain(879, 5.0)), ensemble_dataset([1.0, 4.0, 5.0, 6.0], 20)
+
+
+def by_id(claims):
+    return {c.id: c for c in claims}
+
+
+def test_every_claim_has_a_verdict_and_the_energy_error_of_its_scenes(chain_and_ensemble):
+    claims = cl.evaluate_claims(synthetic_scenes(), *chain_and_ensemble)
+    assert len({c.id for c in claims}) == len(claims) >= 40
+    for claim in claims:
+        assert claim.verdict in cl.VERDICTS, claim.id
+        if claim.scenes:
+            assert claim.max_energy_error == pytest.approx(1e-9), claim.id
+        if claim.verdict != cl.REPRODUCED:
+            assert claim.reason, claim.id
+
+
+def test_the_story_of_the_paper_is_reproduced_on_data_that_tells_it(chain_and_ensemble):
+    c = by_id(cl.evaluate_claims(synthetic_scenes(), *chain_and_ensemble))
+    for key in ("loc-H0.5-hertz", "chaos-H0.5-hertz", "spread-H1.8-level", "spread-H1.8-onset", "regular-H0.5-fput", "spread-H1.8-saturation",
+                "mlce-H1.8", "fput-regular-to-1.8", "fput-H2.9", "loc-H4-fput", "chaos-H4-fput",
+                "fput-H8.7381", "gaps-H0.5-site21", "gaps-H1.8-cover", "dvd-H0.5-site21",
+                "eta-final-hertz_H1.8", "eta-final-fput_H4", "P-H0.25-hertz", "P-H0.25-overlap"):
+        assert c[key].verdict == cl.REPRODUCED, (key, c[key].measured_text, c[key].reason)
+
+
+def test_u0_differs_with_the_reason_and_is_reproduced_when_it_matches(chain_and_ensemble):
+    c = by_id(cl.evaluate_claims(synthetic_scenes(u0=1.041), *chain_and_ensemble))
+    assert c["u0"].verdict == cl.DIFFERS and "overlaps" in c["u0"].reason
+    c = by_id(cl.evaluate_claims(synthetic_scenes(u0=1.012), *chain_and_ensemble))
+    assert c["u0"].verdict == cl.REPRODUCED
+
+
+def test_a_missing_spreading_differs(chain_and_ensemble):
+    c = by_id(cl.evaluate_claims(synthetic_scenes(hertz_spreads=False), *chain_and_ensemble))
+    assert c["spread-H1.8-saturation"].verdict == cl.DIFFERS
+    assert c["spread-H1.8-onset"].verdict == cl.DIFFERS
+
+
+def test_short_runs_are_not_testable_unless_already_refuted(chain_and_ensemble):
+    c = by_id(cl.evaluate_claims(synthetic_scenes(t_final=1e3), *chain_and_ensemble))
+    assert c["chaos-H0.5-hertz"].verdict == cl.UNTESTABLE
+    assert "1000" in c["chaos-H0.5-hertz"].reason
+    assert c["spread-H1.8-saturation"].verdict == cl.UNTESTABLE
+    assert c["u0"].verdict == cl.DIFFERS  # needs no time
+    scenes = synthetic_scenes(t_final=1e3)
+    scenes["hertz_H0.5"]["n_gaps_max"][:] = 2  # two gaps at once: refuted however short the run
+    c = by_id(cl.evaluate_claims(scenes, *chain_and_ensemble))
+    assert c["gaps-H0.5-one"].verdict == cl.DIFFERS
+
+
+def test_a_scene_without_a_variable_makes_its_claims_untestable(chain_and_ensemble):
+    scenes = synthetic_scenes()
+    scenes["hertz_H1.8"] = scenes["hertz_H1.8"].drop_vars("mlce")
+    c = by_id(cl.evaluate_claims(scenes, *chain_and_ensemble))
+    assert c["mlce-H1.8"].verdict == cl.UNTESTABLE and "mlce" in c["mlce-H1.8"].reason
+
+
+def test_criteria_come_from_the_config_and_unknown_keys_are_refused():
+    block = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())["claims"]
+    criteria = cl.Criteria.from_config(block)
+    assert criteria.tolerance.time_factor == block["tolerance"]["time_factor"]
+    assert criteria.plateau_end["fput_H2.9"] == block["plateau_end"]["fput_H2.9"]
+    with pytest.raises(ValueError, match="chaos_slop"):
+        cl.Criteria.from_config({"chaos_slop": -0.5})
+    with pytest.raises(ValueError, match="tolerance"):
+        cl.Criteria.from_config({"tolerance": {"timefactor": 2}})
+
+
+def test_macros_are_newcommands_read_with_cc():
+    text = cl.macros_tex({"scene.hertz_H0.25.u0": "1.041", "count.total": "48"})
+    assert r"\expandafter\newcommand\csname cc@scene.hertz_H0.25.u0\endcsname{1.041}" in text
+    with pytest.raises(ValueError):
+        cl.tex_macro("bad{key}", "1")
+    assert cl.fmt(1e-3) == r"10^{-3}" and cl.fmt(2.5e-7, 2) == r"2.5\times 10^{-7}" and cl.fmt(2.694) == "2.69"
+    assert cl.g(5e-4) == r"5\times 10^{-4}" and cl.g(8.7381) == "8.7381"
+
+
+@pytest.mark.skipif(shutil.which("pdflatex") is None, reason="needs pdflatex")
+def test_macros_compile_and_an_unknown_key_stops_latex(tmp_path):
+    (tmp_path / "macros.tex").write_text(cl.macros_tex({"a.b_c": "$1.5$"}) + "\\newif\\ifpaperscale\n")
+    doc = "\\documentclass{article}\\begin{document}\\input{macros}%s\\end{document}\n"
+    for body, ok in (("\\cc{a.b_c}", True), ("\\cc{a.missing}", False)):
+        (tmp_path / "t.tex").write_text(doc % body)
+        done = subprocess.run(["pdflatex", "-interaction=nonstopmode", "-halt-on-error", "t.tex"], cwd=tmp_path,
+                              capture_output=True, text=True)
+        assert (done.returncode == 0) == ok, done.stdout[-2000:]
+
+
+# ------------------------------------------------------------------ the build
+
+
+def test_missing_tex_stops_with_the_debian_packages_and_no_traceback(tmp_path):
+    bin_dir = tmp_path / "bin"
+    bin_dir.mkdir()
+    os.symlink(sys.executable, bin_dir / "python")
+    done = subprocess.run([str(bin_dir / "python"), "workflow/scripts/build_manuscript.py", str(tmp_path),
+                           "--out", str(tmp_path / "ms.pdf")], cwd=ROOT, capture_output=True, text=True,
+                          env={**os.environ, "PATH": str(bin_dir)})
+    assert done.returncode != 0
+    assert "texlive-publishers" in done.stderr and "latexmk" in done.stderr
+    assert "Traceback" not in done.stderr + done.stdout
+    assert not (tmp_path / "ms.pdf").exists()
+
+
+def figure_objects(pdf: Path) -> list[str]:
+    """File names of the PDF figures pdfTeX embedded (its /PTEX.FileName entries)."""
+    return re.findall(rb"/PTEX\.FileName \(([^)]*)\)", pdf.read_bytes())
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(shutil.which("pdftotext") is None, reason="needs poppler-utils")
+def test_quick_manuscript_has_every_figure_and_the_claims(quick):
+    pdf = quick / QUICK_MANUSCRIPT
+    assert pdf.read_bytes()[:5] == b"%PDF-"
+    embedded = {Path(name.decode()).stem for name in figure_objects(pdf)}
+    assert {f"fig{n}" for n in paper.LAYOUTS} <= embedded
+    if (quick / "figures" / "work_precision.pdf").exists():  # the numerics rules are part of the workflow
+        assert {"work_precision", "stability"} <= embedded
+    images = subprocess.run(["pdfimages", "-list", str(pdf)], capture_output=True, text=True, check=True).stdout
+    assert len(images.splitlines()) > 2 + 10  # the density maps are raster images inside the figures
+    text = subprocess.run(["pdftotext", "-layout", str(pdf), "-"], capture_output=True, text=True,
+                          check=True).stdout
+    for n in paper.LAYOUTS:
+        assert re.search(rf"FIG\. {n}\.", text), f"caption of figure {n} missing"
+    assert "TABLE I" in text.upper() and "??" not in text
+    rows = cl.read_csv(quick / "claims" / "claims.csv")
+    assert rows and all(r["verdict"] in cl.VERDICTS for r in rows)
+    assert sum(r["verdict"] == cl.UNTESTABLE for r in rows) > 0  # quick scale ends at t = 1e3
+
+
+@pytest.mark.slow
+def test_every_macro_the_manuscript_uses_is_generated(quick):
+    macros = (quick / "claims" / "macros.tex").read_text()
+    defined = set(re.findall(r"\\csname cc@([^\\]+)\\endcsname", macros))
+    tex = re.sub(r"(?<!\\)%.*", "", (ROOT / "manuscript" / "ms.tex").read_text())  # without comments
+    used = set(re.findall(r"\\cc\{([^}]+)\}", tex))
+    used |= {f"claim.{k}.{f}" for k in re.findall(r"\\(?:claim|verdict)\{([^}]+)\}", tex) for f in ("n", "verdict")}
+    used = {u for u in used if "#" not in u}
+    assert used and used <= defined, sorted(used - defined)

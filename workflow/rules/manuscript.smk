@@ -1,0 +1,93 @@
+# The reproduction manuscript: the paper's claims measured on the results (evaluate_claims), and
+# manuscript/ms.tex built by latexmk from the figures, tables and generated macros (build_manuscript).
+# Every input comes from the `results` directory, so `--config results=DIR` builds entirely from DIR;
+# the PDF goes to config manuscript.pdf (default manuscript/ms.pdf).
+
+MANUSCRIPT_PDF = config.get("manuscript", {}).get("pdf", "manuscript/ms.pdf")
+
+CLAIMS_OUTPUTS = {
+    "csv": result("claims", "claims.csv"),
+    "table": result("claims", "claims_table.tex"),
+    "notes": result("claims", "claims_notes.tex"),
+    "scenes": result("claims", "scenes_table.tex"),
+    "macros": result("claims", "macros.tex"),
+}
+
+# The numerical-error report (workflow/rules/numerics.smk): its figures and tables go into the
+# manuscript when that rule file is part of the workflow (it defines NUMERICS_TARGETS; checked when
+# the DAG is built, so the order of the includes does not matter) and config manuscript.numerics is
+# true. SWITCH: otherwise the manuscript says that the report is not part of this build.
+NUMERICS_FOR_MANUSCRIPT = {
+    "wpfigure": result("figures", "work_precision.pdf"),
+    "wptable": result("tables", "work_precision.tex"),
+    "stabfigure": result("figures", "stability.pdf"),
+    "stabtable": result("tables", "stability.tex"),
+    "advicetable": result("tables", "step_advice.tex"),
+}
+
+
+def manuscript_numerics():
+    """The numerics inputs of the manuscript, or {} when the switch is off."""
+    wanted = config.get("manuscript", {}).get("numerics", True)
+    return dict(NUMERICS_FOR_MANUSCRIPT) if wanted and "NUMERICS_TARGETS" in globals() else {}
+
+
+def claims_inputs(wildcards=None):
+    files = {
+        "code": "src/chainchaos/claims.py",  # a changed criterion in the code reruns the claims
+        "chain": result("chain", "chain.nc"),
+        "ensemble": result("ensemble", "participation_stats.nc"),
+    }
+    files.update({name: scene_file(name) for name in sorted(SCENES)})
+    return files
+
+
+rule evaluate_claims:
+    """Measure every quantitative statement of the paper on the scene, chain and ensemble files:
+    claims.csv, the LaTeX table and notes, and macros.tex with every number the manuscript prints."""
+    input:
+        unpack(claims_inputs),
+    output:
+        **CLAIMS_OUTPUTS,
+    params:
+        claims=config.get("claims", {}),
+        simulation=config["simulation"],
+        ensemble=config["ensemble"],
+        chain=config["chain"],
+        scenes=config.get("scenes", {}),
+    log:
+        log_file("evaluate_claims"),
+    benchmark:
+        benchmark_file("evaluate_claims")
+    script:
+        "../scripts/evaluate_claims.py"
+
+
+def manuscript_inputs(wildcards=None):
+    files = {
+        "tex": "manuscript/ms.tex",
+        **CLAIMS_OUTPUTS,
+    }
+    files.update({f"fig{n}": result("figures", f"fig{n}.pdf") for n in FIGURES})
+    files.update({f"numerics_{key}": path for key, path in manuscript_numerics().items()})
+    return files
+
+
+rule build_manuscript:
+    """latexmk in results/manuscript_build/ on a copy of manuscript/ms.tex and of its inputs; stops
+    with a message naming the Debian TeX packages when TeX or revtex4-2 is missing."""
+    input:
+        unpack(manuscript_inputs),
+    output:
+        pdf=MANUSCRIPT_PDF,
+    params:
+        build_dir=result("manuscript_build"),
+    log:
+        log_file("build_manuscript"),
+    benchmark:
+        benchmark_file("build_manuscript")
+    script:
+        "../scripts/build_manuscript.py"
+
+
+MANUSCRIPT_TARGETS = [*CLAIMS_OUTPUTS.values(), MANUSCRIPT_PDF]
