@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from chainchaos import Chain, mode_participation, normal_modes, random_chain
+from chainchaos import mode_participation, normal_modes, random_chain
 from chainchaos.io import ensemble_dataset
 from chainchaos.linear import modal_energies, mode_energy_density
 from chainchaos.observables import normalised_entropy, spectral_entropy
@@ -52,15 +52,19 @@ def test_participation_conventions_on_homogeneous_chain(homogeneous):
     assert np.median(P) > 25
 
 
-def test_single_bead_mode_participation_lower_bound():
-    # a heavy bead between light ones: its mode lives on one bead; the DESIGN convention gives P >= 8/3
-    r = np.full(40, 0.4)
-    r[20] = 1.6
-    chain = Chain(r, 4.0)
-    omega, U = normal_modes(chain)
-    h = mode_energy_density(chain, omega, U)
-    P = 1 / np.sum(h**2, axis=0)
-    assert P.min() >= 8 / 3 - 1e-9
+def test_single_bead_displacement_participation_bounds(chain, homogeneous):
+    """A displacement of one bead strains its two bonds; their energies e_l, e_r are split half-half,
+    h = (e_l/2, (e_l + e_r)/2, e_r/2) / (e_l + e_r), so 2 <= P <= 8/3, with 8/3 exactly when the two
+    bonds carry equal energy (DESIGN section 3 quotes only the 8/3)."""
+    for c in (homogeneous, chain):
+        u = np.zeros((c.N, 1))
+        u[20, 0] = 1.0
+        P = float(1 / np.sum(mode_energy_density(c, np.ones(1), u) ** 2))
+        e_l, e_r = c.K2[20], c.K2[21]
+        x = e_l / (e_l + e_r)
+        assert P == pytest.approx(1 / ((x / 2) ** 2 + 0.25 + ((1 - x) / 2) ** 2), rel=1e-12)
+        assert 2 <= P <= 8 / 3 + 1e-12
+    assert float(1 / np.sum(mode_energy_density(homogeneous, np.ones(1), u) ** 2)) == pytest.approx(8 / 3)
 
 
 def test_ensemble_of_homogeneous_chains_has_no_spread(homogeneous):
