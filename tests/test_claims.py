@@ -226,7 +226,8 @@ def by_id(claims):
 
 
 def test_every_claim_has_a_verdict_and_the_energy_error_of_its_scenes(chain_and_ensemble):
-    claims = cl.evaluate_claims(synthetic_scenes(), *chain_and_ensemble)
+    claims = cl.evaluate_claims(synthetic_scenes(), *chain_and_ensemble,
+                                energy_scan=synthetic_scan(*PAPER_STORY, error=1e-9))
     assert len({c.id for c in claims}) == len(claims) >= 40
     for claim in claims:
         assert claim.verdict in cl.VERDICTS, claim.id
@@ -275,6 +276,55 @@ def test_a_scene_without_a_variable_makes_its_claims_untestable(chain_and_ensemb
     scenes["hertz_H1.8"] = scenes["hertz_H1.8"].drop_vars("mlce")
     c = by_id(cl.evaluate_claims(scenes, *chain_and_ensemble))
     assert c["mlce-H1.8"].verdict == cl.UNTESTABLE and "mlce" in c["mlce-H1.8"].reason
+
+
+def synthetic_scan(hertz, fput, t_final=1e5, E=None, error=1e-8):
+    """An energy scan on the grid E whose runs are delocalized and chaotic where the flag strings
+    say ('1'/'0' per energy; chaos = delocalization unless given as (deloc, chaos))."""
+    E = np.geomspace(0.1, 10, 12) if E is None else E
+    flags = {}
+    for model, spec in (("hertz", hertz), ("fput", fput)):
+        deloc, chaos = spec if isinstance(spec, tuple) else (spec, spec)
+        flags[model] = [np.array([int(ch) for ch in f], dtype=np.int8) for f in (deloc, chaos)]
+    both = lambda i: (("model", "energy"), np.stack([flags["hertz"][i], flags["fput"][i]]))
+    t = times(t_final)
+    return xr.Dataset({"delocalized": both(0), "chaotic": both(1),
+                       "valid": (("model", "energy"), np.ones((2, E.size), dtype=np.int8)),
+                       "energy_error_max": (("model", "energy"), np.full((2, E.size), error))},
+                      coords={"model": ["hertz", "fput"], "energy": E, "time": t},
+                      attrs={"p_delocalized": 10.0, "chaos_margin": 5.0})
+
+
+#: The 12-point grid 0.1 .. 10: 0.1 0.152 0.231 0.351 0.534 0.811 1.23 1.87 2.85 4.33 6.58 10
+PAPER_STORY = ("000000011111",                     # Hertz: delocalized and chaotic from 1.87 on
+               ("000000001011", "000000001111"))   # FPUT: from 2.85, localized again at 4.33, always chaotic
+
+
+def test_the_threshold_statements_are_judged_on_the_energy_scan(chain_and_ensemble):
+    ids = ("scan-hertz-deloc", "scan-hertz-chaos", "scan-fput-chaos", "scan-fput-alternation")
+    c = by_id(cl.evaluate_claims(synthetic_scenes(), *chain_and_ensemble, energy_scan=synthetic_scan(*PAPER_STORY)))
+    for key in ids:
+        assert c[key].verdict == cl.REPRODUCED, (key, c[key].measured_text)
+        assert c[key].max_energy_error == pytest.approx(1e-8) and c[key].scenes == ("energy_scan",)
+    assert c["scan-hertz-deloc"].measured == pytest.approx(1.87, abs=0.01)
+    # a localized energy above 1.8 breaks "always"; the reason names it
+    c = by_id(cl.evaluate_claims(synthetic_scenes(), *chain_and_ensemble,
+                                 energy_scan=synthetic_scan("000000011011", PAPER_STORY[1])))
+    assert c["scan-hertz-deloc"].verdict == cl.DIFFERS and "4.33" in c["scan-hertz-deloc"].reason
+    # always delocalized, but from far below 1.8: the threshold is elsewhere (the realization)
+    c = by_id(cl.evaluate_claims(synthetic_scenes(), *chain_and_ensemble,
+                                 energy_scan=synthetic_scan("000011111111", PAPER_STORY[1])))
+    assert c["scan-hertz-deloc"].verdict == cl.DIFFERS and c["scan-hertz-deloc"].reason == cl.REALIZATION
+    # no return to localization above the first delocalized energy: no alternation
+    c = by_id(cl.evaluate_claims(synthetic_scenes(), *chain_and_ensemble,
+                                 energy_scan=synthetic_scan(PAPER_STORY[0], "000000001111")))
+    assert c["scan-fput-alternation"].verdict == cl.DIFFERS
+    # a scan that ends before the paper's t = 1e5 cannot judge; without a scan nothing is measured
+    c = by_id(cl.evaluate_claims(synthetic_scenes(), *chain_and_ensemble,
+                                 energy_scan=synthetic_scan(*PAPER_STORY, t_final=1e4)))
+    assert all(c[key].verdict == cl.UNTESTABLE for key in ids)
+    c = by_id(cl.evaluate_claims(synthetic_scenes(), *chain_and_ensemble))
+    assert all(c[key].verdict == cl.UNTESTABLE and "energy_scan missing" in c[key].reason for key in ids)
 
 
 def test_criteria_come_from_the_config_and_unknown_keys_are_refused():
@@ -335,7 +385,7 @@ def test_quick_manuscript_has_every_figure_and_the_claims(quick):
     pdf = quick / QUICK_MANUSCRIPT
     assert pdf.read_bytes()[:5] == b"%PDF-"
     embedded = {Path(name.decode()).stem for name in figure_objects(pdf)}
-    assert {f"fig{n}" for n in paper.LAYOUTS} <= embedded
+    assert {f"fig{n}" for n in paper.LAYOUTS} | {"figscan", "figdisorder"} <= embedded
     if (quick / "figures" / "work_precision.pdf").exists():  # the numerics rules are part of the workflow
         assert {"work_precision", "stability"} <= embedded
     images = subprocess.run(["pdfimages", "-list", str(pdf)], capture_output=True, text=True, check=True).stdout
@@ -348,6 +398,8 @@ def test_quick_manuscript_has_every_figure_and_the_claims(quick):
     rows = cl.read_csv(quick / "claims" / "claims.csv")
     assert rows and all(r["verdict"] in cl.VERDICTS for r in rows)
     assert sum(r["verdict"] == cl.UNTESTABLE for r in rows) > 0  # quick scale ends at t = 1e3
+    scan_rows = [r for r in rows if r["scenes"] == "energy_scan"]
+    assert len(scan_rows) == 4 and all(r["measured_text"] != "--" for r in scan_rows)
 
 
 @pytest.mark.slow

@@ -36,6 +36,8 @@ from dataclasses import asdict, dataclass, field, fields
 import numpy as np
 import xarray as xr
 
+from chainchaos import scan as _scan
+
 VERDICTS = ("reproduced", "differs", "not testable at this scale")
 REPRODUCED, DIFFERS, UNTESTABLE = VERDICTS
 
@@ -77,6 +79,10 @@ class Tolerances:
     limiting_curve_relative
         relative, for "<P> reaches a limiting curve for alpha >= 4": largest rank-wise relative
         difference between the alpha >= 4 curves.
+    threshold_factor
+        multiplicative, for the threshold energies of Sec. III (H ~ 1.8, 2.8, 2.9): the paper ran a
+        handful of energies, so its thresholds are bracketed by neighbouring runs (Hertz: between
+        0.5 and 1.8), not measured; reproduced when the scan's threshold / paper's lies in [1/f, f].
     """
 
     displacement: float = 0.01
@@ -88,6 +94,7 @@ class Tolerances:
     eta_plateau: float = 0.1
     eta_equipartition: float = 0.05
     limiting_curve_relative: float = 0.25
+    threshold_factor: float = 1.5
 
 
 @dataclass(frozen=True)
@@ -543,8 +550,8 @@ class _Context:
         return self.scenes.get(name)
 
     def err(self, names) -> float | None:
-        errs = [float(self.scenes[n].attrs["max_energy_error"]) for n in names
-                if n in self.scenes and "max_energy_error" in self.scenes[n].attrs]
+        errs = [_max_energy_error(self.scenes[n]) for n in names if n in self.scenes]
+        errs = [e for e in errs if e is not None]
         return max(errs) if errs else None
 
     def t_final(self, names) -> float | None:
@@ -577,6 +584,15 @@ class _Context:
                                  verdict, reason, scenes, self.err(scenes), t_final, t_required))
 
 
+def _max_energy_error(ds: xr.Dataset) -> float | None:
+    """A scene's largest relative energy error (attribute), or the largest over the valid runs of
+    an energy scan (variable ``energy_error_max``)."""
+    if "energy_error_max" in ds:
+        err = np.where(ds["valid"].values == 1, ds["energy_error_max"].values, np.nan)
+        return float(np.nanmax(err)) if np.isfinite(err).any() else None
+    return float(ds.attrs["max_energy_error"]) if "max_energy_error" in ds.attrs else None
+
+
 def _lazy(fn):
     """Call fn() only when the claim's scenes and variables are there."""
     class Lazy:
@@ -590,12 +606,20 @@ def _lazy(fn):
     return Lazy()
 
 
+#: The name under which the energy scan (results/scan/energy_scan.nc) joins the scenes of a claim.
+ENERGY_SCAN = "energy_scan"
+
+
 def evaluate_claims(scenes: dict, chain: xr.Dataset, ensemble: xr.Dataset,
-                    criteria: Criteria | None = None, excited_site: int = 21) -> list[Claim]:
-    """Every claim of the paper, measured on ``scenes`` (scene name -> Dataset), the chain file and
-    the ensemble file; see the module docstring for the verdicts."""
+                    criteria: Criteria | None = None, excited_site: int = 21,
+                    energy_scan: xr.Dataset | None = None) -> list[Claim]:
+    """Every claim of the paper, measured on ``scenes`` (scene name -> Dataset), the chain file,
+    the ensemble file and the energy scan (the threshold statements; without it they are not
+    testable); see the module docstring for the verdicts."""
     c = criteria or Criteria()
     tol = c.tolerance
+    if energy_scan is not None:
+        scenes = {**scenes, ENERGY_SCAN: energy_scan}
     ctx = _Context(scenes, chain, ensemble, c, excited_site)
     s = excited_site
     add = ctx.add
@@ -963,7 +987,76 @@ def evaluate_claims(scenes: dict, chain: xr.Dataset, ensemble: xr.Dataset,
         (ef - eq > tol.eta_plateau) if ok else None, scenes=(fp4,), t_required=1e5, refutable_early=True,
         variables=("eta",), reason_differs=REALIZATION)
 
+    _threshold_claims(ctx)
     return ctx.claims
+
+
+def _threshold_claims(ctx: _Context) -> None:
+    """The threshold statements of Sec. III and IV, judged on the energy scan: a grid of energies
+    on the chosen chain, each run classified delocalized / chaotic by the scan's own criteria
+    (written in the scan file), invalid runs (energy error above the scan's bound) counting as
+    neither."""
+    tol = ctx.c.tolerance
+    f = tol.threshold_factor
+    ds = ctx.scene(ENERGY_SCAN)
+    ok = ds is not None and all(v in ds for v in ("delocalized", "chaotic", "valid"))
+    E = ds.energy.values if ok else np.array([])
+    what_text = {"delocalized": "delocalized", "chaotic": "chaotic"}
+
+    def criterion_text(key):
+        if not ok:
+            return key
+        if key == "delocalized":
+            return f"final $P > {g(ds.attrs['p_delocalized'])}$"
+        return f"$\\ln(|v(t)|/|v(0)|) - \\ln(1+t) > {g(ds.attrs['chaos_margin'])}$ at the end"
+
+    def energies_text(values):
+        return ", ".join(f"${g(float(f'{x:.3g}'))}$" for x in values) or "none"
+
+    def always_claim(id, where, model, label, key, H):
+        flag = _scan.criterion_holds(ds, model, key) if ok else None
+        above = E >= H * (1 - 1e-9)
+        star = _scan.always_above(E, flag) if ok else None
+        holds_above = bool(flag[above].all()) if ok and above.any() else None
+        failing = E[above & ~flag] if ok else []
+        measured_text = "--"
+        if ok:
+            measured_text = (f"{what_text[key]} at {int(flag[above].sum())} of the {int(above.sum())} scanned "
+                             f"$H \\ge {g(H)}$; at every scanned $H \\ge H^* = {fmt(star)}$"
+                             if np.isfinite(star) else
+                             f"{what_text[key]} at {int(flag[above].sum())} of the {int(above.sum())} scanned "
+                             f"$H \\ge {g(H)}$; not at the highest")
+        reason = REALIZATION if holds_above else (
+            f"not {what_text[key]} at the scanned $H = $ {energies_text(failing)}")
+        ctx.add(id, where, f"Above $H \\approx {g(H)}$ the {label} packet is always {what_text[key]}",
+                f"$H^* \\approx {g(H)}$", star if ok and np.isfinite(star) else None, measured_text, "energy",
+                (f"{criterion_text(key)} at every scanned $H \\ge {g(H)}$, and the lowest $H^*$ above which "
+                 f"this holds at every scanned energy within a factor {g(f)} of {g(H)}"),
+                (lambda: holds_above and _within_factor(star, H, f)) if holds_above is not None else None,
+                scenes=(ENERGY_SCAN,), t_required=1e5, variables=("delocalized", "chaotic", "valid"),
+                reason_differs=reason)
+
+    always_claim("scan-hertz-deloc", "Sec. III B, IV", "hertz", "Hertz", "delocalized", 1.8)
+    always_claim("scan-hertz-chaos", "Sec. III B, IV", "hertz", "Hertz", "chaotic", 1.8)
+    always_claim("scan-fput-chaos", "Sec. III B, IV", "fput", "FPUT", "chaotic", 2.8)
+
+    H = 2.9
+    flag = _scan.criterion_holds(ds, "fput", "delocalized") if ok else None
+    first = _scan.first_energy(E, flag) if ok else None
+    beyond = (E >= first) if ok and np.isfinite(first) else None
+    n_switch = _scan.switches(flag[beyond]) if beyond is not None else 0
+    localized_above = E[beyond & ~flag] if beyond is not None else []
+    ctx.add("scan-fput-alternation", "Sec. III B, IV",
+            f"Above $H \\approx {g(H)}$ the FPUT packet alternates between localized and delocalized states",
+            f"from $H \\approx {g(H)}$", first if ok and np.isfinite(first) else None,
+            (f"first delocalized at $H = {fmt(first)}$; above it localized at $H = $ {energies_text(localized_above)} "
+             f"({n_switch} changes)" if ok and np.isfinite(first) else "never delocalized") if ok else "--",
+            "energy",
+            (f"the lowest scanned $H$ with {criterion_text('delocalized')} lies within a factor {g(f)} of {g(H)}, "
+             f"and above it the state changes at least twice (delocalized, localized, delocalized)"),
+            (lambda: _within_factor(first, H, f) and n_switch >= 2) if ok else None,
+            scenes=(ENERGY_SCAN,), t_required=1e5, variables=("delocalized", "chaotic", "valid"),
+            reason_differs=REALIZATION)
 
 
 # --------------------------------------------------------------------------------------------
@@ -1119,4 +1212,46 @@ def scene_macros(name: str, ds: xr.Dataset, criteria: Criteria) -> dict[str, str
     if "eta" in ds:
         out[f"scene.{name}.etafinal"] = fmt(final_mean(ds, "eta", criteria.eta_final_window_decades))
         out[f"scene.{name}.etaeq"] = fmt(equipartition_eta(ds))
+    return out
+
+
+def _grid_energy(x: float) -> str:
+    """An energy of a scan grid for math mode, or a note that the grid has none."""
+    return fmt(x) if np.isfinite(x) else r"\text{(none on the grid)}"
+
+
+def scan_macros(energy_scan: xr.Dataset, disorder: xr.Dataset) -> dict[str, str]:
+    """Numbers of the energy scan (grid, run, thresholds per model and criterion) and of the
+    disorder statistics (realizations, grid, and per model and criterion: the probability at the
+    highest energy with its 95% band, the lowest energy where at least half of the runs qualify)."""
+    out = {}
+    for prefix, ds in (("scan", energy_scan), ("disorder", disorder)):
+        a = ds.attrs
+        E = ds.energy.values
+        out.update({f"{prefix}.nenergies": str(E.size), f"{prefix}.emin": g(float(f"{E[0]:.3g}")),
+                    f"{prefix}.emax": g(float(f"{E[-1]:.3g}")), f"{prefix}.tfinal": g(a["t_final"]),
+                    f"{prefix}.dt": g(a["dt"]), f"{prefix}.integrator": str(a["integrator"]).replace("_", r"\_"),
+                    f"{prefix}.pdeloc": g(a["p_delocalized"]), f"{prefix}.chaosmargin": g(a["chaos_margin"])})
+        valid = ds["valid"].values == 1
+        out[f"{prefix}.invalid"] = str(int((~valid).sum()))
+        err = np.where(valid, ds["energy_error_max"].values, np.nan)
+        out[f"{prefix}.maxerr"] = fmt(float(np.nanmax(err)), 2) if np.isfinite(err).any() else "--"
+    E = energy_scan.energy.values
+    for model in energy_scan.model.values:
+        for key in ("delocalized", "chaotic"):
+            flag = _scan.criterion_holds(energy_scan, model, key)
+            out[f"scan.{model}.{key}.first"] = _grid_energy(_scan.first_energy(E, flag))
+            out[f"scan.{model}.{key}.always"] = _grid_energy(_scan.always_above(E, flag))
+    out["disorder.realizations"] = str(disorder.sizes["realization"])
+    out["disorder.alpha"] = g(disorder.attrs["alpha"])
+    E = disorder.energy.values
+    for model in disorder.model.values:
+        for key in ("delocalized", "chaotic"):
+            p = disorder[f"probability_{key}"].sel(model=model).values
+            lo = disorder[f"probability_{key}_lower"].sel(model=model).values
+            hi = disorder[f"probability_{key}_upper"].sel(model=model).values
+            out[f"disorder.{model}.{key}.top"] = (f"{fmt(100 * p[-1], 2)}\\,\\% "
+                                                  f"({fmt(100 * lo[-1], 2)}--{fmt(100 * hi[-1], 2)}\\,\\%)")
+            half = E[np.nan_to_num(p) >= 0.5]
+            out[f"disorder.{model}.{key}.half"] = _grid_energy(float(half[0]) if half.size else np.nan)
     return out

@@ -607,6 +607,32 @@ def merge_disorder(groups: list[xr.Dataset], scan_cfg: dict) -> xr.Dataset:
 # Thresholds table
 # ----------------------------------------------------------------------------------------------
 
+def first_energy(E: np.ndarray, flag: np.ndarray) -> float:
+    """The lowest grid energy where ``flag`` holds (NaN: nowhere)."""
+    return float(E[flag][0]) if flag.any() else np.nan
+
+
+def always_above(E: np.ndarray, flag: np.ndarray) -> float:
+    """The lowest grid energy H* such that ``flag`` holds at every grid energy >= H* (NaN when it
+    fails at the highest energy)."""
+    if not flag.any() or not flag[-1]:
+        return np.nan
+    k = flag.size - 1
+    while k > 0 and flag[k - 1]:
+        k -= 1
+    return float(E[k])
+
+
+def switches(flag: np.ndarray) -> int:
+    """How often ``flag`` changes between neighbouring grid energies."""
+    return int(np.count_nonzero(flag[1:] != flag[:-1]))
+
+
+def criterion_holds(ds: xr.Dataset, model: str, key: str) -> np.ndarray:
+    """Where a valid run of ``model`` satisfies ``key`` ("delocalized" or "chaotic"), per grid energy."""
+    return (ds[key].sel(model=model).values == 1) & (ds["valid"].sel(model=model).values == 1)
+
+
 def thresholds_table(ds: xr.Dataset) -> list[dict]:
     """Per model and criterion: the lowest grid energy where it holds, the lowest energy above
     which it holds at every grid energy, the fraction of grid energies where it holds, the
@@ -615,16 +641,10 @@ def thresholds_table(ds: xr.Dataset) -> list[dict]:
     E = ds.energy.values
     for m in ds.model.values:
         for what, key in (("delocalization", "delocalized"), ("chaos", "chaotic")):
-            flag = (ds[key].sel(model=m).values == 1) & (ds["valid"].sel(model=m).values == 1)
-            first = float(E[flag][0]) if flag.any() else np.nan
-            always = np.nan
-            if flag.any() and flag[-1]:
-                k = flag.size - 1
-                while k > 0 and flag[k - 1]:
-                    k -= 1
-                always = float(E[k])
-            rows.append({"model": str(m), "criterion": what, "first_energy": first, "always_above": always,
-                         "fraction": float(flag.mean()), "paper": PAPER_THRESHOLDS.get((str(m), what), np.nan)})
+            flag = criterion_holds(ds, m, key)
+            rows.append({"model": str(m), "criterion": what, "first_energy": first_energy(E, flag),
+                         "always_above": always_above(E, flag), "fraction": float(flag.mean()),
+                         "paper": PAPER_THRESHOLDS.get((str(m), what), np.nan)})
     return rows
 
 

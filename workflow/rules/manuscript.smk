@@ -37,6 +37,8 @@ def claims_inputs(wildcards=None):
         "code": "src/chainchaos/claims.py",  # a changed criterion in the code reruns the claims
         "chain": result("chain", "chain.nc"),
         "ensemble": result("ensemble", "participation_stats.nc"),
+        "energy_scan": result("scan", "energy_scan.nc"),  # the threshold statements
+        "disorder": result("scan", "disorder_statistics.nc"),  # numbers quoted in the text
     }
     files.update({name: scene_file(name) for name in sorted(SCENES)})
     return files
@@ -55,6 +57,7 @@ rule evaluate_claims:
         ensemble=config["ensemble"],
         chain=config["chain"],
         scenes=config.get("scenes", {}),
+        scan=config["scan"],
     log:
         log_file("evaluate_claims"),
     benchmark:
@@ -69,6 +72,11 @@ def manuscript_inputs(wildcards=None):
         **CLAIMS_OUTPUTS,
     }
     files.update({f"fig{n}": result("figures", f"fig{n}.pdf") for n in FIGURES})
+    files.update({
+        "figscan": result("figures", "energy_scan.pdf"),
+        "figdisorder": result("figures", "disorder_statistics.pdf"),
+        "thresholds": result("scan", "thresholds.tex"),
+    })
     files.update({f"numerics_{key}": path for key, path in manuscript_numerics().items()})
     return files
 

@@ -1,8 +1,9 @@
 """Build the reproduction manuscript with latexmk.
 
 The build runs in a build directory (results/manuscript_build by default) on copies of
-manuscript/ms.tex, the generated fragments (claims/macros.tex, claims_table.tex, claims_notes.tex),
-the composite figures fig1..fig9.pdf and the numerics figures and tables, so it reads nothing but
+manuscript/ms.tex, the generated fragments (claims/macros.tex, claims_table.tex, claims_notes.tex,
+scenes_table.tex, scan/thresholds.tex), the composite figures fig1..fig9.pdf, the scan figures and
+the numerics figures and tables, so it reads nothing but
 its inputs. The PDF is then moved atomically to its output path.
 
 Without TeX (latexmk, pdflatex, the revtex4-2 class) it stops with a message naming the Debian
@@ -18,7 +19,9 @@ from pathlib import Path
 
 TEX_PACKAGES = "texlive-latex-base texlive-latex-recommended texlive-publishers latexmk"
 GENERATED = {"macros": "macros.tex", "table": "claims_table.tex", "notes": "claims_notes.tex",
-             "scenes": "scenes_table.tex"}
+             "scenes": "scenes_table.tex", "thresholds": "thresholds.tex"}
+#: The figures besides fig1..fig9: the energy scan and the disorder statistics (results/figures).
+SCAN_FIGURES = {"figscan": "energy_scan.pdf", "figdisorder": "disorder_statistics.pdf"}
 
 
 class BuildError(RuntimeError):
@@ -122,8 +125,9 @@ else:
     a = parser.parse_args()
     root = Path(a.results)
     try:
-        main(a.tex, {k: root / "claims" / name for k, name in GENERATED.items()},
-             {f"fig{n}": root / "figures" / f"fig{n}.pdf" for n in range(1, 10)},
+        main(a.tex, {k: root / ("scan" if k == "thresholds" else "claims") / name for k, name in GENERATED.items()},
+             {**{f"fig{n}": root / "figures" / f"fig{n}.pdf" for n in range(1, 10)},
+              **{k: root / "figures" / name for k, name in SCAN_FIGURES.items()}},
              dict(item.split("=", 1) for item in a.numerics), a.out,
              a.build_dir or root / "manuscript_build", sys.stdout)
     except (BuildError, FileNotFoundError) as error:

@@ -89,12 +89,15 @@ def main(inputs: dict, outputs: dict, params: dict) -> None:
     inputs.pop("code", None)
     chain = xr.load_dataset(inputs.pop("chain"))
     ensemble = xr.load_dataset(inputs.pop("ensemble"))
+    energy_scan = xr.load_dataset(inputs.pop("energy_scan"))
+    disorder = xr.load_dataset(inputs.pop("disorder"))
     scenes = {name: xr.load_dataset(path) for name, path in inputs.items()}
     criteria = cl.Criteria.from_config(params.get("claims"))
     site = int(params.get("simulation", {}).get("excited_site", 21))
-    claims = cl.evaluate_claims(scenes, chain, ensemble, criteria, excited_site=site)
+    claims = cl.evaluate_claims(scenes, chain, ensemble, criteria, excited_site=site, energy_scan=energy_scan)
 
     macros = run_macros(scenes, chain, ensemble, params.get("simulation", {}), criteria)
+    macros.update(cl.scan_macros(energy_scan, disorder))
     for name, ds in scenes.items():
         macros.update(cl.scene_macros(name, ds, criteria))
     macros.update(cl.claim_macros(claims))
@@ -116,12 +119,13 @@ if "snakemake" in globals():
         main(dict(snakemake.input.items()), dict(snakemake.output.items()), dict(snakemake.params.items()))
 else:
     parser = argparse.ArgumentParser(description=__doc__)
-    parser.add_argument("results", help="results directory (scenes/, chain/, ensemble/)")
+    parser.add_argument("results", help="results directory (scenes/, chain/, ensemble/, scan/)")
     parser.add_argument("--out", required=True, help="output directory")
     parser.add_argument("--params", default="{}", help="JSON: {claims: {...}, simulation: {...}}")
     a = parser.parse_args()
     root = Path(a.results)
-    files = {"chain": root / "chain" / "chain.nc", "ensemble": root / "ensemble" / "participation_stats.nc"}
+    files = {"chain": root / "chain" / "chain.nc", "ensemble": root / "ensemble" / "participation_stats.nc",
+             "energy_scan": root / "scan" / "energy_scan.nc", "disorder": root / "scan" / "disorder_statistics.nc"}
     files.update({p.stem: p for p in sorted((root / "scenes").glob("*.nc"))})
     out = Path(a.out)
     main(files, {k: out / f for k, f in (("csv", "claims.csv"), ("table", "claims_table.tex"),
