@@ -29,6 +29,7 @@ rule simulate_scene:
         kernels=result("kernels_compiled.txt"),
     output:
         scene=result("scenes", "{scene}.nc"),
+    priority: 5  # 1-1.5 min each: before the many short scan and plot jobs, so the figures do not wait
     params:
         scene=lambda wildcards: scene_parameters(wildcards.scene),
     log:
