@@ -39,11 +39,11 @@ def single_rate(name, chain, steps, dt, integrator, tangent, repeats):
     for r in range(repeats + 1):
         q, p, dq, dp = q0.copy(), p0.copy(), dq0.copy(), dp0.copy()
         diag, gaps = np.zeros(2), np.zeros(N + 1, dtype=np.int64)
-        f, k, g = np.empty(N + 1), np.empty(N + 1), np.empty(N + 1)
+        f, k = np.empty(N + 1), np.empty(N + 1)
         n = 10 if r == 0 else steps
         t0 = time.process_time()
         advance(model, q, p, dq, dp, 1.0 / chain.mass, chain.A, chain.delta, K2, K3, K4, scheme.kicks,
-                scheme.drifts, dt, n, tangent, 1000, name == "hertz", gaps, diag, f, k, g)
+                scheme.drifts, dt, n, tangent, 1000, name == "hertz", gaps, diag, f, k)
         if r > 0:
             best = min(best, time.process_time() - t0)
     return steps / best

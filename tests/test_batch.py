@@ -18,9 +18,9 @@ def single_run(name, chain, q, p, dq, dp, integrator, dt, n_steps, tangent, chec
     K2, K3, K4 = coefficients(model, chain)
     q, p, dq, dp = q.copy(), p.copy(), dq.copy(), dp.copy()
     diag, gap_steps = np.zeros(2), np.zeros(N + 1, dtype=np.int64)
-    f, k, g = np.empty(N + 1), np.empty(N + 1), np.empty(N + 1)
+    f, k = np.empty(N + 1), np.empty(N + 1)
     bad = advance(model, q, p, dq, dp, 1.0 / chain.mass, chain.A, chain.delta, K2, K3, K4, scheme.kicks,
-                  scheme.drifts, dt, n_steps, tangent, check_every, gaps, gap_steps, diag, f, k, g)
+                  scheme.drifts, dt, n_steps, tangent, check_every, gaps, gap_steps, diag, f, k)
     return q, p, dq, dp, diag, gap_steps, bad
 
 

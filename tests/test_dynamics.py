@@ -21,7 +21,7 @@ def integrate(chain, model, q, p, n_steps, dt, scheme="SRKN6b", dq=None, dp=None
     K2, K3, K4 = coefficients(model, chain)
     bad = advance(model, q, p, dq, dp, 1 / chain.mass, chain.A, chain.delta, K2, K3, K4, s.kicks, s.drifts,
                   dt, n_steps, tangent, 10**9, track_gaps, gaps, diagnostics, np.empty(N + 1),
-                  np.empty(N + 1), np.empty(N + 1))
+                  np.empty(N + 1))
     assert bad == -1
     return q, p, dq, dp, diagnostics[0], gaps, diagnostics[1]
 

@@ -44,13 +44,13 @@ def run_kernel(problem: dict, integrator: str, n_steps: int, tangent: bool, dt: 
     scheme = get_scheme(integrator)
     s = {key: (v.copy() if isinstance(v, np.ndarray) else v) for key, v in problem.items()}
     N = s["q"].size
-    f, k, g = np.empty(N + 1), np.empty(N + 1), np.empty(N + 1)
+    f, k = np.empty(N + 1), np.empty(N + 1)
     diagnostics = np.zeros(2)
     gap_steps = np.zeros(N + 1, dtype=np.int64)
     start = time.perf_counter()
     bad = advance(s["model"], s["q"], s["p"], s["dq"], s["dp"], s["inv_mass"], s["A"], s["delta"],
                   s["K2"], s["K3"], s["K4"], scheme.kicks, scheme.drifts, dt, n_steps, tangent,
-                  check_every, False, gap_steps, diagnostics, f, k, g)
+                  check_every, False, gap_steps, diagnostics, f, k)
     seconds = time.perf_counter() - start
     if bad >= 0:
         raise RuntimeError(f"benchmark state became non-finite after {bad} steps")

@@ -134,14 +134,14 @@ def _renormalise(dq, dp):
 
 @njit(cache=True)
 def advance(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, drifts, dt, n_steps,
-            tangent, check_every, track_gaps, gap_steps, diagnostics, f, k, g):
+            tangent, check_every, track_gaps, gap_steps, diagnostics, f, k):
     """Advance the state (q, p) and, if ``tangent``, the deviation vector (dq, dp) by n_steps.
 
     Every ``check_every`` steps and at the end the state is checked for finiteness and the
     deviation vector is renormalised, its log growth added to diagnostics[0]. With
     ``track_gaps`` the number of steps each Hertz bond ends open is added to gap_steps and the
     largest number of simultaneously open bonds is kept in diagnostics[1]. f and k (N+1) are
-    left holding the last bond forces and stiffnesses; g (N+1) is unused.
+    left holding the last bond forces and stiffnesses.
     Returns -1, or the number of steps done when a non-finite state stopped the run.
 
     Speed (benchmarks/kernel_vs_c.py): the displacements and their deviations live in

@@ -175,11 +175,11 @@ class _SingleLoop:
             q, p, dq, dp = (np.ascontiguousarray(a[:, j]) for a in (self.q, self.p, self.dq, self.dp))
             diag = np.array([self.log_growth[j], float(self.max_gaps[j])])
             gaps = np.ascontiguousarray(self.gap_steps[:, j])
-            f, k, g = np.empty(N + 1), np.empty(N + 1), np.empty(N + 1)
+            f, k = np.empty(N + 1), np.empty(N + 1)
             K2, K3, K4 = self._coef[j]
             bad = advance(self.model, q, p, dq, dp, 1.0 / c.mass, c.A, c.delta, K2, K3, K4, self.scheme.kicks,
                           self.scheme.drifts, self.dt, int(n_steps), self.tangent, self.check_every,
-                          self.track_gaps, gaps, diag, f, k, g)
+                          self.track_gaps, gaps, diag, f, k)
             self.q[:, j], self.p[:, j], self.dq[:, j], self.dp[:, j] = q, p, dq, dp
             self.gap_steps[:, j] = gaps
             self.log_growth[j], self.max_gaps[j] = diag[0], int(diag[1])

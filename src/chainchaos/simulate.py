@@ -136,7 +136,7 @@ def simulate(chain, params: SceneParameters, progress=None) -> xr.Dataset:
 
     inv_mass = 1.0 / chain.mass
     K2, K3, K4 = coefficients(model, chain)
-    f, k, g = np.empty(N + 1), np.empty(N + 1), np.empty(N + 1)
+    f, k = np.empty(N + 1), np.empty(N + 1)
     diagnostics = np.zeros(2)
     counts = np.zeros(N + 1, dtype=np.int64)
     if track_gaps:
@@ -147,7 +147,7 @@ def simulate(chain, params: SceneParameters, progress=None) -> xr.Dataset:
         diagnostics[1] = 0.0
         bad = advance(model, q, p, dq, dp, inv_mass, chain.A, chain.delta, K2, K3, K4,
                       scheme.kicks, scheme.drifts, params.dt, int(steps[i] - steps[i - 1]), tangent,
-                      params.check_every, track_gaps, counts, diagnostics, f, k, g)
+                      params.check_every, track_gaps, counts, diagnostics, f, k)
         if bad >= 0:
             raise SimulationError(params.name, (steps[i - 1] + bad) * params.dt,
                                   "non-finite state (the orbit escaped to infinity or the step is unstable)",

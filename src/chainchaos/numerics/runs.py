@@ -60,7 +60,7 @@ class RunResult:
 @njit(cache=True)
 def run_chunks(model, q, p, dq, dp, inv_mass, mass, A, delta, K2, K3, K4, kicks, drifts, dt, n_chunks,
                chunk_steps, tangent, H0, err, err_offset, stop_error, track_gaps, gap_steps, diagnostics,
-               f, k, g, V):
+               f, k, V):
     """Advance ``n_chunks`` chunks of ``chunk_steps`` steps with :func:`advance`, recording the
     signed relative energy error (H - H0) / |H0| after each chunk in err[err_offset + i].
 
@@ -69,7 +69,7 @@ def run_chunks(model, q, p, dq, dp, inv_mass, mass, A, delta, K2, K3, K4, kicks,
     """
     for i in range(n_chunks):
         bad = advance(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, drifts, dt, chunk_steps,
-                      tangent, chunk_steps, track_gaps, gap_steps, diagnostics, f, k, g)
+                      tangent, chunk_steps, track_gaps, gap_steps, diagnostics, f, k)
         e = (energy_kernel(model, q, p, mass, A, delta, K2, K3, K4, V) - H0) / abs(H0)
         err[err_offset + i] = e
         if bad >= 0 or not abs(e) <= stop_error:
@@ -129,7 +129,7 @@ def run_scheme(model: int, chain, energy: float, scheme: str, dt: float, t_final
         err = np.zeros(n_checks)
         diagnostics = np.zeros(2)
         gap_steps = np.zeros(N + 1, dtype=np.int64)
-        scratch = [np.empty(N + 1) for _ in range(4)]
+        scratch = [np.empty(N + 1) for _ in range(3)]
         probe, offset, stop_index, steps_done = None, 0, -1, 0
         start, cpu_start = time.perf_counter(), time.process_time()
         for si, seg in enumerate(segments):

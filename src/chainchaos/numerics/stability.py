@@ -204,7 +204,7 @@ def energy_drift(model: int, chain, energy: float, scheme: str, dt: float, t_fin
         ends = np.append(ends, n_total // chunk)
     dq, dp = np.zeros(N), np.zeros(N)
     diagnostics, gaps = np.zeros(2), np.zeros(N + 1, dtype=np.int64)
-    scratch = [np.empty(N + 1) for _ in range(4)]
+    scratch = [np.empty(N + 1) for _ in range(3)]
     max_abs, mean, last = np.empty(ends.size), np.empty(ends.size), np.empty(ends.size)
     done = 0
     start = time.perf_counter()
