@@ -1001,7 +1001,6 @@ def _threshold_claims(ctx: _Context) -> None:
     ds = ctx.scene(ENERGY_SCAN)
     ok = ds is not None and all(v in ds for v in ("delocalized", "chaotic", "valid"))
     E = ds.energy.values if ok else np.array([])
-    what_text = {"delocalized": "delocalized", "chaotic": "chaotic"}
 
     def criterion_text(key):
         if not ok:
@@ -1021,14 +1020,11 @@ def _threshold_claims(ctx: _Context) -> None:
         failing = E[above & ~flag] if ok else []
         measured_text = "--"
         if ok:
-            measured_text = (f"{what_text[key]} at {int(flag[above].sum())} of the {int(above.sum())} scanned "
-                             f"$H \\ge {g(H)}$; at every scanned $H \\ge H^* = {fmt(star)}$"
-                             if np.isfinite(star) else
-                             f"{what_text[key]} at {int(flag[above].sum())} of the {int(above.sum())} scanned "
-                             f"$H \\ge {g(H)}$; not at the highest")
-        reason = REALIZATION if holds_above else (
-            f"not {what_text[key]} at the scanned $H = $ {energies_text(failing)}")
-        ctx.add(id, where, f"Above $H \\approx {g(H)}$ the {label} packet is always {what_text[key]}",
+            tail = f"at every scanned $H \\ge H^* = {fmt(star)}$" if np.isfinite(star) else "not at the highest"
+            measured_text = (f"{key} at {int(flag[above].sum())} of the {int(above.sum())} scanned "
+                             f"$H \\ge {g(H)}$; {tail}")
+        reason = REALIZATION if holds_above else f"not {key} at the scanned $H = $ {energies_text(failing)}"
+        ctx.add(id, where, f"Above $H \\approx {g(H)}$ the {label} packet is always {key}",
                 f"$H^* \\approx {g(H)}$", star if ok and np.isfinite(star) else None, measured_text, "energy",
                 (f"{criterion_text(key)} at every scanned $H \\ge {g(H)}$, and the lowest $H^*$ above which "
                  f"this holds at every scanned energy within a factor {g(f)} of {g(H)}"),
@@ -1046,12 +1042,16 @@ def _threshold_claims(ctx: _Context) -> None:
     beyond = (E >= first) if ok and np.isfinite(first) else None
     n_switch = _scan.switches(flag[beyond]) if beyond is not None else 0
     localized_above = E[beyond & ~flag] if beyond is not None else []
+    if not ok:
+        measured_text = "--"
+    elif beyond is None:
+        measured_text = "never delocalized"
+    else:
+        measured_text = (f"first delocalized at $H = {fmt(first)}$; above it localized at $H = $ "
+                         f"{energies_text(localized_above)} ({n_switch} changes)")
     ctx.add("scan-fput-alternation", "Sec. III B, IV",
             f"Above $H \\approx {g(H)}$ the FPUT packet alternates between localized and delocalized states",
-            f"from $H \\approx {g(H)}$", first if ok and np.isfinite(first) else None,
-            (f"first delocalized at $H = {fmt(first)}$; above it localized at $H = $ {energies_text(localized_above)} "
-             f"({n_switch} changes)" if ok and np.isfinite(first) else "never delocalized") if ok else "--",
-            "energy",
+            f"from $H \\approx {g(H)}$", first if beyond is not None else None, measured_text, "energy",
             (f"the lowest scanned $H$ with {criterion_text('delocalized')} lies within a factor {g(f)} of {g(H)}, "
              f"and above it the state changes at least twice (delocalized, localized, delocalized)"),
             (lambda: _within_factor(first, H, f) and n_switch >= 2) if ok else None,
@@ -1232,16 +1232,13 @@ def scan_macros(energy_scan: xr.Dataset, disorder: xr.Dataset) -> dict[str, str]
                     f"{prefix}.emax": g(float(f"{E[-1]:.3g}")), f"{prefix}.tfinal": g(a["t_final"]),
                     f"{prefix}.dt": g(a["dt"]), f"{prefix}.integrator": str(a["integrator"]).replace("_", r"\_"),
                     f"{prefix}.pdeloc": g(a["p_delocalized"]), f"{prefix}.chaosmargin": g(a["chaos_margin"])})
-        valid = ds["valid"].values == 1
-        out[f"{prefix}.invalid"] = str(int((~valid).sum()))
-        err = np.where(valid, ds["energy_error_max"].values, np.nan)
-        out[f"{prefix}.maxerr"] = fmt(float(np.nanmax(err)), 2) if np.isfinite(err).any() else "--"
-    E = energy_scan.energy.values
-    for model in energy_scan.model.values:
-        for key in ("delocalized", "chaotic"):
-            flag = _scan.criterion_holds(energy_scan, model, key)
-            out[f"scan.{model}.{key}.first"] = _grid_energy(_scan.first_energy(E, flag))
-            out[f"scan.{model}.{key}.always"] = _grid_energy(_scan.always_above(E, flag))
+        out[f"{prefix}.invalid"] = str(int((ds["valid"].values != 1).sum()))
+        out[f"{prefix}.maxerr"] = fmt(_max_energy_error(ds), 2)
+    flags = {"delocalization": "delocalized", "chaos": "chaotic"}
+    for row in _scan.thresholds_table(energy_scan):
+        key = f"scan.{row['model']}.{flags[row['criterion']]}"
+        out[f"{key}.first"] = _grid_energy(row["first_energy"])
+        out[f"{key}.always"] = _grid_energy(row["always_above"])
     out["disorder.realizations"] = str(disorder.sizes["realization"])
     out["disorder.alpha"] = g(disorder.attrs["alpha"])
     E = disorder.energy.values
