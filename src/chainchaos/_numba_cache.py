@@ -4,8 +4,8 @@ Numba reads ``NUMBA_CACHE_DIR`` when it is first imported, so this runs before a
 package imports numba. A checkout (editable install) caches in ``<project>/.numba_cache/<key>``,
 so every job of the pipeline reuses the kernels compiled once; an installed wheel falls back to
 the user's cache directory. Numba invalidates a cached function only when its own file changes,
-yet the engines (``integrators``, ``batch``, ``numerics``) compile in the force laws of ``models``
-and the helpers of ``integrators``: the key, a hash of those shared kernel modules, makes an edit
+yet the engines (``integrators``, ``batch``, ``numerics``) compile in the force laws of ``models``,
+the helpers of ``integrators`` and the vector operations of ``simd``: the key, a hash of those shared kernel modules, makes an edit
 there start a fresh cache instead of loading a stale one. An explicit ``NUMBA_CACHE_DIR`` always
 wins.
 """
@@ -24,7 +24,7 @@ def project_root() -> Path | None:
 
 
 #: Modules whose Numba functions are compiled into functions of other modules.
-SHARED_KERNEL_MODULES = ("models.py", "integrators.py")
+SHARED_KERNEL_MODULES = ("models.py", "integrators.py", "simd.py")
 
 
 def kernel_sources() -> list[Path]:

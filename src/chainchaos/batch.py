@@ -1,30 +1,35 @@
 """A batch engine: B trajectories integrated at once, vectorised across trajectories.
 
-``integrators.advance`` integrates one trajectory; its bond loop runs over N+1 = 41 bonds, too
-short for wide SIMD to pay off and full of loop-carried index arithmetic. Here every array has the
-trajectory index innermost and contiguous, shape (site, B) or (bond, B), so each inner loop runs
-over B independent trajectories with unit stride: the square roots of the Hertz force, the
-polynomial FPUT force and the whole tangent map run in SIMD lanes, one trajectory per lane.
+``integrators.advance`` integrates one trajectory, vectorised across its bonds: every split step
+makes five passes over arrays of ~N doubles (drift, force, kick, and the same for the tangent
+map), each bounded by loads, stores and loop overhead. Here the trajectories go in blocks of
+``LANES`` (8) and the arithmetic runs on explicit SIMD vectors (``chainchaos.simd``), one lane per
+trajectory: a drift, the forces and stiffnesses at the new positions and a kick are one sweep over
+the bonds that keeps the neighbouring beads' vectors in registers, so the square roots of the
+Hertz force overlap with the rest of the work. A block's state and parameters live in one
+64-byte aligned buffer, row by row (row r: the 8 lanes of each of the ``QUANTITIES`` in turn):
+all a sweep touches fits in L1 cache, every vector load is aligned, and no two quantities that
+one iteration reads and writes sit 4 KiB apart (which made the timing vary by a third from one
+process to the next with separately allocated arrays).
 
 The trajectories of a batch share the model, the scheme, dt and the number of steps; each has its
 own state, deviation vector and chain parameters (per-trajectory arrays shaped (N+1, B) for bond
-parameters and (N, B) for inverse masses: one chain repeated, or B different realizations).
+parameters and (N, B) for inverse masses: one chain repeated, or B different realizations). A
+batch of any size B is padded to whole blocks by repeating its last trajectory.
 
-Semantics are those of ``integrators.advance`` lane by lane (the tests check agreement to
-round-off): the same kick/drift table (``integrators.SCHEMES``), a force evaluation reused by the
-next kick when no drift came in between, the tangent map drift(c): dq += c dt M^-1 dp,
-kick(d): dp -= d dt Hess V(u) dq with Hess V tridiagonal from the bond stiffness, and every
-``check_every`` steps and at the end of a call the deviation vector of each trajectory is
-renormalised, its log growth added to ``log_growth[j]``. A trajectory whose state becomes
-non-finite is reported in ``bad[j]`` (the step of the first failed check) while the other lanes go
-on: lanes never mix.
+Semantics are those of ``integrators.advance`` lane by lane, to the bit (tests/test_batch.py): the
+same kick/drift table (``integrators.SCHEMES``), the same floating-point operations in the same
+order, a force evaluation reused by the next kick when no drift came in between, the tangent map
+drift(c): dq += c dt M^-1 dp, kick(d): dp -= d dt Hess V(u) dq with Hess V tridiagonal from the
+bond stiffness, and every ``check_every`` steps and at the end of a call the deviation vector of
+each trajectory renormalised, its log growth added to ``log_growth[j]``. A trajectory whose state
+becomes non-finite is reported in ``bad[j]`` (the step of the first failed check) while the other
+lanes go on: lanes never mix.
 
-Throughput (benchmarks/batch_throughput.py, CPU time, N = 40, SRKN6b with tangent map, AVX-512):
-about 0.34-0.36 us per step and trajectory at 64-128 lanes against 0.39 us for
-``integrators.advance``, which is itself vectorised across the (padded) bonds; at 8-16 lanes the
-batch is slower (LLVM's vectorised lane loops need >= 32 iterations). Against the scalar
-single-trajectory kernel it replaced (commit 05c2853, 0.79 us Hertz / 0.62 us FPUT) the batch
-engine is 2.2x / 1.7x faster.
+Throughput (benchmarks/batch_throughput.py, CPU time, N = 40, SRKN6b with the tangent map, the
+same trajectories through both engines): about 0.17 us (Hertz, with gap counting) and 0.14 us
+(FPUT) per step and trajectory, against 0.37-0.40 us for ``integrators.advance``: 2.1-2.4x and
+2.7-3x, from 8 lanes up.
 """
 
 import numpy as np
@@ -32,61 +37,130 @@ from numba import njit
 
 from chainchaos.errors import require
 from chainchaos.integrators import get_scheme
-from chainchaos.models import HERTZ, coefficients, model_id
+from chainchaos.models import HERTZ, coefficients, fput_force, fput_stiffness, hertz_force_stiffness, model_id
+from chainchaos.simd import LANES, vload, vstore
 
-#: Lanes per batch the scan pads to (a multiple of AVX-512's 8 doubles).
-LANE_MULTIPLE = 8
+#: The per-row contents of a block's buffer, LANES doubles each. Row r of U and DQ is bead r-1
+#: (the walls are rows 0 and N+1); row n of P, DP and IM is bead n; row b of the bond parameters
+#: A, DL (delta), K2, K3, K4 and of the bond force F and stiffness K is bond b, which joins beads
+#: b-1 and b.
+QUANTITIES = ("U", "DQ", "P", "DP", "IM", "A", "DL", "K2", "K3", "K4", "F", "K")
+_U, _DQ, _P, _DP, _IM, _A, _DL, _K2, _K3, _K4, _F, _K = (i * LANES for i in range(len(QUANTITIES)))
+#: Doubles per row of a block's buffer.
+ROW = len(QUANTITIES) * LANES
 
 
 @njit(cache=True, error_model="numpy")
-def _sweep(hertz, tangent, U, DQ, p, dp, inv_mass, A, delta, K2, K3, K4, F, K, a, c, do_drift, do_kick):
-    """One pass over the chain: drift(a) of every bead, the forces (and stiffnesses) at the new
-    positions, kick(c) of every bead, in one sweep over the beads so that the rows in use stay in
-    L1 cache; each operation is its own loop over the lanes (few arrays per loop, so that LLVM
-    vectorises it).
-
-    Bead n (0-based) is row n+1 of U and DQ (walls at rows 0 and N+1); bond b joins rows b and
-    b+1. At bead n the drift of row n+1 completes bond n, so bead n-1 can be kicked. Per element
-    the arithmetic is that of separate drift, force and kick loops, in the same order.
-    """
-    N, B = p.shape
-    for n in range(N + 1):
-        if do_drift and n < N:
-            for j in range(B):
-                U[n + 1, j] += a * inv_mass[n, j] * p[n, j]
+def _sweep(hertz, tangent, N, Z, a, c, do_drift, do_kick):
+    """One pass over the bonds b = 0..N of a block: drift(a) of bead b, then (if ``do_kick``) the
+    force and stiffness of bond b at the new positions and kick(c) of bead b-1, whose two bonds
+    are then both up to date. Per lane the operations are those of ``integrators.advance``'s
+    separate drift, force and kick loops, in the same order."""
+    u_left = vload(Z, _U)  # the wall
+    dq_left2 = vload(Z, _DQ)  # deviation of bead b-2, then b-1
+    dq_left = dq_left2
+    f_left = vload(Z, _F)
+    k_left = vload(Z, _K)
+    for b in range(N + 1):
+        bond = b * ROW
+        bead = bond + ROW  # row of bead b in U and DQ
+        u_right = vload(Z, bead + _U)
+        dq_right = vload(Z, bead + _DQ)
+        if do_drift and b < N:
+            im = vload(Z, bond + _IM)
+            u_right = u_right + a * im * vload(Z, bond + _P)
+            vstore(Z, bead + _U, u_right)
             if tangent:
-                for j in range(B):
-                    DQ[n + 1, j] += a * inv_mass[n, j] * dp[n, j]
+                dq_right = dq_right + a * im * vload(Z, bond + _DP)
+                vstore(Z, bead + _DQ, dq_right)
         if do_kick:
             if hertz:
-                for j in range(B):
-                    x = max(delta[n, j] + U[n, j] - U[n + 1, j], 0.0)
-                    s = np.sqrt(x)
-                    F[n, j] = A[n, j] * x * s
-                    K[n, j] = 1.5 * A[n, j] * s
+                f, k = hertz_force_stiffness(vload(Z, bond + _A), vload(Z, bond + _DL) + u_left - u_right)
             else:
-                for j in range(B):
-                    D = U[n, j] - U[n + 1, j]
-                    F[n, j] = D * (K2[n, j] - D * (K3[n, j] - D * K4[n, j]))
-                    K[n, j] = K2[n, j] - D * (2.0 * K3[n, j] - 3.0 * K4[n, j] * D)
-            if n >= 1:
-                m = n - 1
-                for j in range(B):
-                    p[m, j] += c * (F[m, j] - F[n, j])
+                D = u_left - u_right
+                K2, K3, K4 = vload(Z, bond + _K2), vload(Z, bond + _K3), vload(Z, bond + _K4)
+                f = fput_force(K2, K3, K4, D)
+                k = fput_stiffness(K2, K3, K4, D)
+            vstore(Z, bond + _F, f)
+            if tangent:
+                vstore(Z, bond + _K, k)
+            if b >= 1:
+                m = bond - ROW  # bead b-1
+                vstore(Z, m + _P, vload(Z, m + _P) + c * (f_left - f))
                 if tangent:
-                    for j in range(B):
-                        dp[m, j] += c * (K[m, j] * (DQ[m, j] - DQ[n, j]) - K[n, j] * (DQ[n, j] - DQ[n + 1, j]))
+                    vstore(Z, m + _DP, vload(Z, m + _DP)
+                           + c * (k_left * (dq_left2 - dq_left) - k * (dq_left - dq_right)))
+            f_left, k_left = f, k
+        u_left = u_right
+        dq_left2, dq_left = dq_left, dq_right
 
 
 @njit(cache=True, error_model="numpy")
-def _kick_only(tangent, DQ, p, dp, F, K, c):
-    N, B = p.shape
+def _kick_only(tangent, N, Z, c):
+    """kick(c) of every bead with the stored forces and stiffnesses."""
     for n in range(N):
-        for j in range(B):
-            p[n, j] += c * (F[n, j] - F[n + 1, j])
+        row = n * ROW
+        vstore(Z, row + _P, vload(Z, row + _P) + c * (vload(Z, row + _F) - vload(Z, row + ROW + _F)))
         if tangent:
-            for j in range(B):
-                dp[n, j] += c * (K[n, j] * (DQ[n, j] - DQ[n + 1, j]) - K[n + 1, j] * (DQ[n + 1, j] - DQ[n + 2, j]))
+            k0, k1 = vload(Z, row + _K), vload(Z, row + ROW + _K)
+            d0, d1, d2 = vload(Z, row + _DQ), vload(Z, row + ROW + _DQ), vload(Z, row + 2 * ROW + _DQ)
+            vstore(Z, row + _DP, vload(Z, row + _DP) + c * (k0 * (d0 - d1) - k1 * (d1 - d2)))
+
+
+@njit(cache=True, error_model="numpy")
+def _advance_block(hertz, tangent, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, gap_steps,
+                   log_growth, max_gaps, bad):
+    """``advance_batch`` for one block in its buffer Z; gap_steps is (N+1) x LANES, flattened."""
+    n_stages = drifts.shape[0]
+    force_valid = False
+    n_open = np.zeros(LANES, dtype=np.int64)
+    for step in range(n_steps):
+        c = kicks[0] * dt
+        if c != 0.0:
+            if force_valid:
+                _kick_only(tangent, N, Z, c)
+            else:
+                _sweep(hertz, tangent, N, Z, 0.0, c, False, True)
+        for i in range(n_stages):
+            c = kicks[i + 1] * dt
+            _sweep(hertz, tangent, N, Z, drifts[i] * dt, c, True, c != 0.0)
+            force_valid = c != 0.0
+        if track_gaps:  # open Hertz bonds: delta_b + u_{b-1} - u_b < 0
+            n_open[:] = 0
+            for b in range(N + 1):
+                for j in range(LANES):
+                    e = b * ROW + j
+                    if Z[e + _DL] + Z[e + _U] - Z[e + ROW + _U] < 0.0:
+                        gap_steps[b * LANES + j] += 1
+                        n_open[j] += 1
+            for j in range(LANES):
+                max_gaps[j] = max(max_gaps[j], n_open[j])
+        if (step + 1) % check_every == 0 or step + 1 == n_steps:
+            for j in range(LANES):
+                s = 0.0
+                for n in range(N):
+                    s += Z[(n + 1) * ROW + _U + j] + Z[n * ROW + _P + j]
+                if tangent:
+                    norm2 = 0.0
+                    for n in range(N):
+                        x, y = Z[(n + 1) * ROW + _DQ + j], Z[n * ROW + _DP + j]
+                        norm2 += x * x + y * y
+                    norm = np.sqrt(norm2)
+                    for n in range(N):
+                        Z[(n + 1) * ROW + _DQ + j] /= norm
+                        Z[n * ROW + _DP + j] /= norm
+                    log_growth[j] += np.log(norm)
+                    s += Z[ROW + _DQ + j]
+                if bad[j] < 0 and not np.isfinite(s):
+                    bad[j] = step + 1
+
+
+@njit(cache=True)
+def _aligned_zeros(n):
+    """n zeros starting on a 64-byte boundary (a cache line, an AVX-512 vector)."""
+    buf = np.zeros(n + 8)
+    misalignment = int(buf.ctypes.data % np.uint64(64)) // 8
+    return buf[(8 - misalignment) % 8:][:n]
 
 
 @njit(cache=True, error_model="numpy")
@@ -101,82 +175,56 @@ def advance_batch(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, dr
     and, with ``tangent``, its deviation vector renormalised, ln|v| added to ``log_growth[j]``.
     With ``track_gaps`` (Hertz) ``gap_steps[b, j]`` counts the steps bond b of lane j ends open
     (delta_b + u_{b-1} - u_b < 0) and ``max_gaps[j]`` keeps the largest number of simultaneously
-    open bonds. All arrays must be C-contiguous; they are updated in place.
-
-    A drift followed by a non-zero kick is done as one fused sweep (``_sweep``); a kick that
-    follows a kick reuses the forces, as in ``integrators.advance``.
+    open bonds. All arrays are updated in place.
     """
     N, B = q.shape
     hertz = model == HERTZ
-    # displacements and deviations with the walls: U[0] = U[N+1] = 0, bead n at row n+1
-    U = np.zeros((N + 2, B))
-    DQ = np.zeros((N + 2, B))
-    for n in range(N):
-        for j in range(B):
-            U[n + 1, j] = q[n, j]
-            DQ[n + 1, j] = dq[n, j]
-    F = np.zeros((N + 1, B))
-    K = np.zeros((N + 1, B))
-    norm2 = np.zeros(B)
-    check = np.zeros(B)
-    n_open = np.zeros(B, dtype=np.int64)
-    n_stages = drifts.shape[0]
-    force_valid = False
-    for step in range(n_steps):
-        c = kicks[0] * dt
-        if c != 0.0:
-            if not force_valid:
-                _sweep(hertz, tangent, U, DQ, p, dp, inv_mass, A, delta, K2, K3, K4, F, K, 0.0, 0.0,
-                       False, True)
-                # the sweep kicked with c = 0 (p += 0 * ...): exact no-op on finite states
-                force_valid = True
-            _kick_only(tangent, DQ, p, dp, F, K, c)
-        for i in range(n_stages):
-            a = drifts[i] * dt
-            c = kicks[i + 1] * dt
-            _sweep(hertz, tangent, U, DQ, p, dp, inv_mass, A, delta, K2, K3, K4, F, K, a, c, True,
-                   c != 0.0)
-            force_valid = c != 0.0
-        if track_gaps:
-            for j in range(B):
-                n_open[j] = 0
-            for b in range(N + 1):
-                for j in range(B):
-                    if delta[b, j] + U[b, j] - U[b + 1, j] < 0.0:
-                        gap_steps[b, j] += 1
-                        n_open[j] += 1
-            for j in range(B):
-                if n_open[j] > max_gaps[j]:
-                    max_gaps[j] = n_open[j]
-        if (step + 1) % check_every == 0 or step + 1 == n_steps:
-            for j in range(B):
-                check[j] = 0.0
+    Z = _aligned_zeros((N + 2) * ROW)
+    block_gaps = np.zeros((N + 1) * LANES, dtype=np.int64)
+    block_growth = np.zeros(LANES)
+    block_max_gaps = np.zeros(LANES, dtype=np.int64)
+    block_bad = np.zeros(LANES, dtype=np.int64)
+    for first in range(0, B, LANES):
+        Z[:] = 0.0
+        for lane in range(LANES):
+            j = min(first + lane, B - 1)  # padding lanes repeat the last trajectory
             for n in range(N):
-                for j in range(B):
-                    check[j] += U[n + 1, j] + p[n, j]
-            if tangent:
-                for j in range(B):
-                    norm2[j] = 0.0
-                for n in range(N):
-                    for j in range(B):
-                        norm2[j] += DQ[n + 1, j] * DQ[n + 1, j] + dp[n, j] * dp[n, j]
-                for j in range(B):
-                    norm = np.sqrt(norm2[j])
-                    log_growth[j] += np.log(norm)
-                    norm2[j] = norm
-                for n in range(N):
-                    for j in range(B):
-                        DQ[n + 1, j] /= norm2[j]
-                        dp[n, j] /= norm2[j]
-                for j in range(B):
-                    check[j] += DQ[1, j]
-            for j in range(B):
-                if bad[j] < 0 and not np.isfinite(check[j]):
-                    bad[j] = step + 1
-    for n in range(N):
-        for j in range(B):
-            q[n, j] = U[n + 1, j]
-            dq[n, j] = DQ[n + 1, j]
+                Z[(n + 1) * ROW + _U + lane] = q[n, j]
+                Z[(n + 1) * ROW + _DQ + lane] = dq[n, j]
+                Z[n * ROW + _P + lane] = p[n, j]
+                Z[n * ROW + _DP + lane] = dp[n, j]
+                Z[n * ROW + _IM + lane] = inv_mass[n, j]
+            for b in range(N + 1):
+                for offset, value in ((_A, A[b, j]), (_DL, delta[b, j]), (_K2, K2[b, j]), (_K3, K3[b, j]),
+                                      (_K4, K4[b, j])):
+                    Z[b * ROW + offset + lane] = value
+                block_gaps[b * LANES + lane] = gap_steps[b, j]
+            block_growth[lane] = log_growth[j]
+            block_max_gaps[lane] = max_gaps[j]
+            block_bad[lane] = bad[j]
+        # literal flags: each combination compiles to its own code without these branches
+        args = (N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, block_gaps, block_growth,
+                block_max_gaps, block_bad)
+        if hertz and tangent:
+            _advance_block(True, True, *args)
+        elif hertz:
+            _advance_block(True, False, *args)
+        elif tangent:
+            _advance_block(False, True, *args)
+        else:
+            _advance_block(False, False, *args)
+        for lane in range(min(LANES, B - first)):
+            j = first + lane
+            for n in range(N):
+                q[n, j] = Z[(n + 1) * ROW + _U + lane]
+                dq[n, j] = Z[(n + 1) * ROW + _DQ + lane]
+                p[n, j] = Z[n * ROW + _P + lane]
+                dp[n, j] = Z[n * ROW + _DP + lane]
+            for b in range(N + 1):
+                gap_steps[b, j] = block_gaps[b * LANES + lane]
+            log_growth[j] = block_growth[lane]
+            max_gaps[j] = block_max_gaps[lane]
+            bad[j] = block_bad[lane]
 
 
 def lane_parameters(model: int, chains) -> dict[str, np.ndarray]:

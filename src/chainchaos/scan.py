@@ -42,7 +42,7 @@ import numpy as np
 import xarray as xr
 
 from chainchaos import observables as obs
-from chainchaos.batch import LANE_MULTIPLE, Batch
+from chainchaos.batch import Batch
 from chainchaos.chain import GENERATOR, random_chain
 from chainchaos.errors import ParameterError, require
 from chainchaos.initial import initial_deviation, initial_state
@@ -188,13 +188,6 @@ class _SingleLoop:
         self.steps += int(n_steps)
 
 
-def _lane_padded(items, multiple):
-    """Pad a list to a multiple of ``multiple`` by repeating its last element (padding discarded)."""
-    n = len(items)
-    target = -(-n // multiple) * multiple
-    return items + [items[-1]] * (target - n)
-
-
 def run_trajectories(trajectories: list[Trajectory], settings: ScanSettings, progress=None) -> list[dict]:
     """Integrate every trajectory and reduce it to the scan observables (module docstring).
 
@@ -221,7 +214,6 @@ def _run_batch(name: str, trajs: list[Trajectory], settings: ScanSettings) -> li
     n_real = len(trajs)
     chains = [t.chain.with_k4_sign(settings.k4_sign) for t in trajs]
     N = chains[0].N
-    lanes = list(range(n_real))
     u0s, ok0 = [], []
     qs, ps = [], []
     for t, c in zip(trajs, chains):
@@ -232,21 +224,16 @@ def _run_batch(name: str, trajs: list[Trajectory], settings: ScanSettings) -> li
             q, p, u0 = np.zeros(N), np.zeros(N), np.nan
             ok0.append(False)
         qs.append(q), ps.append(p), u0s.append(u0)
-    if settings.engine == "batch":
-        lanes = _lane_padded(lanes, LANE_MULTIPLE)
     dq, dp = initial_deviation(N, settings.deviation_seed)
-    B = len(lanes)
-    Q0 = np.stack([qs[i] for i in lanes], 1)
-    P0 = np.stack([ps[i] for i in lanes], 1)
-    lane_chains = [chains[i] for i in lanes]
+    Q0, P0 = np.stack(qs, 1), np.stack(ps, 1)
     tangent, gaps = True, model == HERTZ
     args = dict(integrator=settings.integrator, dt=settings.dt, tangent=tangent, track_gaps=gaps,
                 check_every=settings.check_every)
-    DQ0, DP0 = np.tile(dq[:, None], (1, B)), np.tile(dp[:, None], (1, B))
+    DQ0, DP0 = np.tile(dq[:, None], (1, n_real)), np.tile(dp[:, None], (1, n_real))
     if settings.engine == "batch":
-        engine = Batch(model, lane_chains, Q0, P0, DQ0, DP0, **args)
+        engine = Batch(model, chains, Q0, P0, DQ0, DP0, **args)
     else:
-        engine = _SingleLoop(name, lane_chains, Q0, P0, DQ0, DP0, **args)
+        engine = _SingleLoop(name, chains, Q0, P0, DQ0, DP0, **args)
 
     steps = sample_steps(settings.t_final, settings.dt, settings.samples_per_decade, settings.t_first_sample)
     times = steps * settings.dt
@@ -274,7 +261,7 @@ def _run_batch(name: str, trajs: list[Trajectory], settings: ScanSettings) -> li
             err[i, j] = abs(float(total_energy(model, c, q, p)) - H0[j]) / abs(H0[j]) if ok0[j] else np.inf
             if gaps:
                 gaps_now[i, j] = int(open_gaps(c, q).sum())
-        Gt[i] = engine.log_growth[:n_real]
+        Gt[i] = engine.log_growth
 
     sample(0)
     max_gaps0 = gaps_now[0].copy()

@@ -1,0 +1,92 @@
+"""Explicit SIMD vectors (chainchaos.simd): every lane gets exactly its scalar operation."""
+
+import numpy as np
+import pytest
+from numba import njit
+
+from chainchaos.models import fput_force, fput_stiffness, hertz_force_stiffness
+from chainchaos.simd import LANES, vload, vstore
+
+# normal numbers, signed zeros, subnormals, infinities and NaN in every operand position
+SPECIAL = np.array([1.5, -2.25, 0.0, -0.0, 5e-324, -1e-310, np.inf, -np.inf, np.nan, 3.0e300, -7.0, 0.125])
+
+
+def operands(n_vectors, seed):
+    rng = np.random.default_rng(seed)
+    x = np.concatenate([SPECIAL, rng.normal(scale=3.0, size=n_vectors * LANES - SPECIAL.size)])
+    return rng.permutation(x), rng.permutation(x)
+
+
+@njit
+def _vector_ops(x, y, out):
+    for i in range(0, x.size, LANES):
+        a, b = vload(x, i), vload(y, i)
+        vstore(out[0], i, a + b)
+        vstore(out[1], i, a - b)
+        vstore(out[2], i, a * b)
+        vstore(out[3], i, 2.5 * a - b * 0.5 + 1)
+        vstore(out[4], i, max(a, b))
+        vstore(out[5], i, max(a, 0.0))
+        vstore(out[6], i, np.sqrt(a))
+
+
+@njit
+def _scalar_ops(x, y, out):
+    for i in range(x.size):
+        a, b = x[i], y[i]
+        out[0, i], out[1, i], out[2, i] = a + b, a - b, a * b
+        out[3, i] = 2.5 * a - b * 0.5 + 1
+        out[4, i], out[5, i] = max(a, b), max(a, 0.0)
+        out[6, i] = np.sqrt(a)
+
+
+def test_each_lane_is_its_scalar_operation_bit_for_bit():
+    x, y = operands(8, 0)
+    vec, ref = np.full((7, x.size), 99.0), np.full((7, x.size), 99.0)
+    with np.errstate(invalid="ignore"):
+        _vector_ops(x, y, vec)
+        _scalar_ops(x, y, ref)
+    # same bits, NaN and the sign of zero included
+    np.testing.assert_array_equal(vec.view(np.int64), ref.view(np.int64))
+
+
+@njit
+def _vector_forces(A, overlap, K3, out):
+    for i in range(0, A.size, LANES):
+        a, d, k3 = vload(A, i), vload(overlap, i), vload(K3, i)
+        f, k = hertz_force_stiffness(a, d)
+        vstore(out[0], i, f)
+        vstore(out[1], i, k)
+        vstore(out[2], i, fput_force(a, k3, 0.5 * a, d))
+        vstore(out[3], i, fput_stiffness(a, k3, 0.5 * a, d))
+
+
+def test_the_force_laws_compile_for_vectors_and_agree_with_the_scalar_ones():
+    rng = np.random.default_rng(1)
+    A, K3 = rng.random(4 * LANES) + 0.5, rng.normal(size=4 * LANES)
+    overlap = rng.normal(scale=0.2, size=4 * LANES)  # half the bonds open (overlap < 0)
+    out = np.empty((4, A.size))
+    _vector_forces(A, overlap, K3, out)
+    for i in range(A.size):
+        assert (out[0, i], out[1, i]) == hertz_force_stiffness(A[i], overlap[i])
+        assert out[2, i] == fput_force(A[i], K3[i], 0.5 * A[i], overlap[i])
+        assert out[3, i] == fput_stiffness(A[i], K3[i], 0.5 * A[i], overlap[i])
+    assert (out[0] == 0).any() and (out[0] > 0).any()
+
+
+@njit
+def _load_store(x, i, out, j):
+    vstore(out, j, vload(x, i))
+
+
+def test_load_and_store_move_lanes_elements_from_any_offset():
+    x = np.arange(3.0 * LANES)
+    out = np.zeros(3 * LANES)
+    _load_store(x, 5, out, 3)
+    np.testing.assert_array_equal(out[3:3 + LANES], x[5:5 + LANES])
+    assert not out[:3].any() and not out[3 + LANES:].any()
+
+
+def test_vectors_reject_arrays_they_are_not_made_for():
+    with pytest.raises(Exception, match="vload"):
+        _load_store(np.arange(3 * LANES, dtype=np.int64), 0, np.zeros(3 * LANES), 0)
