@@ -23,9 +23,10 @@ Criteria (config values, stated in every output file):
   lambda is detected once lambda t ~ chaos_margin + ln t: lambda ~ 1e-3 (the paper's Hertz
   H = 1.8) needs t ~ 2e4, so a short scan (quick scale, t = 1e3) reports only strong chaos.
 
-Trajectories are run with the batch engine (``chainchaos.batch``), ``batch_size`` lanes at a time
+Trajectories are run with the batch engine (``chainchaos.batch``), ``batch_size`` at a time
 (per-trajectory chain parameters, so different realizations share a batch), or one at a time by
-``integrators.advance`` (``engine: single``); both give identical results. A trajectory whose
+``integrators.advance`` (``engine: single``); both give identical results, the batch engine about
+2x faster. A trajectory whose
 state turns non-finite or whose relative energy error exceeds ``max_energy_error`` is kept with
 ``valid = 0`` and left out of the statistics.
 
@@ -86,8 +87,8 @@ class ScanSettings:
     max_energy_error: float = 1e-2
     p_delocalized: float = 10.0
     chaos_margin: float = 5.0
-    batch_size: int = 16
-    engine: str = "single"
+    batch_size: int = 32
+    engine: str = "batch"
 
     def __post_init__(self):
         get_scheme(self.integrator)
