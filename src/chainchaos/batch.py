@@ -36,7 +36,7 @@ import numpy as np
 from numba import njit
 
 from chainchaos.errors import require
-from chainchaos.integrators import get_scheme
+from chainchaos.integrators import _renormalise, get_scheme
 from chainchaos.models import HERTZ, coefficients, fput_force, fput_stiffness, hertz_force_stiffness, model_id
 from chainchaos.simd import LANES, vload, vstore
 
@@ -140,16 +140,9 @@ def _advance_block(hertz, tangent, N, Z, kicks, drifts, dt, n_steps, check_every
                 s = 0.0
                 for n in range(N):
                     s += Z[(n + 1) * ROW + _U + j] + Z[n * ROW + _P + j]
-                if tangent:
-                    norm2 = 0.0
-                    for n in range(N):
-                        x, y = Z[(n + 1) * ROW + _DQ + j], Z[n * ROW + _DP + j]
-                        norm2 += x * x + y * y
-                    norm = np.sqrt(norm2)
-                    for n in range(N):
-                        Z[(n + 1) * ROW + _DQ + j] /= norm
-                        Z[n * ROW + _DP + j] /= norm
-                    log_growth[j] += np.log(norm)
+                if tangent:  # lane j's deviation vector: every ROW-th element of the buffer
+                    log_growth[j] += _renormalise(Z[ROW + _DQ + j:(N + 1) * ROW + _DQ + j:ROW],
+                                                  Z[_DP + j:N * ROW + _DP + j:ROW])
                     s += Z[ROW + _DQ + j]
                 if bad[j] < 0 and not np.isfinite(s):
                     bad[j] = step + 1
