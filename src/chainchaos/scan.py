@@ -579,7 +579,7 @@ def merge_disorder(groups: list[xr.Dataset], scan_cfg: dict) -> xr.Dataset:
     ds = xr.Dataset(data, coords={"model": models, "energy": grid, "realization": np.arange(R),
                                   "quantile": quantiles})
     ds.energy.attrs.update(units="1", long_name="total energy H")
-    ds.realization.attrs.update(units="1", long_name=f"realization r: random_chain(first_seed + r, alpha)")
+    ds.realization.attrs.update(units="1", long_name="realization r: random_chain(first_seed + r, alpha)")
     ds.attrs.update(provenance_attrs({"kind": "disorder", "scan": scan_cfg}))
     ds.attrs.update(criteria_attrs(settings))
     ds.attrs.update(title="Disorder statistics of delocalization and chaos", generator=GENERATOR,
