@@ -22,6 +22,7 @@ include: "workflow/rules/simulate.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/numerics.smk"
 include: "workflow/rules/scan.smk"
+include: "workflow/rules/search.smk"
 include: "workflow/rules/manuscript.smk"
 
 
@@ -31,4 +32,5 @@ rule all:
         ALL_TARGETS,
         NUMERICS_TARGETS,
         SCAN_TARGETS,
+        SEARCH_TARGETS,
         MANUSCRIPT_TARGETS,

@@ -7,7 +7,7 @@ import xarray as xr
 from chainchaos import random_chain, scan
 
 CFG = {
-    "settings": {"dt": 0.02, "samples_per_decade": 8, "p_delocalized": 10.0, "chaos_margin": 5.0,
+    "settings": {"dt": 0.02, "samples_per_decade": 8, "p_delocalized": 10.0, "chaos_slope": -0.5,
                  "batch_size": 8, "engine": "batch"},
     "energy_scan": {"n_energies": 4, "energy_min": 0.2, "energy_max": 8.0, "t_final": 300.0,
                     "trajectories_per_job": 3, "site": 21},
@@ -53,25 +53,28 @@ def test_selection_rule_picks_a_localized_high_mode_near_the_centre(chain):
 
 
 def test_engines_agree_and_criteria_follow_their_definitions(chain):
-    settings = scan.ScanSettings(t_final=400.0, dt=0.02, samples_per_decade=8, p_delocalized=6.0, chaos_margin=2.0)
+    settings = scan.ScanSettings(t_final=400.0, dt=0.02, samples_per_decade=8, p_delocalized=6.0,
+                                 chaos_growth_margin=2.0, final_samples=20)
     trajs = [scan.Trajectory(m, E, chain, 21) for m in ("hertz", "fput") for E in (0.2, 3.0)]
     a = scan.run_trajectories(trajs, settings)
     b = scan.run_trajectories(trajs, scan.ScanSettings(**{**settings.__dict__, "engine": "single"}))
     for ra, rb in zip(a, b):
-        for key in ("participation_final", "mlce_final", "eta_final", "max_gaps"):
-            assert ra[key] == pytest.approx(rb[key], rel=1e-9, abs=1e-12)
+        for key in ("participation_final", "mlce_final", "eta_final", "max_gaps", "chaotic"):
+            assert ra[key] == rb[key]  # the engines are bit-identical
     for t, r in zip(trajs, a):
         assert r["valid"] and r["energy_error_max"] < 1e-3
-        last = r["times"] >= r["times"][-1] / 10
-        assert r["participation_final"] == pytest.approx(np.mean(r["participation"][last]))
+        tt, P = r["times"], r["participation"]
+        last = tt >= tt[-1] / 10
+        assert np.count_nonzero(last) >= 20  # the dense final samples
+        # the final value is the trapezoidal time average over the last decade
+        assert r["participation_final"] == pytest.approx(np.trapezoid(P[last], tt[last]) / (tt[-1] - tt[last][0]))
         assert r["delocalized"] == (r["participation_final"] > 6.0)
-        excess = r["log_growth"][-1] - np.log1p(r["times"][-1])
-        assert r["chaotic"] == (excess > 2.0)
         assert r["mlce_final"] == pytest.approx(r["log_growth"][-1] / r["times"][-1])
         assert (r["max_gaps"] >= 0) == (t.model == "hertz")
-        if np.isfinite(r["delocalization_onset"]):
-            i = np.searchsorted(r["times"], r["delocalization_onset"])
-            assert r["participation"][i] > 6.0 and (r["participation"][:i] <= 6.0).all()
+        if np.isfinite(r["delocalization_onset"]):  # a sustained crossing: above for half a decade
+            i = np.searchsorted(tt, r["delocalization_onset"])
+            hold = (tt >= tt[i]) & (tt <= min(tt[i] * 10**0.5, tt[-1]))
+            assert (P[hold] > 6.0).all()
     low, high = a[0], a[1]  # Hertz: the low energy stays localized, the high one spreads with gaps
     assert low["participation_final"] < 4 and high["participation_final"] > low["participation_final"]
     assert high["max_gaps"] > low["max_gaps"]

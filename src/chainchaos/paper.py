@@ -139,3 +139,77 @@ def scene_observables(scene_name: str) -> list[str]:
 
 def panels_of_scene(scene_name: str) -> list[str]:
     return sorted(p for p, panel in PANELS.items() if scene_name in {s.name for s in panel.scenes})
+
+
+# The paper's qualitative statements about its scenes, as data: what a realization must show to
+# tell the paper's story. Each is decided per orbit by ``verdicts.STATEMENT_KINDS[kind]`` with the
+# thresholds of the config block ``verdicts:``; ``value`` is the paper's number where it gives one
+# (a time, a level), ``until`` the end of the window a statement is about. ``early``: a run
+# shorter than the paper's can already break it (a packet that has spread is not localized at the
+# end; an orbit already chaotic is not regular), which the realization search uses to discard
+# chains cheaply.
+
+
+@dataclass(frozen=True)
+class Statement:
+    id: str
+    scene: Scene
+    kind: str
+    text: str
+    value: float | None = None
+    until: float | None = None
+    early: bool = False
+
+
+def _pair(scene: Scene, localized: bool, chaotic: bool, where: str) -> tuple[Statement, ...]:
+    label = "Hertz" if scene.model == "hertz" else "FPUT"
+    tag = f"H{scene.energy:g}-{scene.model}"
+    return (
+        Statement(f"{'loc' if localized else 'deloc'}-{tag}", scene, "localized" if localized else "delocalized",
+                  f"{label} $H = {scene.energy:g}$: {'localized' if localized else 'delocalized'} at the end "
+                  f"({where})", early=localized),
+        Statement(f"{'chaos' if chaotic else 'regular'}-{tag}", scene, "chaotic" if chaotic else "regular",
+                  f"{label} $H = {scene.energy:g}$: {'chaotic' if chaotic else 'regular'} ({where})",
+                  early=not chaotic),
+    )
+
+
+STATEMENTS: tuple[Statement, ...] = (
+    *_pair(HZ[0.25], True, False, "Fig. 2"),
+    *_pair(HZ[0.5], True, True, "Fig. 4"),
+    Statement("chaos-late-H0.5-hertz", HZ[0.5], "regular_until",
+              "Hertz $H = 0.5$: chaotic only in the last decade, regular up to $t = 10^4$ (Fig. 4d)",
+              until=1e4, early=True),
+    Statement("spread-level-H1.8-hertz", HZ[1.8], "participation_below_until",
+              "Hertz $H = 1.8$: $P < 3$ up to $t \\approx 2\\times 10^2$ (Fig. 4c)", value=3.0, until=2e2,
+              early=True),
+    Statement("spread-onset-H1.8-hertz", HZ[1.8], "spreading_onset_near",
+              "Hertz $H = 1.8$: $P$ starts to grow at $t \\approx 2\\times 10^2$ (Fig. 4c)", value=2e2),
+    *_pair(HZ[1.8], False, True, "Fig. 4"),
+    Statement("chaos-onset-H1.8-hertz", HZ[1.8], "chaos_onset_near",
+              "Hertz $H = 1.8$: chaotic from $t \\approx 2\\times 10^2$ (Fig. 4d)", value=2e2),
+    Statement("spread-until-H1.8-hertz", HZ[1.8], "saturation_near",
+              "Hertz $H = 1.8$: $P$ grows until $t \\approx 4\\times 10^3$ (Fig. 4c)", value=4e3),
+    Statement("mlce-H1.8-hertz", HZ[1.8], "mlce_near",
+              "Hertz $H = 1.8$: $\\Lambda$ levels off near $10^{-3}$ (Fig. 4d)", value=1e-3),
+    *_pair(HZ[3.0], False, True, "Fig. 8"),
+    *_pair(FP[0.25], True, False, "Fig. 2"),
+    *_pair(FP[0.5], True, False, "Fig. 4"),
+    *_pair(FP[1.8], True, False, "Fig. 4"),
+    *_pair(FP[2.9], False, True, "Fig. 6"),
+    Statement("chaos-onset-H2.9-fput", FP[2.9], "chaos_onset_near",
+              "FPUT $H = 2.9$: chaotic from $t \\approx 4\\times 10^3$ (Fig. 6d)", value=4e3),
+    *_pair(FP[4.0], True, True, "Fig. 6"),
+    Statement("eta-H4-fput", FP[4.0], "eta_near",
+              "FPUT $H = 4$: $\\eta \\approx 0.82$ for most of the run (Fig. 9c)", value=0.82),
+    *_pair(FP[8.7381], False, True, "Fig. 6"),
+)
+
+
+def statements_of_scene(scene_name: str) -> list[Statement]:
+    return [s for s in STATEMENTS if s.scene.name == scene_name]
+
+
+def statement_scenes() -> dict[str, Scene]:
+    """The scenes the statements are about, by name, in table order."""
+    return {s.scene.name: s.scene for s in STATEMENTS}

@@ -50,7 +50,9 @@ def energy_scan_figure(ds):
             ok = d["valid"].values == 1
             kw = dict(color=COLOURS.get(m, "k"), marker="o", ms=2.5, lw=0.9, label=NAMES.get(m, m))
             aP.plot(E[ok], d["participation_final"].values[ok], **kw)
-            aL.plot(E[ok], d["mlce_final"].values[ok], **kw)
+            aL.plot(E[ok], d["mlce_final"].values[ok], **{**kw, "mfc": "white"})
+            chaotic = ok & (d["chaotic"].values == 1)
+            aL.plot(E[chaotic], d["mlce_final"].values[chaotic], "o", color=COLOURS.get(m, "k"), ms=2.5)
             aE.plot(E[ok], d["eta_final"].values[ok], **kw)
             if (d["max_gaps"].values >= 0).any():
                 aG.plot(E[ok], d["max_gaps"].values[ok], drawstyle="steps-mid", **kw)
@@ -58,8 +60,8 @@ def energy_scan_figure(ds):
                 aP.plot(E[~ok], np.ones((~ok).sum()), "x", color=COLOURS.get(m, "k"), label=f"{NAMES.get(m, m)}: invalid run")
         aP.axhline(ds.attrs["p_delocalized"], color="k", ls="--", lw=0.7,
                    label=rf"$\bar P = {ds.attrs['p_delocalized']:g}$ (delocalized above)")
-        lam = (ds.attrs["chaos_margin"] + np.log1p(t_f)) / t_f
-        aL.axhline(lam, color="k", ls="--", lw=0.7, label=r"chaos criterion at $t_f$")
+        aL.axhline(np.log(t_f) / t_f, color="k", ls="--", lw=0.7,
+                   label=r"$\ln t_f / t_f$ (regular orbit); filled: chaotic")
         for ax, what in ((aP, "delocalization"), (aE, "delocalization"), (aL, "chaos"), (aG, "chaos")):
             _paper_lines(ax, models, what)
         aP.set_ylabel(r"$\bar P$ (last decade)")

@@ -44,35 +44,42 @@ def qualifies(chain: Chain, c: SelectionCriteria) -> tuple[bool, float]:
     return (c.p_min <= P <= c.p_max and int(np.argmax(h)) == c.site - 1), P
 
 
-def select_realization(criteria: SelectionCriteria = SelectionCriteria()) -> tuple[Chain, dict]:
-    """The winning chain and a record of the search (seed, score, candidates, P, overlaps)."""
+def candidates(criteria: SelectionCriteria = SelectionCriteria()) -> list[dict]:
+    """Every chain of seeds 0..n_seeds-1 that passes the linear rule, best overlap score first
+    (the lower seed on ties): dicts with seed, score, mode_participation, overlap_left/right."""
     c = criteria
-    best = None
-    n_candidates = 0
+    rows = []
     for seed in range(c.n_seeds):
         chain = random_chain(seed, c.alpha, c.N)
         ok, P = qualifies(chain, c)
-        if not ok:
-            continue
-        n_candidates += 1
-        overlaps = chain.delta[c.site - 1 : c.site + 1]
-        score = float(np.abs(overlaps - c.target_overlap).sum())
-        if best is None or score < best[0]:
-            best = (score, seed, chain, P, overlaps)
-    if best is None:
+        if ok:
+            overlaps = chain.delta[c.site - 1 : c.site + 1]
+            rows.append({"seed": seed, "score": float(np.abs(overlaps - c.target_overlap).sum()),
+                         "mode_participation": P, "overlap_left": float(overlaps[0]),
+                         "overlap_right": float(overlaps[1]), "qualifies": True})
+    if not rows:
         raise RuntimeError(f"no alpha = {c.alpha} chain among seeds 0..{c.n_seeds - 1} has mode {c.mode} "
                            f"with {c.p_min} <= P <= {c.p_max} peaked at site {c.site}; raise n_seeds")
-    score, seed, chain, P, overlaps = best
+    return sorted(rows, key=lambda r: (r["score"], r["seed"]))
+
+
+def select_realization(criteria: SelectionCriteria = SelectionCriteria()) -> tuple[Chain, dict]:
+    """The candidate with the best overlap score and a record of the search (seed, score,
+    candidates, P, overlaps)."""
+    c = criteria
+    rows = candidates(c)
+    best = rows[0]
+    chain = random_chain(best["seed"], c.alpha, c.N)
     record = {
-        "selection_seed": seed,
-        "selection_score": score,
-        "selection_candidates": n_candidates,
+        "selection_seed": best["seed"],
+        "selection_score": best["score"],
+        "selection_candidates": len(rows),
         "selection_seeds_scanned": c.n_seeds,
         "selection_mode": c.mode,
         "selection_site": c.site,
-        "selection_mode_participation": P,
-        "selection_overlap_left": float(overlaps[0]),
-        "selection_overlap_right": float(overlaps[1]),
+        "selection_mode_participation": best["mode_participation"],
+        "selection_overlap_left": best["overlap_left"],
+        "selection_overlap_right": best["overlap_right"],
         "selection_rule": __doc__.split("\n\n")[1].replace("\n", " "),
     }
     return chain, record

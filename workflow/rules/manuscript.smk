@@ -11,6 +11,7 @@ CLAIMS_OUTPUTS = {
     "notes": result("claims", "claims_notes.tex"),
     "scenes": result("claims", "scenes_table.tex"),
     "macros": result("claims", "macros.tex"),
+    "search": result("claims", "search_table.tex"),
 }
 
 # The numerical-error report (workflow/rules/numerics.smk): its figures and tables go into the
@@ -39,7 +40,9 @@ def claims_inputs(wildcards=None):
         "ensemble": result("ensemble", "participation_stats.nc"),
         "energy_scan": result("scan", "energy_scan.nc"),  # the threshold statements
         "disorder": result("scan", "disorder_statistics.nc"),  # numbers quoted in the text
+        "search": result("search", "search.nc"),
     }
+    files.update({f"verdict_{name}": path for name, path in VERDICT_FILES.items()})
     files.update({name: scene_file(name) for name in sorted(SCENES)})
     return files
 
@@ -76,6 +79,7 @@ def manuscript_inputs(wildcards=None):
         "figscan": result("figures", "energy_scan.pdf"),
         "figdisorder": result("figures", "disorder_statistics.pdf"),
         "thresholds": result("scan", "thresholds.tex"),
+        "figsearch": result("figures", "search.pdf"),
     })
     files.update({f"numerics_{key}": path for key, path in manuscript_numerics().items()})
     return files

@@ -19,9 +19,9 @@ from pathlib import Path
 
 TEX_PACKAGES = "texlive-latex-base texlive-latex-recommended texlive-publishers latexmk"
 GENERATED = {"macros": "macros.tex", "table": "claims_table.tex", "notes": "claims_notes.tex",
-             "scenes": "scenes_table.tex", "thresholds": "thresholds.tex"}
+             "scenes": "scenes_table.tex", "thresholds": "thresholds.tex", "search": "search_table.tex"}
 #: The figures besides fig1..fig9: the energy scan and the disorder statistics (results/figures).
-SCAN_FIGURES = {"figscan": "energy_scan.pdf", "figdisorder": "disorder_statistics.pdf"}
+SCAN_FIGURES = {"figscan": "energy_scan.pdf", "figdisorder": "disorder_statistics.pdf", "figsearch": "search.pdf"}
 
 
 class BuildError(RuntimeError):

@@ -11,6 +11,7 @@ import numpy as np
 import xarray as xr
 
 from chainchaos import claims as cl
+from chainchaos import search_report
 from chainchaos.io import atomic_output, write_text
 
 
@@ -91,16 +92,21 @@ def main(inputs: dict, outputs: dict, params: dict) -> None:
     ensemble = xr.load_dataset(inputs.pop("ensemble"))
     energy_scan = xr.load_dataset(inputs.pop("energy_scan"))
     disorder = xr.load_dataset(inputs.pop("disorder"))
+    search = xr.load_dataset(inputs.pop("search"))
+    verdicts = {name[len("verdict_"):]: xr.load_dataset(inputs.pop(name))
+                for name in sorted(inputs) if name.startswith("verdict_")}
     scenes = {name: xr.load_dataset(path) for name, path in inputs.items()}
     criteria = cl.Criteria.from_config(params.get("claims"))
     site = int(params.get("simulation", {}).get("excited_site", 21))
-    claims = cl.evaluate_claims(scenes, chain, ensemble, criteria, excited_site=site, energy_scan=energy_scan)
+    claims = cl.evaluate_claims(scenes, chain, ensemble, criteria, excited_site=site, energy_scan=energy_scan,
+                                verdicts=verdicts, search=search, disorder=disorder)
 
     macros = run_macros(scenes, chain, ensemble, params.get("simulation", {}), criteria)
     macros.update(cl.scan_macros(energy_scan, disorder))
     for name, ds in scenes.items():
         macros.update(cl.scene_macros(name, ds, criteria))
     macros.update(cl.claim_macros(claims))
+    macros.update(search_report.search_macros(search, verdicts, energy_scan, disorder, criteria.agreement))
     paper_scale = macros["run.scale"] == "paper"
 
     with atomic_output(outputs["csv"]) as tmp:
@@ -108,8 +114,12 @@ def main(inputs: dict, outputs: dict, params: dict) -> None:
     write_text(cl.claims_table_tex(claims), outputs["table"])
     write_text(cl.claims_notes_tex(claims), outputs["notes"])
     write_text(cl.scenes_table_tex(scenes), outputs["scenes"])
+    write_text(search_report.search_table_tex(search, verdicts), outputs["search"])
     write_text(cl.macros_tex(macros)
-                  + "\\newif\\ifpaperscale\n" + ("\\paperscaletrue\n" if paper_scale else "\\paperscalefalse\n"), outputs["macros"])
+                  + "\\newif\\ifpaperscale\n" + ("\\paperscaletrue\n" if paper_scale else "\\paperscalefalse\n")
+                  + "\\newif\\ifsearchpinned\n"
+                  + ("\\searchpinnedtrue\n" if int(search.attrs["pinned"]) else "\\searchpinnedfalse\n"),
+                  outputs["macros"])
     for claim in claims:
         print(f"{claim.id:28s} {claim.verdict:28s} {claim.measured}", file=sys.stderr)
 
@@ -125,10 +135,12 @@ else:
     a = parser.parse_args()
     root = Path(a.results)
     files = {"chain": root / "chain" / "chain.nc", "ensemble": root / "ensemble" / "participation_stats.nc",
-             "energy_scan": root / "scan" / "energy_scan.nc", "disorder": root / "scan" / "disorder_statistics.nc"}
+             "energy_scan": root / "scan" / "energy_scan.nc", "disorder": root / "scan" / "disorder_statistics.nc",
+             "search": root / "search" / "search.nc"}
+    files.update({f"verdict_{p.stem}": p for p in sorted((root / "verdicts").glob("*.nc"))})
     files.update({p.stem: p for p in sorted((root / "scenes").glob("*.nc"))})
     out = Path(a.out)
     main(files, {k: out / f for k, f in (("csv", "claims.csv"), ("table", "claims_table.tex"),
                                          ("notes", "claims_notes.tex"), ("scenes", "scenes_table.tex"),
-                                         ("macros", "macros.tex"))},
+                                         ("macros", "macros.tex"), ("search", "search_table.tex"))},
          json.loads(a.params))

@@ -1,0 +1,238 @@
+"""Many orbits integrated together on the batch engine and sampled on one schedule.
+
+The driver of everything that runs more than one trajectory and reduces each to a few series:
+the energy scan and the disorder statistics (``chainchaos.scan``), the realization search
+(``chainchaos.search``) and the ensemble verdicts (``chainchaos.verdicts``). An :class:`Orbit` is a
+model, an energy, a chain, the excited bead and a lane number: lane 0 is the scene's own orbit
+(bead ``site`` displaced by u0 with H = energy, deviation vector from ``deviation_seed``), lane
+j >= 1 the same with u0 (1 + perturbation xi_j), xi_j uniform in [-1, 1] from
+``default_rng([perturbation_seed, j])``, and the deviation vector from ``deviation_seed + j``. An
+ensemble of lanes asks whether a verdict survives changes at the level of the last bits of the
+initial state, which is what separates a property of the scene from one of a single orbit.
+
+Orbits of one model share a batch (``chainchaos.batch``, any mix of chains, energies and lanes)
+or run one after the other on ``integrators.advance`` (``engine: single``); both give identical
+numbers. At every sample the series of :data:`SERIES` are recorded per orbit.
+"""
+
+from dataclasses import dataclass, field, fields
+
+import numpy as np
+
+from chainchaos import observables as obs
+from chainchaos.batch import Batch
+from chainchaos.errors import ParameterError, require
+from chainchaos.initial import initial_deviation, initial_displacement
+from chainchaos.integrators import advance, get_scheme
+from chainchaos.linear import modal_energies, normal_modes, participation_number
+from chainchaos.models import HERTZ, coefficients, energy_density, model_id, open_gaps, total_energy
+from chainchaos.simulate import sample_steps
+
+MODELS = ("hertz", "fput")
+
+#: Per-orbit series on the sample times (units: all dimensionless).
+SERIES = {
+    "participation": "participation number P(t) of the energy density",
+    "log_growth": "ln(|v(t)|/|v(0)|) = Lambda(t) t",
+    "eta": "normalised spectral entropy eta(t)",
+    "energy_error": "relative energy error |H(t) - H(0)|/H(0)",
+}
+
+
+@dataclass(frozen=True)
+class Orbit:
+    """One trajectory: a model, an energy, a chain, the excited bead (1-based) and a lane."""
+
+    model: str
+    energy: float
+    chain: object = field(repr=False)
+    site: int
+    lane: int = 0
+
+
+@dataclass
+class OrbitSettings:
+    """Integration and sampling of a set of orbits (times in units of 1/omega_max).
+
+    Samples: ``samples_per_decade`` log-spaced from ``t_first_sample`` to ``t_final``
+    (``simulate.sample_steps``), plus ``final_samples`` evenly spaced over the last decade, so that
+    time averages over it see the fast oscillations of a packet evenly."""
+
+    t_final: float = 1e5
+    dt: float = 5e-3
+    integrator: str = "SRKN6b"
+    samples_per_decade: int = 10
+    t_first_sample: float = 1.0
+    final_samples: int = 0
+    check_every: int = 1000
+    k4_sign: int = 1
+    deviation_seed: int = 0
+    perturbation: float = 1e-9
+    perturbation_seed: int = 0
+    max_energy_error: float = 1e-2
+    batch_size: int = 32
+    engine: str = "batch"
+
+    def __post_init__(self):
+        get_scheme(self.integrator)
+        for key in ("t_final", "dt", "t_first_sample", "max_energy_error"):
+            value = getattr(self, key)
+            require(isinstance(value, (int, float)) and np.isfinite(value) and value > 0, key, value,
+                    "a finite number > 0")
+        require(self.dt <= self.t_final, "dt", self.dt, f"<= t_final = {self.t_final}")
+        require(self.k4_sign in (1, -1), "k4_sign", self.k4_sign, "+1 or -1")
+        require(self.engine in ("batch", "single"), "engine", self.engine, "'batch' or 'single'")
+        require(int(self.batch_size) >= 1, "batch_size", self.batch_size, ">= 1")
+        require(int(self.final_samples) >= 0, "final_samples", self.final_samples, "an integer >= 0")
+        require(np.isfinite(self.perturbation) and 0 <= self.perturbation < 1e-3, "perturbation",
+                self.perturbation, "0 <= perturbation < 1e-3 (a relative change of u0)")
+
+    @classmethod
+    def from_config(cls, block: dict):
+        names = {f.name for f in fields(cls)}
+        return cls(**{k: v for k, v in block.items() if k in names})
+
+
+def sample_schedule(settings: OrbitSettings) -> np.ndarray:
+    """Step indices of the samples: the log-spaced ones of ``simulate.sample_steps`` and
+    ``final_samples`` evenly spaced ones over the last decade."""
+    steps = sample_steps(settings.t_final, settings.dt, settings.samples_per_decade, settings.t_first_sample)
+    if settings.final_samples:
+        n_final = steps[-1]
+        dense = np.rint(np.linspace(0.1, 1.0, int(settings.final_samples) + 1) * n_final).astype(np.int64)
+        steps = np.union1d(steps, dense)
+    return steps
+
+
+def lane_factor(lane: int, settings: OrbitSettings) -> float:
+    """1 + perturbation xi_lane, the factor on u0 of a lane (exactly 1 for lane 0)."""
+    if lane == 0:
+        return 1.0
+    xi = np.random.default_rng([int(settings.perturbation_seed), int(lane)]).uniform(-1.0, 1.0)
+    return 1.0 + settings.perturbation * xi
+
+
+class _SingleLoop:
+    """The Batch interface on top of the single-trajectory engine, one lane after the other."""
+
+    def __init__(self, model, chains, q, p, dq, dp, integrator, dt, tangent, track_gaps, check_every):
+        self.model = model_id(model)
+        self.chains = chains
+        self.scheme = get_scheme(integrator)
+        self.q, self.p, self.dq, self.dp = (np.ascontiguousarray(a, dtype=float).copy() for a in (q, p, dq, dp))
+        N, B = self.q.shape
+        self.dt, self.tangent, self.track_gaps, self.check_every = dt, tangent, track_gaps, check_every
+        self.gap_steps = np.zeros((N + 1, B), dtype=np.int64)
+        self.max_gaps = np.zeros(B, dtype=np.int64)
+        self.log_growth = np.zeros(B)
+        self.bad = np.full(B, -1, dtype=np.int64)
+        self.steps = 0
+        self._coef = [coefficients(self.model, c) for c in chains]
+
+    def advance(self, n_steps):
+        N, B = self.q.shape
+        for j in range(B):
+            c = self.chains[j]
+            q, p, dq, dp = (np.ascontiguousarray(a[:, j]) for a in (self.q, self.p, self.dq, self.dp))
+            diag = np.array([self.log_growth[j], float(self.max_gaps[j])])
+            gaps = np.ascontiguousarray(self.gap_steps[:, j])
+            f, k = np.empty(N + 1), np.empty(N + 1)
+            K2, K3, K4 = self._coef[j]
+            bad = advance(self.model, q, p, dq, dp, 1.0 / c.mass, c.A, c.delta, K2, K3, K4, self.scheme.kicks,
+                          self.scheme.drifts, self.dt, int(n_steps), self.tangent, self.check_every,
+                          self.track_gaps, gaps, diag, f, k)
+            self.q[:, j], self.p[:, j], self.dq[:, j], self.dp[:, j] = q, p, dq, dp
+            self.gap_steps[:, j] = gaps
+            self.log_growth[j], self.max_gaps[j] = diag[0], int(diag[1])
+            if bad >= 0 and self.bad[j] < 0:
+                self.bad[j] = self.steps + bad
+        self.steps += int(n_steps)
+
+
+def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None) -> tuple[np.ndarray, list[dict]]:
+    """Integrate every orbit with its tangent map (and, for Hertz, gap counting) and sample it.
+
+    Returns the sample times and, per orbit in input order, a dict with the :data:`SERIES` arrays
+    and ``u0``, ``max_gaps`` (-1 for FPUT) and ``valid`` (the initial state exists, the run
+    stayed finite and its energy error stayed <= ``max_energy_error``)."""
+    results = [None] * len(orbits)
+    times = sample_schedule(settings) * settings.dt
+    for name in MODELS:
+        index = [i for i, o in enumerate(orbits) if o.model == name]
+        for start in range(0, len(index), int(settings.batch_size)):
+            chunk = index[start:start + int(settings.batch_size)]
+            for i, r in zip(chunk, _integrate_model(name, [orbits[i] for i in chunk], settings)):
+                results[i] = r
+            if progress is not None:
+                progress(sum(r is not None for r in results), len(orbits))
+    unknown = sorted({o.model for o, r in zip(orbits, results) if r is None})
+    require(not unknown, "model", unknown, f"one of {MODELS}")
+    return times, results
+
+
+def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings) -> list[dict]:
+    model = model_id(name)
+    B = len(orbits)
+    chains = [o.chain.with_k4_sign(settings.k4_sign) for o in orbits]
+    N = chains[0].N
+    Q0, P0, DQ0, DP0 = (np.zeros((N, B)) for _ in range(4))
+    u0s, ok0 = np.full(B, np.nan), np.zeros(B, dtype=bool)
+    for j, (o, c) in enumerate(zip(orbits, chains)):
+        try:
+            u0s[j] = initial_displacement(model, c, float(o.energy), int(o.site)) * lane_factor(o.lane, settings)
+            Q0[o.site - 1, j] = u0s[j]
+            ok0[j] = True
+        except ParameterError:
+            pass
+        DQ0[:, j], DP0[:, j] = initial_deviation(N, settings.deviation_seed + o.lane)
+    gaps = model == HERTZ
+    args = dict(integrator=settings.integrator, dt=settings.dt, tangent=True, track_gaps=gaps,
+                check_every=settings.check_every)
+    if settings.engine == "batch":
+        engine = Batch(model, chains, Q0, P0, DQ0, DP0, **args)
+    else:
+        engine = _SingleLoop(name, chains, Q0, P0, DQ0, DP0, **args)
+
+    steps = sample_schedule(settings)
+    S = steps.size
+    modes = {}
+    for c in chains:
+        if id(c) not in modes:
+            modes[id(c)] = normal_modes(c)
+    H0 = np.array([float(total_energy(model, c, Q0[:, j], P0[:, j])) for j, c in enumerate(chains)])
+    series = {key: np.full((S, B), np.nan) for key in SERIES}
+    S0 = np.full(B, np.nan)
+    gaps0 = np.zeros(B, dtype=np.int64)
+
+    def sample(i):
+        for j, c in enumerate(chains):
+            q, p = engine.q[:, j], engine.p[:, j]
+            if not (ok0[j] and np.all(np.isfinite(q)) and np.all(np.isfinite(p))):
+                series["energy_error"][i, j] = np.inf
+                continue
+            series["participation"][i, j] = participation_number(energy_density(model, c, q, p))
+            omega, U = modes[id(c)]
+            entropy = obs.spectral_entropy(modal_energies(c, omega, U, q, p))
+            if i == 0:
+                S0[j] = entropy
+                if gaps:
+                    gaps0[j] = int(open_gaps(c, q).sum())
+            series["eta"][i, j] = obs.normalised_entropy(entropy, S0[j], N)
+            series["energy_error"][i, j] = abs(float(total_energy(model, c, q, p)) - H0[j]) / abs(H0[j])
+        series["log_growth"][i] = engine.log_growth
+
+    sample(0)
+    for i in range(1, S):
+        engine.advance(int(steps[i] - steps[i - 1]))
+        sample(i)
+
+    out = []
+    for j in range(B):
+        err = series["energy_error"][:, j]
+        out.append({
+            **{key: series[key][:, j].copy() for key in SERIES},
+            "u0": float(u0s[j]),
+            "max_gaps": int(max(engine.max_gaps[j], gaps0[j])) if gaps else -1,
+            "valid": bool(ok0[j] and engine.bad[j] < 0 and np.all(err <= settings.max_energy_error)),
+        })
+    return out

@@ -1,0 +1,137 @@
+"""The realization search in the manuscript: its numbers as macros, and a table per statement.
+
+Reads results/search/search.nc (``search.merge``), the ensemble verdicts of the chosen chain
+(``verdicts.verdict_dataset``, one file per scene), the energy scan and the disorder statistics.
+"""
+
+import numpy as np
+import xarray as xr
+
+from chainchaos import paper
+from chainchaos.claims import fmt, g
+from chainchaos.scan import criterion_holds, first_energy
+from chainchaos.verdicts import HOLDS, VERDICT_NAMES
+
+
+def _statement_rows(search: xr.Dataset, verdicts: dict) -> list[dict]:
+    scored = search["scored"].values == 1
+    chosen = int(search.attrs["chosen_candidate"])
+    rows = []
+    for st in paper.STATEMENTS:
+        i = st.id
+        v = verdicts.get(st.scene.name)
+        row = {
+            "id": i,
+            "not_broken": int((search["filter_outcome"].sel(statement=i).values != 0).sum()),
+            "held": int((search["verdict"].sel(statement=i).values[scored] == HOLDS).sum()),
+            "search_fraction": float(search["fraction"].sel(statement=i).values[chosen]),
+            "fraction": float(v["fraction"].sel(statement=i)) if v is not None else float("nan"),
+            "lanes": int(v["n_decided"].sel(statement=i)) if v is not None else 0,
+            "verdict": VERDICT_NAMES[int(v["verdict"].sel(statement=i))] if v is not None else "--",
+        }
+        rows.append(row)
+    return rows
+
+
+def step_agreement(search: xr.Dataset, verdicts: dict, agreement: float) -> tuple[int, int]:
+    """(statements whose verdict on the chosen chain is the same at the search's step and at the
+    verdicts' step, statements decided at both): the check that the coarser search step does not
+    change the verdicts."""
+    same = total = 0
+    for r in _statement_rows(search, verdicts):
+        a, b = r["search_fraction"], r["fraction"]
+        if not (np.isfinite(a) and np.isfinite(b)):
+            continue
+        total += 1
+        same += _side(a, agreement) == _side(b, agreement)
+    return same, total
+
+
+def _side(fraction: float, agreement: float) -> str:
+    if fraction >= agreement - 1e-12:
+        return "holds"
+    if fraction <= 1 - agreement + 1e-12:
+        return "fails"
+    return "undecided"
+
+
+def search_table_tex(search: xr.Dataset, verdicts: dict) -> str:
+    """Per statement: candidates whose short run leaves it unbroken, scored candidates on whose
+    ensemble it holds, the chosen chain's fraction at the search step and at the verdict step."""
+    n_c, n_s = search.sizes["candidate"], int((search["scored"].values == 1).sum())
+    lines = [
+        r"\begingroup\footnotesize",
+        r"\begin{longtable}{@{}lcccc@{}}",
+        (r"\caption{\label{tab:search}The realization search, statement by statement: of the "
+         f"{n_c} candidates, how many short runs (to $t = {g(search.attrs['filter_t_final'])}$) leave the "
+         f"statement unbroken; of the {n_s} candidates scored on ensembles, on how many it holds; on the "
+         r"chosen chain, the fraction of perturbed orbits satisfying it at the search's step "
+         f"($\\Delta t = {g(search.attrs['dt'])}$) and at the verdicts' step, with that verdict.}}\\\\"),
+        r"\hline\hline",
+        r"Statement & unbroken & holds & chosen (search) & chosen (verdict)\\ \hline",
+        r"\endfirsthead",
+        r"\hline Statement & unbroken & holds & chosen (search) & chosen (verdict)\\ \hline",
+        r"\endhead",
+        r"\hline\hline",
+        r"\endlastfoot",
+    ]
+    for r in _statement_rows(search, verdicts):
+        verdict_cell = (f"${fmt(r['fraction'], 2)}$ of {r['lanes']}, {r['verdict']}" if r["lanes"] else r["verdict"])
+        lines.append(f"\\texttt{{{r['id']}}} & {r['not_broken']}/{n_c} & {r['held']}/{n_s} & "
+                     f"${fmt(r['search_fraction'], 2)}$ & {verdict_cell}\\\\")
+    lines += [r"\end{longtable}", r"\endgroup", ""]
+    return "\n".join(lines)
+
+
+def threshold_quantiles(energy_scan: xr.Dataset, disorder: xr.Dataset) -> dict:
+    """Where the chosen chain's thresholds sit among the realizations: per model and criterion, its
+    lowest scanned energy H* that satisfies the criterion, and the fraction of the disorder
+    statistics' realizations that already satisfy it at H* (log-linear interpolation on their
+    grid; NaN outside it). A typical chain sits near one half."""
+    out = {}
+    E = disorder.energy.values
+    for model in energy_scan.model.values:
+        for key in ("delocalized", "chaotic"):
+            H = first_energy(energy_scan.energy.values, criterion_holds(energy_scan, str(model), key))
+            p = disorder[f"probability_{key}"].sel(model=model).values
+            inside = np.isfinite(H) and E[0] <= H <= E[-1]
+            frac = float(np.interp(np.log(H), np.log(E), p)) if inside else float("nan")
+            out[(str(model), key)] = (H, frac)
+    return out
+
+
+def search_macros(search: xr.Dataset, verdicts: dict, energy_scan: xr.Dataset, disorder: xr.Dataset,
+                  agreement: float) -> dict[str, str]:
+    a = search.attrs
+    scored = search["scored"].values == 1
+    held = search["statements_held"].values[scored]
+    out = {
+        "search.pinned": "yes" if int(a["pinned"]) else "no",
+        "search.candidates": str(search.sizes["candidate"]),
+        "search.scored": str(int(scored.sum())),
+        "search.statements": str(int(a["n_statements"])),
+        "search.seed": str(int(a["chosen_seed"])),
+        "search.score": fmt(float(a["chosen_score"])),
+        "search.held": str(int(search["statements_held"].values[int(a["chosen_candidate"])])),
+        "search.heldmax": str(int(held.max())) if held.size else "0",
+        "search.heldmin": str(int(held.min())) if held.size else "0",
+        "search.filtert": g(a["filter_t_final"]),
+        "search.tfinal": g(a["t_final"]),
+        "search.dt": g(a["dt"]),
+        "search.lanes": str(int(a["lanes"])),
+        "search.seedsscanned": str(int(a["seeds_scanned"])),
+        "search.perturbation": g(a["perturbation"]),
+        "search.allheld": str(int((held == int(a["n_statements"])).sum())),
+    }
+    same, total = step_agreement(search, verdicts, agreement)
+    out["search.stepsame"], out["search.steptotal"] = str(same), str(total)
+    any_v = next(iter(verdicts.values()), None)
+    if any_v is not None:
+        out.update({"verdicts.lanes": str(int(any_v.attrs["lanes"])), "verdicts.dt": g(any_v.attrs["dt"]),
+                    "verdicts.tfinal": g(any_v.attrs["t_final"])})
+    names = {"delocalized": "deloc", "chaotic": "chaos"}
+    for (model, key), (H, frac) in threshold_quantiles(energy_scan, disorder).items():
+        out[f"search.{model}.{names[key]}.H"] = fmt(H) if np.isfinite(H) else r"\text{--}"
+        out[f"search.{model}.{names[key]}.fraction"] = (f"{fmt(100 * frac, 2)}\\,\\%" if np.isfinite(frac)
+                                                        else r"\text{(outside the grid)}")
+    return out

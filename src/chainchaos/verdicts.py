@@ -1,0 +1,207 @@
+"""The paper's qualitative statements (``paper.STATEMENTS``) decided on ensembles of orbits.
+
+A statement is decided per orbit by the function of its kind in :data:`STATEMENT_KINDS`, which
+reduces the orbit's sampled series (``orbits.SERIES``) to one measured value and a yes/no, with the
+windows and thresholds of :class:`chainchaos.criteria.Criteria`. Over an ensemble of perturbed
+orbits of one scene (``orbits.Orbit.lane``) the outcome is the fraction of the decided orbits that
+satisfy it, and the scene's verdict is
+
+- ``holds`` when at least ``criteria.agreement`` of them do,
+- ``fails`` when at most 1 - ``agreement`` do,
+- ``undecided`` otherwise (the answer depends on the orbit, not only on the scene),
+- ``not testable`` when no orbit reached the time the statement needs. A run shorter than that can
+  still break a statement marked ``early`` (a packet already spread is not localized at the end).
+
+Times in units of 1/omega_max. ``t_paper`` is the paper's integration time, 1e5.
+"""
+
+import numpy as np
+import xarray as xr
+
+from chainchaos import paper
+from chainchaos.criteria import Criteria
+from chainchaos.reductions import (chaos_onset, final_average, is_chaotic, log_time_smooth, sustained_onset,
+                                   time_average)
+
+T_PAPER = 1e5
+
+HOLDS, FAILS, UNDECIDED, UNTESTABLE = 1, 0, -1, -2
+VERDICT_NAMES = {HOLDS: "holds", FAILS: "fails", UNDECIDED: "undecided", UNTESTABLE: "not testable"}
+
+
+def _mlce(t, g):
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where(t > 0, g / np.where(t > 0, t, 1.0), np.nan)
+
+
+def _within_factor(x, target, factor):
+    return bool(np.isfinite(x) and x > 0 and 1.0 / factor <= x / target <= factor)
+
+
+def _final_p(t, s, st, c):
+    return final_average(t, s["participation"], c.final_window_decades)
+
+
+def _chaotic(t, s, st, c):
+    """1.0 if the orbit is chaotic at the end of the run (or of the window ending at ``until``)."""
+    end = float(t[-1]) if st.until is None else min(float(st.until), float(t[-1]))
+    return float(is_chaotic(t, s["log_growth"], c.chaos_slope, c.chaos_growth_margin,
+                            c.chaos_window_decades, end))
+
+
+def _p_until(t, s, st, c):
+    return time_average(t, s["participation"], c.plateau_start, min(float(st.until), float(t[-1])))
+
+
+def _saturation(t, s, st, c):
+    P = s["participation"]
+    target = c.saturation_fraction * final_average(t, P, c.final_window_decades)
+    keep = t > 0
+    return sustained_onset(t[keep], log_time_smooth(t[keep], P[keep], c.smoothing_decades), target,
+                           c.onset_hold_decades)
+
+
+def _spreading_onset(t, s, st, c):
+    """First time after plateau_start from which the smoothed P stays above spreading_factor
+    times its value at plateau_start (the end of the initial transient)."""
+    keep = t > 0
+    tt = t[keep]
+    smooth = log_time_smooth(tt, s["participation"][keep], c.smoothing_decades)
+    after = tt >= c.plateau_start
+    if not after.any():
+        return float("nan")
+    reference = smooth[np.flatnonzero(after)[0]]
+    return sustained_onset(tt, smooth, c.spreading_factor * reference, c.onset_hold_decades, c.plateau_start)
+
+
+def _final_mlce(t, s, st, c):
+    return float(_mlce(t, s["log_growth"])[-1])
+
+
+def _chaos_onset(t, s, st, c):
+    return chaos_onset(t, s["log_growth"], c.chaos_slope, c.chaos_growth_margin, c.chaos_window_decades)
+
+
+def _eta_median(t, s, st, c):
+    sel = t >= c.plateau_start
+    return float(np.median(s["eta"][sel])) if sel.any() else float("nan")
+
+
+#: kind -> (measure(t, series, statement, criteria), passed(value, statement, criteria),
+#: time required(statement), unit, description of the criterion).
+STATEMENT_KINDS = {
+    "localized": (_final_p, lambda v, st, c: v <= c.localized_p_max, lambda st: T_PAPER, "1",
+                  "time-averaged $P$ over the last decade $\\le$ localized_p_max"),
+    "delocalized": (_final_p, lambda v, st, c: v >= c.delocalized_p_min, lambda st: T_PAPER, "1",
+                    "time-averaged $P$ over the last decade $\\ge$ delocalized_p_min"),
+    "chaotic": (_chaotic, lambda v, st, c: v == 1.0, lambda st: T_PAPER, "1",
+                "chaotic over the last decade (reductions.is_chaotic)"),
+    "regular": (_chaotic, lambda v, st, c: v == 0.0, lambda st: T_PAPER, "1",
+                "not chaotic over the last decade (reductions.is_chaotic)"),
+    "regular_until": (_chaotic, lambda v, st, c: v == 0.0, lambda st: st.until, "1",
+                      "not chaotic over the decade before `until` (reductions.is_chaotic)"),
+    "participation_below_until": (_p_until, lambda v, st, c: v < st.value, lambda st: st.until, "1",
+                                  "time-averaged $P$ from plateau_start to `until` below the paper's level"),
+    "saturation_near": (_saturation, lambda v, st, c: _within_factor(v, st.value, c.tolerance.time_factor),
+                        lambda st: T_PAPER, "time",
+                        "smoothed $P$ reaches saturation_fraction of its final average, sustained, within "
+                        "time_factor of the paper's time"),
+    "spreading_onset_near": (_spreading_onset,
+                             lambda v, st, c: _within_factor(v, st.value, c.tolerance.time_factor),
+                             lambda st: T_PAPER, "time",
+                             "smoothed $P$ rises above spreading_factor times its value at plateau_start, "
+                             "sustained, within time_factor of the paper's time"),
+    "mlce_near": (_final_mlce, lambda v, st, c: _within_factor(v, st.value, c.tolerance.mlce_factor),
+                  lambda st: T_PAPER, "1/time", "$\\Lambda(t_\\mathrm{end})$ within mlce_factor of the paper's"),
+    "chaos_onset_near": (_chaos_onset, lambda v, st, c: _within_factor(v, st.value, c.tolerance.time_factor),
+                         lambda st: T_PAPER, "time",
+                         "onset of a sustained slope of $\\Lambda$ above chaos_slope within time_factor of the "
+                         "paper's time"),
+    "eta_near": (_eta_median, lambda v, st, c: abs(v - st.value) <= c.tolerance.eta_plateau, lambda st: T_PAPER,
+                 "1", "median $\\eta$ from plateau_start to the end within eta_plateau of the paper's level"),
+}
+
+
+def outcome(statement: paper.Statement, t, series: dict, criteria: Criteria, valid: bool = True) -> tuple[float, float]:
+    """(measured value, outcome) of one orbit: outcome 1.0 satisfied, 0.0 violated, NaN undecidable
+    (an invalid run, or a run shorter than the statement needs that does not already break it)."""
+    measure, passed, required, *_ = STATEMENT_KINDS[statement.kind]
+    t = np.asarray(t, dtype=float)
+    if not valid:
+        return float("nan"), float("nan")
+    with np.errstate(invalid="ignore", divide="ignore"):
+        value = float(measure(t, series, statement, criteria))
+    if not np.isfinite(value) and not statement.kind.endswith("_near"):
+        return value, float("nan")
+    ok = bool(passed(value, statement, criteria))
+    if t[-1] < required(statement) * (1 - 1e-9):
+        return value, (0.0 if (statement.early and not ok) else float("nan"))
+    return value, float(ok)
+
+
+def ensemble_verdict(outcomes, agreement: float) -> tuple[float, int, int]:
+    """(fraction satisfied among the decided orbits, number decided, verdict code)."""
+    x = np.asarray(outcomes, dtype=float)
+    decided = np.isfinite(x)
+    n = int(decided.sum())
+    if n == 0:
+        return float("nan"), 0, UNTESTABLE
+    frac = float(x[decided].mean())
+    if frac >= agreement - 1e-12:
+        return frac, n, HOLDS
+    if frac <= 1.0 - agreement + 1e-12:
+        return frac, n, FAILS
+    return frac, n, UNDECIDED
+
+
+def evaluate(statements, t, runs: list[dict], criteria: Criteria) -> dict[str, np.ndarray]:
+    """Outcomes and measured values of ``statements`` (one scene's) over ``runs`` (its orbits, as
+    returned by ``orbits.integrate``): arrays (statement, lane)."""
+    S, L = len(statements), len(runs)
+    value, out = np.full((S, L), np.nan), np.full((S, L), np.nan)
+    for i, st in enumerate(statements):
+        for j, r in enumerate(runs):
+            value[i, j], out[i, j] = outcome(st, t, r, criteria, r["valid"])
+    return {"value": value, "outcome": out}
+
+
+def verdict_dataset(scene_name: str, t, runs: list[dict], criteria: Criteria, attrs: dict) -> xr.Dataset:
+    """One scene's ensemble: the series of every lane and, per statement, every lane's outcome,
+    the fraction satisfied and the verdict."""
+    from chainchaos.orbits import SERIES
+
+    statements = paper.statements_of_scene(scene_name)
+    ev = evaluate(statements, t, runs, criteria)
+    verdicts = [ensemble_verdict(row, criteria.agreement) for row in ev["outcome"]]
+    one = {"units": "1"}
+    data = {
+        key: (("lane", "time"), np.stack([r[key] for r in runs]), {**one, "long_name": long_name})
+        for key, long_name in SERIES.items()
+    }
+    data.update({
+        "u0": ("lane", np.array([r["u0"] for r in runs]), {**one, "long_name": "initial displacement of the excited bead"}),
+        "valid": ("lane", np.array([r["valid"] for r in runs], dtype=np.int8),
+                  {**one, "long_name": "1 if the run stayed finite with energy error <= max_energy_error"}),
+        "max_gaps": ("lane", np.array([r["max_gaps"] for r in runs], dtype=np.int32),
+                     {**one, "long_name": "largest number of simultaneously open gaps (-1: FPUT)"}),
+        "measured": (("statement", "lane"), ev["value"], {"long_name": "measured value of the statement per lane"}),
+        "outcome": (("statement", "lane"), ev["outcome"],
+                    {**one, "long_name": "1 satisfied, 0 violated, NaN undecidable (per lane)"}),
+        "fraction": ("statement", np.array([v[0] for v in verdicts]),
+                     {**one, "long_name": "fraction of the decided lanes that satisfy the statement"}),
+        "n_decided": ("statement", np.array([v[1] for v in verdicts], dtype=np.int32),
+                      {**one, "long_name": "lanes whose run decides the statement"}),
+        "verdict": ("statement", np.array([v[2] for v in verdicts], dtype=np.int8),
+                    {"long_name": "ensemble verdict", "flag_values": np.array([-2, -1, 0, 1], dtype=np.int8),
+                     "flag_meanings": "not_testable undecided fails holds"}),
+        "kind": ("statement", np.array([st.kind for st in statements], dtype=object)),
+        "text": ("statement", np.array([st.text for st in statements], dtype=object)),
+    })
+    ds = xr.Dataset(data, coords={"statement": [st.id for st in statements], "lane": np.arange(len(runs)),
+                                  "time": np.asarray(t, dtype=float)})
+    ds.time.attrs.update(units="1", long_name="time",
+                         comment="nondimensional time, unit 1/omega_max of the homogeneous linear chain")
+    ds.attrs.update(attrs)
+    ds.attrs.update(scene=scene_name, agreement=float(criteria.agreement),
+                    title=f"chainchaos ensemble verdicts of scene {scene_name}")
+    return ds

@@ -1,0 +1,142 @@
+"""Time-weighted reductions, the chaos criterion, ensemble verdicts and the realization search.
+
+The chaos criterion is checked on orbits whose answer is known: the harmonic chain is regular by
+construction (its tangent dynamics is the dynamics itself, |v| grows at most linearly), and the
+Hertz chain at H = 3 spreads and is strongly chaotic."""
+
+import numpy as np
+import pytest
+
+from chainchaos import paper, random_chain, search, verdicts
+from chainchaos.criteria import Criteria
+from chainchaos.orbits import Orbit, OrbitSettings, integrate, lane_factor, sample_schedule
+from chainchaos.reductions import (final_average, is_chaotic, loglog_slope, sustained_onset, time_average)
+from chainchaos.selection import SelectionCriteria
+from chainchaos.simulate import SceneParameters, simulate
+
+
+@pytest.fixture(scope="module")
+def chain():
+    return random_chain(5346, 5.0)
+
+
+def test_time_average_weights_by_time_not_by_sample():
+    t = np.concatenate([np.logspace(0, 3, 31)])
+    y = np.where(t < 500, 2.0, 4.0)
+    # exact: 2 on [100, 500), 4 on [500, 1000]; the trapezoid smears the jump over the one sample
+    # interval that contains it, an error of at most half that interval x the jump / the window
+    exact = (2 * 400 + 4 * 500) / 900
+    k = np.searchsorted(t, 500)
+    bound = (t[k] - t[k - 1]) / 2 * 2.0 / 900
+    assert abs(time_average(t, y, 100, 1000) - exact) <= bound + 1e-12
+    log_mean = y[t >= 100].mean()  # the old reduction: a mean over log-spaced samples
+    assert abs(log_mean - exact) > abs(time_average(t, y, 100, 1000) - exact)
+    assert final_average(np.linspace(0, 10, 101), np.linspace(0, 10, 101), 1.0) == pytest.approx(5.5)
+    assert np.isnan(time_average(t, y, 2000, 3000))
+
+
+def test_sustained_onset_ignores_a_single_peak():
+    t = np.logspace(0, 4, 81)
+    y = np.where(t > 1e3, 10.0, 1.0)
+    y[20] = 10.0  # one oscillation peak at t = 10
+    assert sustained_onset(t, y, 5.0, 0.5) == pytest.approx(t[t > 1e3][0])
+    assert sustained_onset(t, y, 5.0, 0.0) == pytest.approx(t[20])  # no hold: the first sample
+    assert np.isnan(sustained_onset(t, np.ones_like(t), 5.0))
+    # a crossing in the last half decade counts when it lasts to the end
+    late = np.where(t > 5e3, 10.0, 1.0)
+    assert sustained_onset(t, late, 5.0, 0.5) == pytest.approx(t[t > 5e3][0])
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_the_harmonic_chain_is_regular_for_every_deviation_vector(chain, seed):
+    params = SceneParameters("harmonic", 1.0, t_final=1e4, dt=0.05, observables=("mlce",), deviation_seed=seed,
+                             samples_per_decade=20, t_first_sample=1.0)
+    ds = simulate(chain, params)
+    t, L = ds.time.values, ds.mlce.values
+    assert not is_chaotic(t, t * L)
+    assert loglog_slope(t, L, 1e3, 1e4) < -0.5
+
+
+def test_a_spreading_hertz_orbit_is_chaotic(chain):
+    params = SceneParameters("hertz", 3.0, t_final=1e4, dt=0.02, observables=("mlce",), samples_per_decade=20,
+                             t_first_sample=1.0)
+    ds = simulate(chain, params)
+    t, L = ds.time.values, ds.mlce.values
+    assert is_chaotic(t, t * L)
+    assert loglog_slope(t, L, 1e3, 1e4) > -0.3
+
+
+def test_lanes_perturb_u0_at_the_set_level_and_lane_zero_is_the_scene(chain):
+    s = OrbitSettings(t_final=10.0, dt=0.05, perturbation=1e-9)
+    assert lane_factor(0, s) == 1.0
+    f = [lane_factor(j, s) for j in range(1, 8)]
+    assert all(0 < abs(x - 1) <= 1e-9 for x in f) and len(set(f)) == 7
+    t, runs = integrate([Orbit("fput", 0.25, chain, 21, j) for j in range(3)], s)
+    u0 = [r["u0"] for r in runs]
+    assert u0[1] != u0[0] and abs(u0[1] / u0[0] - 1) <= 1e-9
+    # the schedule: log-spaced samples plus the dense tail over the last decade
+    dense = OrbitSettings(t_final=100.0, dt=0.05, samples_per_decade=5, final_samples=45)
+    steps = sample_schedule(dense)
+    assert steps[-1] == 2000 and np.count_nonzero(steps >= 200) >= 45 and np.all(np.diff(steps) > 0)
+
+
+def test_ensemble_verdicts_need_agreement():
+    assert verdicts.ensemble_verdict([1] * 7 + [0], 0.875)[2] == verdicts.HOLDS
+    assert verdicts.ensemble_verdict([1] * 6 + [0] * 2, 0.875)[2] == verdicts.UNDECIDED
+    assert verdicts.ensemble_verdict([0] * 7 + [1], 0.875)[2] == verdicts.FAILS
+    frac, n, code = verdicts.ensemble_verdict([np.nan, 1, 1], 0.875)
+    assert (frac, n, code) == (1.0, 2, verdicts.HOLDS)
+    assert verdicts.ensemble_verdict([np.nan] * 3, 0.875)[2] == verdicts.UNTESTABLE
+
+
+def synthetic_run(t, P, log_growth, eta=None):
+    return {"participation": P, "log_growth": log_growth, "eta": np.ones_like(t) if eta is None else eta,
+            "energy_error": np.zeros_like(t), "valid": True}
+
+
+def test_statements_are_decided_per_orbit_and_an_early_break_counts():
+    c = Criteria()
+    t = np.concatenate([[0.0], np.logspace(0, 5, 101)])
+    with np.errstate(divide="ignore"):
+        regular_growth = np.log1p(t)
+    loc = next(s for s in paper.STATEMENTS if s.id == "loc-H0.25-hertz")
+    reg = next(s for s in paper.STATEMENTS if s.id == "regular-H0.25-hertz")
+    localized = synthetic_run(t, np.full(t.size, 2.0), regular_growth)
+    spread = synthetic_run(t, np.where(t > 1e2, 20.0, 2.0), 1e-2 * t)
+    assert verdicts.outcome(loc, t, localized, c)[1] == 1.0
+    assert verdicts.outcome(loc, t, spread, c)[1] == 0.0
+    assert verdicts.outcome(reg, t, localized, c)[1] == 1.0
+    assert verdicts.outcome(reg, t, spread, c)[1] == 0.0
+    short = t[t <= 1e3]
+    cut = {k: (v[: short.size] if isinstance(v, np.ndarray) else v) for k, v in spread.items()}
+    assert verdicts.outcome(loc, short, cut, c)[1] == 0.0  # already spread: broken early
+    cut_ok = {k: (v[: short.size] if isinstance(v, np.ndarray) else v) for k, v in localized.items()}
+    assert np.isnan(verdicts.outcome(loc, short, cut_ok, c)[1])  # not yet decided
+    assert np.isnan(verdicts.outcome(loc, t, localized, c, valid=False)[1])
+
+
+def test_search_filters_scores_and_chooses_the_best(tmp_path):
+    selection = SelectionCriteria(n_seeds=1000)
+    plan = search.SearchPlan(candidates=3, candidates_per_job=2, survivors=2, lanes=2, filter_t_final=20.0)
+    settings = OrbitSettings(t_final=50.0, dt=0.05, samples_per_decade=5, final_samples=10)
+    c = Criteria()
+    rows = search.candidate_list(selection, plan)
+    assert len(rows) == 3 and [r["score"] for r in rows] == sorted(r["score"] for r in rows)
+    filters = [search.filter_group(selection, plan, settings, c, g, 21) for g in range(plan.n_filter_jobs)]
+    assert [f.sizes["candidate"] for f in filters] == [2, 1]
+    kept = search.survivors(filters, plan)
+    assert len(kept) == 2
+    scores = [search.score_candidate(selection, plan, settings, c, int(k), 21) for k in kept]
+    ds = search.merge(selection, plan, settings, c, filters, scores)
+    assert ds.sizes == {"candidate": 3, "statement": len(paper.STATEMENTS)}
+    scored = np.flatnonzero(ds["scored"].values == 1)
+    assert set(scored) == set(int(k) for k in kept)
+    best = ds.attrs["chosen_candidate"]
+    assert ds["score"].values[best] == np.nanmax(ds["score"].values)
+    assert ds.attrs["chosen_seed"] == rows[best]["seed"]
+    # pinned: one candidate, no filter jobs
+    pinned = search.SearchPlan(pinned_seed=int(rows[1]["seed"]), lanes=2)
+    assert pinned.n_filter_jobs == 0 and pinned.n_score_jobs == 1
+    assert search.candidate_list(selection, pinned)[0]["seed"] == rows[1]["seed"]
+    with pytest.raises(Exception, match="pinned_seed"):
+        search.SearchPlan(pinned_seed=-3)

@@ -1,0 +1,152 @@
+# The realization chosen by the paper's published dynamics (chainchaos.search): the linear rule,
+# a short-run filter, and ensembles of the survivors scored against the paper's statements
+# (paper.STATEMENTS); then, on the chosen chain, the ensemble verdicts of every statement
+# (chainchaos.verdicts) that the claims table reads. With `search.pinned_seed` set, the search
+# re-scores that chain only.
+
+import math
+
+from chainchaos.search import SearchPlan
+
+SEARCH_PLAN = SearchPlan.from_config(config["search"])
+
+
+wildcard_constraints:
+    rank=r"\d+",
+
+
+def search_params():
+    return {
+        "search": config["search"],
+        "chain": config["chain"],
+        "claims": config.get("claims", {}),
+        "site": config["simulation"]["excited_site"],
+    }
+
+
+def search_filter_files():
+    return [result("search", "filter", f"{g:03d}.nc") for g in range(SEARCH_PLAN.n_filter_jobs)]
+
+
+def search_score_files():
+    return [result("search", "score", f"{k:03d}.nc") for k in range(SEARCH_PLAN.n_score_jobs)]
+
+
+def search_runtime(orbits_per_job, t_final):
+    """Minutes a search or verdict job may take on a cluster node (as scan_runtime)."""
+    dt = float(config["search"]["settings"]["dt"])
+    seconds = orbits_per_job * (float(t_final) / dt) * config["scan"].get("us_per_step", 1.0) * 1e-6
+    return int(math.ceil(3 * seconds / 60)) + 10
+
+
+N_STATEMENT_SCENES = len(paper.statement_scenes())
+
+
+rule search_filter:
+    """Stage 1: one short orbit per scene for a group of candidates."""
+    input:
+        kernels=result("scan", "kernels_compiled.txt"),
+    output:
+        result=result("search", "filter", "{group}.nc"),
+    params:
+        **search_params(),
+    log:
+        log_file("search_filter", "{group}"),
+    benchmark:
+        benchmark_file("search_filter", "{group}")
+    resources:
+        mem_mb=1000,
+        runtime=search_runtime(
+            N_STATEMENT_SCENES * SEARCH_PLAN.candidates_per_job, SEARCH_PLAN.filter_t_final
+        ),
+    script:
+        "../scripts/search_filter.py"
+
+
+rule search_score:
+    """Stage 2: the ensembles of the survivor of a given rank."""
+    input:
+        filters=search_filter_files(),
+        kernels=result("scan", "kernels_compiled.txt"),
+    output:
+        result=result("search", "score", "{rank}.nc"),
+    priority: 4
+    params:
+        **search_params(),
+    log:
+        log_file("search_score", "{rank}"),
+    benchmark:
+        benchmark_file("search_score", "{rank}")
+    resources:
+        mem_mb=1000,
+        runtime=search_runtime(
+            N_STATEMENT_SCENES * SEARCH_PLAN.lanes, config["search"]["settings"]["t_final"]
+        ),
+    script:
+        "../scripts/search_score.py"
+
+
+rule search_merge:
+    input:
+        filters=search_filter_files(),
+        scores=search_score_files(),
+    output:
+        result=result("search", "search.nc"),
+    params:
+        **search_params(),
+    log:
+        log_file("search_merge"),
+    benchmark:
+        benchmark_file("search_merge")
+    script:
+        "../scripts/search_merge.py"
+
+
+rule plot_search:
+    input:
+        search=result("search", "search.nc"),
+    output:
+        pdf=result("figures", "search.pdf"),
+        png=result("figures", "search.png"),
+    params:
+        dpi=config["figures"]["dpi"],
+    log:
+        log_file("plot_search"),
+    benchmark:
+        benchmark_file("plot_search")
+    script:
+        "../scripts/plot_search.py"
+
+
+rule ensemble_verdicts:
+    """A scene's ensemble of perturbed orbits on the chosen chain, and its statements' verdicts."""
+    input:
+        chain=result("chain", "chain.nc"),
+        kernels=result("scan", "kernels_compiled.txt"),
+    output:
+        result=result("verdicts", "{scene}.nc"),
+    priority: 3
+    params:
+        verdicts=config["verdicts"],
+        claims=config.get("claims", {}),
+        site=config["simulation"]["excited_site"],
+    log:
+        log_file("ensemble_verdicts", "{scene}"),
+    benchmark:
+        benchmark_file("ensemble_verdicts", "{scene}")
+    resources:
+        mem_mb=1000,
+        runtime=search_runtime(
+            config["verdicts"]["lanes"], config["verdicts"]["settings"]["t_final"]
+        ),
+    script:
+        "../scripts/ensemble_verdicts.py"
+
+
+VERDICT_FILES = {name: result("verdicts", f"{name}.nc") for name in paper.statement_scenes()}
+SEARCH_TARGETS = [
+    result("search", "search.nc"),
+    result("figures", "search.pdf"),
+    result("figures", "search.png"),
+    *VERDICT_FILES.values(),
+]

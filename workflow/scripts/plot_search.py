@@ -1,0 +1,5 @@
+"""plot_search: see chainchaos.tasks.plot_search."""
+
+from chainchaos.tasks import run_rule
+
+run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
