@@ -8,6 +8,11 @@ yet the engines (``integrators``, ``batch``, ``numerics``) compile in the force 
 the helpers of ``integrators`` and the vector operations of ``simd``: the key, a hash of those shared kernel modules, makes an edit
 there start a fresh cache instead of loading a stale one. An explicit ``NUMBA_CACHE_DIR`` always
 wins.
+
+It also turns off Numba's use of Intel's SVML vector math library (used when the package
+``intel-cmplr-lib-rt`` happens to be installed), whose results depend on the CPU: the kernels then
+call the C library's scalar routines on every machine (chainchaos.exactmath). An explicit
+``NUMBA_DISABLE_INTEL_SVML`` wins.
 """
 
 import hashlib
@@ -24,7 +29,7 @@ def project_root() -> Path | None:
 
 
 #: Modules whose Numba functions are compiled into functions of other modules.
-SHARED_KERNEL_MODULES = ("models.py", "integrators.py", "simd.py")
+SHARED_KERNEL_MODULES = ("models.py", "integrators.py", "simd.py", "exactmath.py")
 
 
 def kernel_sources() -> list[Path]:
@@ -40,6 +45,7 @@ def kernel_key() -> str:
 
 
 def configure_numba_cache() -> None:
+    os.environ.setdefault("NUMBA_DISABLE_INTEL_SVML", "1")
     if os.environ.get("NUMBA_CACHE_DIR"):
         return
     root = project_root()

@@ -12,21 +12,50 @@ omega_max = sqrt(4 K2 / m) = 1. Then
 with s = +1 the paper's sign of K4 and s = -1 the exact Taylor expansion of the Hertz force.
 Bond n (n = 1..N+1) joins beads n-1 and n; beads 0 and N+1 are fixed walls of radius
 ``wall_radius`` (1 by default, i.e. the reference bead).
+
+With the bond's mean h_n = 2 r_{n-1} r_n / (r_{n-1} + r_n), every bond parameter is a power of it:
+
+    A = sqrt(h / 36),  delta = h^(-1/3),  K2 = h^(1/3) / 4,  K3 = -h^(2/3) / 16,  K4 = s h / 96,
+
+so each parameter, and the mass r^3, is computed as the double nearest to its exact value for the
+given double radii (exact integer arithmetic, chainchaos.exactmath): the same on every machine.
 """
 
+import copy
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from chainchaos.errors import require
+from chainchaos.exactmath import rational, root
 
 F0 = 1.0 / 6.0
 GENERATOR = "numpy.random.default_rng (PCG64)"
 
 
+def bead_mass(r: float) -> float:
+    """m = r^3, the double nearest to the exact cube of the double r > 0."""
+    num, den = float(r).as_integer_ratio()
+    return rational(num**3, den**3)
+
+
+def bond_parameters(r_left: float, r_right: float) -> tuple[float, float, float, float, float]:
+    """(A, delta, K2, K3, K4 with s = +1) of the bond between beads of radii r_left, r_right > 0,
+    each the double nearest to its exact value: with h = 2 r_l r_r / (r_l + r_r) = P / Q,
+    A = sqrt(h / 36), delta = h^(-1/3), K2 = h^(1/3) / 4, K3 = -h^(2/3) / 16, K4 = h / 96."""
+    nl, dl = float(r_left).as_integer_ratio()
+    nr, dr = float(r_right).as_integer_ratio()
+    P, Q = 2 * nl * nr, nl * dr + nr * dl  # h = P / Q exactly (dl, dr are powers of two)
+    return (root(P, 36 * Q, 2), root(Q, P, 3), root(P, 64 * Q, 3), -root(P * P, 4096 * Q * Q, 3),
+            rational(P, 96 * Q))
+
+
 @dataclass(frozen=True)
 class Chain:
-    """A chain of N beads with reduced radii ``radius`` (r_n = R_n / R_ref, n = 1..N)."""
+    """A chain of N beads with reduced radii ``radius`` (r_n = R_n / R_ref, n = 1..N).
+
+    mass (N,), A, delta, K2, K3 and K4 (N+1 bonds) are computed once, correctly rounded (module
+    docstring); K4 carries the sign ``k4_sign``."""
 
     radius: np.ndarray
     alpha: float
@@ -36,6 +65,9 @@ class Chain:
     mass: np.ndarray = field(init=False, repr=False)
     A: np.ndarray = field(init=False, repr=False)
     delta: np.ndarray = field(init=False, repr=False)
+    K2: np.ndarray = field(init=False, repr=False)
+    K3: np.ndarray = field(init=False, repr=False)
+    K4: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self):
         r = np.ascontiguousarray(self.radius, dtype=float)
@@ -44,31 +76,27 @@ class Chain:
         require(np.isfinite(self.alpha) and self.alpha >= 1, "alpha", self.alpha, "alpha >= 1")
         require(np.isfinite(self.wall_radius) and self.wall_radius > 0, "wall_radius", self.wall_radius, "> 0")
         require(self.k4_sign in (1.0, -1.0), "K4_sign", self.k4_sign, "+1 (paper) or -1 (Taylor expansion)")
-        ext = np.concatenate(([self.wall_radius], r, [self.wall_radius]))
-        A = np.sqrt(2.0 * ext[:-1] * ext[1:] / (ext[:-1] + ext[1:])) / 6.0
+        radii = r.tolist()
+        ext = [float(self.wall_radius), *radii, float(self.wall_radius)]
+        bonds = np.array([bond_parameters(left, right) for left, right in zip(ext[:-1], ext[1:])])
         object.__setattr__(self, "radius", r)
-        object.__setattr__(self, "mass", r**3)
-        object.__setattr__(self, "A", A)
-        object.__setattr__(self, "delta", (F0 / A) ** (2.0 / 3.0))
+        object.__setattr__(self, "mass", np.array([bead_mass(x) for x in radii]))
+        for name, column in zip(("A", "delta", "K2", "K3", "K4"), bonds.T):
+            object.__setattr__(self, name, np.ascontiguousarray(column))
+        object.__setattr__(self, "K4", self.k4_sign * self.K4)
 
     @property
     def N(self) -> int:
         return self.radius.size
 
-    @property
-    def K2(self) -> np.ndarray:
-        return 1.5 * self.A * np.sqrt(self.delta)
-
-    @property
-    def K3(self) -> np.ndarray:
-        return -0.375 * self.A / np.sqrt(self.delta)
-
-    @property
-    def K4(self) -> np.ndarray:
-        return self.k4_sign * self.A * self.delta**-1.5 / 16.0
-
     def with_k4_sign(self, sign: float) -> "Chain":
-        return Chain(self.radius, self.alpha, self.seed, self.wall_radius, float(sign))
+        """The same chain with K4 of sign ``sign`` (+1 the paper's, -1 the Taylor expansion)."""
+        sign = float(sign)
+        require(sign in (1.0, -1.0), "K4_sign", sign, "+1 (paper) or -1 (Taylor expansion)")
+        other = copy.copy(self)
+        object.__setattr__(other, "k4_sign", sign)
+        object.__setattr__(other, "K4", self.K4 if sign == self.k4_sign else -self.K4)
+        return other
 
 
 def random_radii(seed: int, alpha: float, N: int) -> np.ndarray:

@@ -36,6 +36,7 @@ from dataclasses import asdict, dataclass, field, fields
 import numpy as np
 import xarray as xr
 
+from chainchaos import exactmath
 from chainchaos import paper as _paper
 from chainchaos import scan as _scan
 from chainchaos import verdicts as _verdicts
@@ -416,7 +417,7 @@ class _Context:
         p = d[f"probability_{key}"].sel(model=model).values
 
         def at(H):
-            return (f"{fmt(100 * float(np.interp(np.log(H), np.log(E), p)), 2)}\\,\\%" if E[0] <= H <= E[-1]
+            return (f"{fmt(100 * float(np.interp(exactmath.ln(H), exactmath.log(E), p)), 2)}\\,\\%" if E[0] <= H <= E[-1]
                     else "(outside the grid)")
 
         return (f"{text}: over {d.sizes['realization']} realizations (Sec.~\\ref{{sec:scan}}) "
@@ -954,7 +955,7 @@ def _threshold_claims(ctx: _Context) -> None:
             return key
         if key == "delocalized":
             return f"final $P > {g(ds.attrs['p_delocalized'])}$"
-        return f"$\\ln(|v(t)|/|v(0)|) - \\ln(1+t) > {g(ds.attrs['chaos_margin'])}$ at the end"
+        return CHAOS_CRITERION
 
     def energies_text(values):
         return ", ".join(f"${g(float(f'{x:.3g}'))}$" for x in values) or "none"

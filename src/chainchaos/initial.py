@@ -4,6 +4,7 @@ import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
 from chainchaos.errors import ParameterError, require
+from chainchaos.exactmath import norm
 from chainchaos.models import total_energy
 
 U0_LIMIT = 1e6
@@ -58,4 +59,4 @@ def initial_deviation(N: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
     """Deviation vector (du, dp) with du = 0 and dp uniform in [-1, 1] from default_rng(seed),
     normalised to |(du, dp)| = 1 (the paper's choice, DESIGN section 5)."""
     dp = np.random.default_rng(seed).uniform(-1.0, 1.0, N)
-    return np.zeros(N), dp / np.linalg.norm(dp)
+    return np.zeros(N), dp / norm(dp)

@@ -20,6 +20,7 @@ import numpy as np
 from numba import njit
 
 from chainchaos.errors import require
+from chainchaos.exactmath import ln
 from chainchaos.models import HERTZ, fput_force, fput_stiffness, hertz_force, hertz_force_stiffness
 
 
@@ -129,7 +130,7 @@ def _renormalise(dq, dp):
     for n in range(dq.shape[0]):
         dq[n] /= norm
         dp[n] /= norm
-    return np.log(norm)
+    return ln(norm)
 
 
 @njit(cache=True)

@@ -1,11 +1,13 @@
 """Observables of the dynamics, computed from sampled states (vectorised over samples).
 
 Every function takes arrays whose last axis is the site (or bond, or mode) and returns the
-observable for every sample; all quantities are dimensionless.
+observable for every sample; all quantities are dimensionless. Logarithms and products go through
+chainchaos.exactmath, so the values are the same on every CPU.
 """
 
 import numpy as np
 
+from chainchaos import exactmath
 from chainchaos.linear import participation_number
 
 EULER_GAMMA = 0.5772156649015329
@@ -13,7 +15,7 @@ EULER_GAMMA = 0.5772156649015329
 
 def energy_centre(h: np.ndarray) -> np.ndarray:
     """Mean position of the energy distribution, X = sum_n n h_n (sites n = 1..N)."""
-    return h @ np.arange(1, h.shape[-1] + 1)
+    return exactmath.matmul(h, np.arange(1, h.shape[-1] + 1, dtype=np.float64))
 
 
 def deviation_vector_density(dq: np.ndarray, dp: np.ndarray) -> np.ndarray:
@@ -32,18 +34,19 @@ def spectral_entropy(E: np.ndarray) -> np.ndarray:
     """S = -sum_k v_k ln v_k with v_k = E_k / sum E_k (0 ln 0 = 0)."""
     v = E / E.sum(axis=-1, keepdims=True)
     with np.errstate(divide="ignore", invalid="ignore"):
-        terms = np.where(v > 0, v * np.log(np.where(v > 0, v, 1.0)), 0.0)
+        terms = np.where(v > 0, v * exactmath.log(np.where(v > 0, v, 1.0)), 0.0)
     return -terms.sum(axis=-1)
 
 
 def normalised_entropy(S: np.ndarray, S0: float, N: int) -> np.ndarray:
     """eta = (S - ln N) / (S(0) - ln N): 1 at t = 0, 0 at equal modal energies."""
-    return (S - np.log(N)) / (S0 - np.log(N))
+    ln_N = exactmath.log(float(N))
+    return (S - ln_N) / (S0 - ln_N)
 
 
 def equipartition_eta(S0: float, N: int) -> float:
     """Mean eta at equipartition, <eta> = (1 - C) / (ln N - S(0)) with Euler's constant C."""
-    return (1.0 - EULER_GAMMA) / (np.log(N) - S0)
+    return (1.0 - EULER_GAMMA) / (exactmath.log(float(N)) - S0)
 
 
 __all__ = [

@@ -18,6 +18,7 @@ values ``y`` and ignores t <= 0 where a logarithm is taken.
 
 import numpy as np
 
+from chainchaos import exactmath
 from chainchaos.errors import require
 
 
@@ -51,7 +52,7 @@ def loglog_slope(t, y, t0: float, t1: float) -> float:
     sel = (t >= t0) & (t <= t1) & (t > 0) & (y > 0) & np.isfinite(y)
     if sel.sum() < 3:
         return float("nan")
-    return float(np.polyfit(np.log10(t[sel]), np.log10(y[sel]), 1)[0])
+    return exactmath.line_slope(exactmath.log10(t[sel]), exactmath.log10(y[sel]))
 
 
 def final_slope(t, y, decades: float = 1.0) -> float:
@@ -67,7 +68,7 @@ def excess_growth(t, log_growth, t0: float, t1: float) -> float:
     lambda (t1 - t0)."""
     t = np.asarray(t, dtype=float)
     g = np.asarray(log_growth, dtype=float)
-    return float(np.interp(t1, t, g) - np.interp(t0, t, g) - np.log(t1 / t0))
+    return float(np.interp(t1, t, g) - np.interp(t0, t, g) - exactmath.ln(t1 / t0))
 
 
 def is_chaotic(t, log_growth, slope_threshold: float = -0.5, growth_margin: float = 2.0,
@@ -115,7 +116,7 @@ def sustained_onset(t, y, threshold: float, hold_decades: float = 0.5, t_min: fl
 
 def log_time_smooth(t, y, decades: float) -> np.ndarray:
     """Running mean of y over a window of ``decades`` in log10 t centred on each sample (t > 0)."""
-    x = np.log10(np.asarray(t, dtype=float))
+    x = exactmath.log10(np.asarray(t, dtype=float))
     y = np.asarray(y, dtype=float)
     inside = np.abs(x[:, None] - x[None, :]) <= decades / 2.0
     return (inside * y[None, :]).sum(axis=1) / inside.sum(axis=1)

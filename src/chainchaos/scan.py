@@ -35,11 +35,13 @@ excited alone (u = u0 at that bead, p = 0), as in the paper. If no high mode pea
 the most localized high mode anywhere is taken and ``selection_fallback`` is set.
 """
 
+import math
 from dataclasses import asdict, dataclass, field, fields
 
 import numpy as np
 import xarray as xr
 
+from chainchaos import exactmath
 from chainchaos.chain import GENERATOR, random_chain
 from chainchaos.errors import require
 from chainchaos.linear import mode_energy_density, normal_modes, participation_number
@@ -161,7 +163,11 @@ def energy_grid(block: dict) -> np.ndarray:
     n, lo, hi = int(block["n_energies"]), float(block["energy_min"]), float(block["energy_max"])
     require(n >= 1, "n_energies", n, ">= 1")
     require(0 < lo <= hi, "energy_min", lo, f"0 < energy_min <= energy_max = {hi}")
-    grid = np.geomspace(lo, hi, n) if block.get("spacing", "log") == "log" else np.linspace(lo, hi, n)
+    if block.get("spacing", "log") == "log":  # scalar libm logs and powers: the same grid on every CPU
+        grid = exactmath.exp10(np.linspace(math.log10(lo), math.log10(hi), n))
+        grid[0], grid[-1] = lo, hi
+    else:
+        grid = np.linspace(lo, hi, n)
     return np.array([float(f"{e:.6g}") for e in grid])
 
 

@@ -7,7 +7,7 @@ Reads results/search/search.nc (``search.merge``), the ensemble verdicts of the 
 import numpy as np
 import xarray as xr
 
-from chainchaos import paper
+from chainchaos import exactmath, paper
 from chainchaos.claims import fmt, g
 from chainchaos.scan import criterion_holds, first_energy
 from chainchaos.verdicts import HOLDS, VERDICT_NAMES
@@ -95,7 +95,7 @@ def threshold_quantiles(energy_scan: xr.Dataset, disorder: xr.Dataset) -> dict:
             H = first_energy(energy_scan.energy.values, criterion_holds(energy_scan, str(model), key))
             p = disorder[f"probability_{key}"].sel(model=model).values
             inside = np.isfinite(H) and E[0] <= H <= E[-1]
-            frac = float(np.interp(np.log(H), np.log(E), p)) if inside else float("nan")
+            frac = float(np.interp(exactmath.ln(H), exactmath.log(E), p)) if inside else float("nan")
             out[(str(model), key)] = (H, frac)
     return out
 

@@ -6,6 +6,7 @@ for ``mode_energy``, ``spectral_entropy`` and ``eta``. The relative energy error
 recorded: it is the guard of every run.
 """
 
+import math
 import sys
 import time as wallclock
 from dataclasses import asdict, dataclass, field
@@ -13,6 +14,7 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 import xarray as xr
 
+from chainchaos import exactmath
 from chainchaos import observables as obs
 from chainchaos.errors import SimulationError, require
 from chainchaos.initial import initial_deviation, initial_state
@@ -74,10 +76,15 @@ class SceneParameters:
 
 def sample_steps(t_final: float, dt: float, per_decade: int, t_first: float) -> np.ndarray:
     """Step indices of the samples: 0, then log-spaced times from t_first to t_final with
-    ``per_decade`` per decade, which include every power of ten, rounded to the step grid."""
-    first = np.floor(np.log10(max(t_first, dt)))
-    exponents = first + np.arange(int(np.ceil((np.log10(t_final) - first) * per_decade)) + 1) / per_decade
-    steps = np.rint(10.0 ** exponents / dt).astype(np.int64)
+    ``per_decade`` per decade, which include every power of ten, rounded to the step grid.
+
+    The times are t_j = 10^(e_0 + j / per_decade) with e_0 = floor(log10(max(t_first, dt))), up
+    to the first t_j >= t_final, from the C library's scalar log10 and pow (chainchaos.exactmath),
+    not NumPy's vectorised ones, whose last bits depend on the CPU."""
+    first = math.floor(math.log10(max(t_first, dt)))
+    count = math.ceil((math.log10(t_final) - first) * per_decade) + 1
+    exponents = first + np.arange(count) / per_decade
+    steps = np.rint(exactmath.exp10(exponents) / dt).astype(np.int64)
     n_final = int(np.rint(t_final / dt))
     steps = np.unique(np.concatenate(([0], steps[(steps >= 1) & (steps < n_final)], [n_final])))
     return steps

@@ -11,6 +11,7 @@ import time
 
 import numpy as np
 
+from chainchaos import exactmath
 from chainchaos.chain import Chain
 from chainchaos.errors import ParameterError, SimulationError, require
 from chainchaos.initial import excitation_energy, initial_state
@@ -146,7 +147,14 @@ class PrecompressedChain(Chain):
         super().__post_init__()
         require(np.isfinite(self.precompression) and self.precompression > 0, "precompression",
                 self.precompression, "a factor > 0")
-        object.__setattr__(self, "delta", self.delta * self.precompression ** (2.0 / 3.0))
+        # delta ~ F0^(2/3); the expansion coefficients follow from A and the new delta:
+        # K2 = (3/2) A delta^(1/2), K3 = -(3/8) A delta^(-1/2), K4 = s (1/16) A delta^(-3/2)
+        delta = self.delta * self.precompression ** (2.0 / 3.0)
+        root = np.sqrt(delta)
+        object.__setattr__(self, "delta", delta)
+        object.__setattr__(self, "K2", 1.5 * self.A * root)
+        object.__setattr__(self, "K3", -0.375 * self.A / root)
+        object.__setattr__(self, "K4", self.k4_sign * self.A / (16.0 * delta * root))
 
     def with_k4_sign(self, sign: float) -> "PrecompressedChain":
         return PrecompressedChain(self.radius, self.alpha, self.seed, self.wall_radius, float(sign),
@@ -198,7 +206,8 @@ def energy_drift(model: int, chain, energy: float, scheme: str, dt: float, t_fin
     chunk = max(1, int(round(check_interval / dt)))
     first = math.log10(t_first)
     n_win = int(round((math.log10(t_final) - first) * samples_per_decade))
-    ends = np.unique(np.rint(10.0 ** (first + np.arange(n_win + 1) / samples_per_decade) / (chunk * dt)).astype(np.int64))
+    window_ends = exactmath.exp10(first + np.arange(n_win + 1) / samples_per_decade)
+    ends = np.unique(np.rint(window_ends / (chunk * dt)).astype(np.int64))
     ends = ends[(ends >= 1) & (ends * chunk <= n_total)]
     if ends[-1] * chunk < n_total // chunk * chunk:
         ends = np.append(ends, n_total // chunk)
@@ -224,7 +233,8 @@ def energy_drift(model: int, chain, energy: float, scheme: str, dt: float, t_fin
     t = ends * chunk * dt
     decade_max = np.array([max_abs[(t > ti / 10.0 * (1 + 1e-12)) & (t <= ti)].max() for ti in t])
     use = t >= 100.0
-    slope = float(np.polyfit(np.log10(t[use]), np.log10(decade_max[use]), 1)[0]) if use.sum() >= 3 else math.nan
+    slope = (exactmath.line_slope(exactmath.log10(t[use]), exactmath.log10(decade_max[use])) if use.sum() >= 3
+             else math.nan)
     return {"time": t, "max_abs_error": max_abs, "mean_error": mean, "error": last, "decade_max": decade_max,
             "seconds": seconds, "n_steps": int(ends[-1] * chunk), "growth_exponent": slope, "H0": H0}
 
