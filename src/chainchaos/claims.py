@@ -935,8 +935,8 @@ def _remaining_statement_claims(ctx: _Context) -> None:
         text = (f"median over the ensemble: {m(median)}" if st.kind not in ("chaotic", "regular", "regular_until")
                 else f"chaotic in {int(np.nansum(values))} of {np.isfinite(values).sum()} orbits")
         ctx.add(f"stmt-{st.id}", "Sec. III", st.text, st.kind.replace("_", " "), median, text, unit,
-                _verdicts.STATEMENT_KINDS[st.kind][4], None, t_required=_verdicts.STATEMENT_KINDS[st.kind][2](st),
-                statements=(st.id,))
+                _verdicts.STATEMENT_KINDS[st.kind][4], None, scenes=(st.scene.name,),
+                t_required=_verdicts.STATEMENT_KINDS[st.kind][2](st), statements=(st.id,))
 
 
 def _threshold_claims(ctx: _Context) -> None:

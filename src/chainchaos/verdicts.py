@@ -91,34 +91,36 @@ def _eta_median(t, s, st, c):
 #: time required(statement), unit, description of the criterion).
 STATEMENT_KINDS = {
     "localized": (_final_p, lambda v, st, c: v <= c.localized_p_max, lambda st: T_PAPER, "1",
-                  "time-averaged $P$ over the last decade $\\le$ localized_p_max"),
+                  "time-averaged $P$ over the last decade $\\le \\cc{crit.localizedpmax}$"),
     "delocalized": (_final_p, lambda v, st, c: v >= c.delocalized_p_min, lambda st: T_PAPER, "1",
-                    "time-averaged $P$ over the last decade $\\ge$ delocalized_p_min"),
+                    "time-averaged $P$ over the last decade $\\ge \\cc{crit.delocalizedpmin}$"),
     "chaotic": (_chaotic, lambda v, st, c: v == 1.0, lambda st: T_PAPER, "1",
-                "chaotic over the last decade (reductions.is_chaotic)"),
+                "chaotic over the last decade (slope and growth criterion)"),
     "regular": (_chaotic, lambda v, st, c: v == 0.0, lambda st: T_PAPER, "1",
-                "not chaotic over the last decade (reductions.is_chaotic)"),
+                "not chaotic over the last decade (slope and growth criterion)"),
     "regular_until": (_chaotic, lambda v, st, c: v == 0.0, lambda st: st.until, "1",
-                      "not chaotic over the decade before `until` (reductions.is_chaotic)"),
+                      "not chaotic over the decade before the statement's end time"),
     "participation_below_until": (_p_until, lambda v, st, c: v < st.value, lambda st: st.until, "1",
-                                  "time-averaged $P$ from plateau_start to `until` below the paper's level"),
+                                  "time-averaged $P$ from $t = \\cc{crit.plateaustart}$ to the statement's end time below the paper's level"),
     "saturation_near": (_saturation, lambda v, st, c: _within_factor(v, st.value, c.tolerance.time_factor),
                         lambda st: T_PAPER, "time",
-                        "smoothed $P$ reaches saturation_fraction of its final average, sustained, within "
-                        "time_factor of the paper's time"),
+                        "smoothed $P$ stays above \\cc{crit.saturationfraction} of its final average from a "
+                        "time within a factor \\cc{tol.timefactor} of the paper's"),
     "spreading_onset_near": (_spreading_onset,
                              lambda v, st, c: _within_factor(v, st.value, c.tolerance.time_factor),
                              lambda st: T_PAPER, "time",
-                             "smoothed $P$ rises above spreading_factor times its value at plateau_start, "
-                             "sustained, within time_factor of the paper's time"),
+                             "smoothed $P$ stays above \\cc{crit.spreadingfactor} times its value at "
+                             "$t = \\cc{crit.plateaustart}$ from a time within a factor \\cc{tol.timefactor} of the paper's"),
     "mlce_near": (_final_mlce, lambda v, st, c: _within_factor(v, st.value, c.tolerance.mlce_factor),
-                  lambda st: T_PAPER, "1/time", "$\\Lambda(t_\\mathrm{end})$ within mlce_factor of the paper's"),
+                  lambda st: T_PAPER, "1/time",
+                  "$\\Lambda(t_\\mathrm{end})$ within a factor \\cc{tol.mlcefactor} of the paper's"),
     "chaos_onset_near": (_chaos_onset, lambda v, st, c: _within_factor(v, st.value, c.tolerance.time_factor),
                          lambda st: T_PAPER, "time",
-                         "onset of a sustained slope of $\\Lambda$ above chaos_slope within time_factor of the "
-                         "paper's time"),
+                         "onset of chaos (the criterion holding to the end) within a factor "
+                         "\\cc{tol.timefactor} of the paper's time"),
     "eta_near": (_eta_median, lambda v, st, c: abs(v - st.value) <= c.tolerance.eta_plateau, lambda st: T_PAPER,
-                 "1", "median $\\eta$ from plateau_start to the end within eta_plateau of the paper's level"),
+                 "1", "median $\\eta$ from $t = \\cc{crit.plateaustart}$ to the end within \\cc{tol.etaplateau} of "
+                 "the paper's level"),
 }
 
 
