@@ -91,6 +91,19 @@ def test_paper_scale_dry_run_plans_every_scene(tmp_path):
     assert code == 0, out[-4000:]
     jobs = planned_jobs(out)
     assert jobs["simulate_scene"] == len(paper.scenes()) and jobs["plot_panel"] == len(paper.PANELS)
+    # the realization search: stage-1 jobs of 8 candidates, the survivors' scores, one verdict per scene
+    assert jobs["search_filter"] == 5 and jobs["search_score"] == 6 and jobs["search_merge"] == 1
+    assert jobs["ensemble_verdicts"] == len(paper.statement_scenes())
+
+
+def test_a_pinned_seed_rescores_that_chain_without_a_search(tmp_path):
+    pinned = tmp_path / "pinned.yaml"
+    pinned.write_text("search:\n  pinned_seed: 879\n")
+    code, out = snakemake(str(tmp_path / "search" / "search.nc"), "--configfile", "config/config.yaml",
+                          str(pinned), "--config", f"results={tmp_path}", "-n")
+    assert code == 0, out[-4000:]
+    jobs = planned_jobs(out)
+    assert "search_filter" not in jobs and jobs["search_score"] == 1 and jobs["search_merge"] == 1
 
 
 @pytest.mark.parametrize("yaml_text, key", [
@@ -98,6 +111,9 @@ def test_paper_scale_dry_run_plans_every_scene(tmp_path):
     ("simulation:\n  integrator: rk4\n", "integrator"),
     ("simulation:\n  t_final: ten\n", "t_final"),
     ("chain:\n  N: 1\n", "N"),
+    ("search:\n  pinned_seed: -4\n", "pinned_seed"),
+    ("search:\n  lanes: 0\n", "lanes"),
+    ("verdicts:\n  settings:\n    perturbation: 0.5\n", "perturbation"),
 ])
 def test_bad_config_is_refused_naming_the_key(tmp_path, yaml_text, key):
     bad = tmp_path / "bad.yaml"
@@ -112,3 +128,19 @@ def test_unknown_scene_override_is_refused(tmp_path):
     bad.write_text("scenes:\n  hertz_H9.9:\n    dt: 0.001\n")
     code, out = snakemake("-n", "--configfile", "config/config.yaml", str(bad))
     assert code != 0 and "hertz_H9.9" in out and "allowed" in out
+
+
+@pytest.mark.slow
+def test_the_search_chooses_the_chain_and_the_verdicts_run_on_it(quick):
+    found = xr.load_dataset(quick / "search" / "search.nc")
+    chain = xr.load_dataset(quick / "chain" / "chain.nc")
+    assert int(chain.attrs["seed"]) == found.attrs["chosen_seed"] == int(chain.attrs["selection_seed"])
+    assert found.sizes["statement"] == len(paper.STATEMENTS) and found.attrs["n_scored"] >= 1
+    for name in paper.statement_scenes():
+        v = xr.load_dataset(quick / "verdicts" / f"{name}.nc")
+        assert int(v.attrs["seed"]) == found.attrs["chosen_seed"]
+        assert v.sizes["lane"] >= 2 and set(v.statement.values) == {s.id for s in paper.statements_of_scene(name)}
+        u0 = v["u0"].values
+        assert np.all(np.abs(u0[1:] / u0[0] - 1) <= 1e-9) and len(set(u0)) == u0.size
+    image = imread(quick / "figures" / "search.png")
+    assert image.std() > 0.01

@@ -130,8 +130,16 @@ def search_macros(search: xr.Dataset, verdicts: dict, energy_scan: xr.Dataset, d
         out.update({"verdicts.lanes": str(int(any_v.attrs["lanes"])), "verdicts.dt": g(any_v.attrs["dt"]),
                     "verdicts.tfinal": g(any_v.attrs["t_final"])})
     names = {"delocalized": "deloc", "chaotic": "chaos"}
+    labels = {"hertz": "Hertz", "fput": "FPUT"}
     for (model, key), (H, frac) in threshold_quantiles(energy_scan, disorder).items():
-        out[f"search.{model}.{names[key]}.H"] = fmt(H) if np.isfinite(H) else r"\text{--}"
-        out[f"search.{model}.{names[key]}.fraction"] = (f"{fmt(100 * frac, 2)}\\,\\%" if np.isfinite(frac)
-                                                        else r"\text{(outside the grid)}")
+        label = labels.get(model, model)
+        if not np.isfinite(H):
+            sentence = f"the chosen {label} chain is never {key} on the scanned grid."
+        elif not np.isfinite(frac):
+            sentence = (f"the chosen {label} chain is first {key} at $H = {fmt(H)}$, outside the grid of the "
+                        f"disorder statistics.")
+        else:
+            sentence = (f"at $H = {fmt(H)}$, where the chosen {label} chain is first {key}, "
+                        f"{fmt(100 * frac, 2)}\\,\\% of the realizations are.")
+        out[f"search.{model}.{names[key]}.sentence"] = sentence[0].upper() + sentence[1:]
     return out
