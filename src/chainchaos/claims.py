@@ -423,6 +423,27 @@ class _Context:
         return (f"{text}: over {d.sizes['realization']} realizations (Sec.~\\ref{{sec:scan}}) "
                 f"{at(H_chain)} are {key} at $H^*$ and {at(H_paper)} at the paper's $H = {g(H_paper)}$")
 
+    def spread_of_values(self, statement_id: str, what: str) -> str:
+        """A reason for a value outside the tolerance: the range of the statement's measured value
+        over the chosen chain's perturbed orbits and over the medians of the scored candidates."""
+        scene = next((st.scene.name for st in _paper.STATEMENTS if st.id == statement_id), None)
+        ds = self.verdicts.get(scene)
+        if ds is None:
+            return ""
+        v = ds["measured"].sel(statement=statement_id).values
+        v = v[np.isfinite(v)]
+        if not v.size:
+            return ""
+        text = f"{what} lies between {m(v.min())} and {m(v.max())} over the {v.size} perturbed orbits of the chosen chain"
+        if self.search is not None and "measured_median" in self.search:
+            scored = self.search["scored"].values == 1
+            c = self.search["measured_median"].sel(statement=statement_id).values[scored]
+            c = c[np.isfinite(c)]
+            if c.size:
+                text += (f", and its median between {m(c.min())} and {m(c.max())} over the {c.size} scored "
+                         f"candidates of the search: a property of the spread state of these chains")
+        return text
+
     def follows(self, statement_id: str, consequence: str) -> str:
         """A reason for a claim that follows from a statement: names the statement, its ensemble
         verdict and the search's evidence when it fails on the chosen chain."""
@@ -784,7 +805,7 @@ def evaluate_claims(scenes: dict, chain: xr.Dataset, ensemble: xr.Dataset,
         f"final $P = {fmt(Psat())}$" if has18 else "--", "1",
         f"within ${g(100 * tol.participation_relative)}\\,\\%$ of 26",
         lambda: abs(Psat() / 26 - 1) <= tol.participation_relative, scenes=(hz18,), t_required=4e4,
-        variables=("participation",))
+        variables=("participation",), reason_differs=ctx.spread_of_values("deloc-H1.8-hertz", "the final $P$"))
 
     tsat = _lazy(lambda: saturation_time(scenes[hz18], c.saturation_fraction, c.smoothing_decades, fw,
                                         c.onset_hold_decades))
@@ -890,7 +911,8 @@ def evaluate_claims(scenes: dict, chain: xr.Dataset, ensemble: xr.Dataset,
             f"median $\\eta$ over ${g(c.plateau_start)} \\le t \\le {g(t1)}$: {m(pl())}" if ok else "--", "1",
             f"$|\\eta_\\mathrm{{plateau}} - {g(value)}| \\le {g(tol.eta_plateau)}$",
             lambda pl=pl, value=value: abs(pl() - value) <= tol.eta_plateau, scenes=(name,), t_required=t1,
-            variables=("eta",))
+            variables=("eta",), reason_differs=ctx.follows(
+                f"deloc-H{g(H)}-{name.split('_')[0]}", "the entropy follows the packet, which stays localized"))
 
     for name, H, where in (("hertz_H1.8", 1.8, "Fig. 8(c)"), ("hertz_H3", 3.0, "Fig. 8(d)"),
                            (fp29, 2.9, "Fig. 9(b)"), (fp87, 8.7381, "Fig. 9(d)")):
@@ -903,7 +925,8 @@ def evaluate_claims(scenes: dict, chain: xr.Dataset, ensemble: xr.Dataset,
             r"$\approx\langle\eta\rangle$", ef, f"final $\\eta = {fmt(ef)}$, $\\langle\\eta\\rangle = {fmt(eq)}$" if ok else "--",
             "1", f"$|\\eta_\\mathrm{{final}} - \\langle\\eta\\rangle| \\le {g(tol.eta_equipartition)}$",
             (abs(ef - eq) <= tol.eta_equipartition) if ok else None, scenes=(name,), t_required=1e5,
-            variables=("eta",))
+            variables=("eta",), reason_differs=ctx.follows(
+                f"deloc-H{g(H)}-{name.split('_')[0]}", "a packet that stays localized does not reach equipartition"))
 
     ok = ctx.has((fp4,), "eta")
     ef = final_mean(scenes[fp4], "eta", c.eta_final_window_decades) if ok else None

@@ -204,12 +204,16 @@ def merge(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSetting
         filt[g["candidate"].values] = g["outcome"].values
     frac = np.full((C, S), np.nan)
     verdict = np.full((C, S), -3, dtype=np.int8)
+    median = np.full((C, S), np.nan)
     score = np.full(C, np.nan)
     holds = np.zeros(C, dtype=np.int32)
     err = np.full(C, np.nan)
     for s in scores:
         c = int(s.attrs["candidate"])
         frac[c], verdict[c] = s["fraction"].values, s["verdict"].values
+        values = s["measured"].values
+        finite = np.isfinite(values)
+        median[c] = [np.median(v[f]) if f.any() else np.nan for v, f in zip(values, finite)]
         score[c] = chain_score(s["fraction"].values)
         holds[c] = int((s["verdict"].values == HOLDS).sum())
         err[c] = float(s["energy_error_max"].values)
@@ -228,6 +232,8 @@ def merge(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSetting
         "verdict": (("candidate", "statement"), verdict, {
             "long_name": "stage 2 ensemble verdict", "flag_values": np.array([-3, -2, -1, 0, 1], dtype=np.int8),
             "flag_meanings": "not_scored not_testable undecided fails holds"}),
+        "measured_median": (("candidate", "statement"), median, {
+            "long_name": "stage 2: median over the lanes of the statement's measured value"}),
         "score": ("candidate", score, {"units": "1", "long_name": "sum over statements of the fraction satisfied"}),
         "statements_held": ("candidate", holds, {"units": "1", "long_name": "statements that hold on the ensemble"}),
         "energy_error_max": ("candidate", err, {"units": "1", "long_name": "largest relative energy error (stage 2)"}),
