@@ -34,7 +34,7 @@ def search_figure(ds):
         ax.set_yticks(y, statements)
         ax.invert_yaxis()
         ax.set_xlabel("candidates")
-        ax.legend(loc="lower right", fontsize=5.5)
+        ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), fontsize=5.5, borderaxespad=0.2)
         frac = ds["fraction"].values[scored]
         im = bx.imshow(frac.T, aspect="auto", cmap="RdYlGn", vmin=0, vmax=1, interpolation="nearest",
                        extent=(-0.5, scored.size - 0.5, S - 0.5, -0.5))
@@ -45,8 +45,8 @@ def search_figure(ds):
             bx.add_patch(plt.Rectangle((k - 0.5, -0.5), 1, S, fill=False, lw=1.2, ec="black"))
         cb = fig.colorbar(im, ax=bx, fraction=0.05, pad=0.02)
         cb.set_label("fraction of lanes satisfying it")
-        fig.suptitle(f"Realization search: chosen seed {ds.attrs['chosen_seed']}, score "
-                     f"{ds.attrs['chosen_score']:.2f} of {S}", fontsize=8)
+        bx.set_title(f"chosen seed {ds.attrs['chosen_seed']}, score {ds.attrs['chosen_score']:.2f} of {S}",
+                     fontsize=7)
         fig.tight_layout()
     return fig
 
