@@ -92,7 +92,8 @@ def test_paper_scale_dry_run_plans_every_scene(tmp_path):
     jobs = planned_jobs(out)
     assert jobs["simulate_scene"] == len(paper.scenes()) and jobs["plot_panel"] == len(paper.PANELS)
     # the realization search: stage-1 jobs of 8 candidates, the survivors' scores, one verdict per scene
-    assert jobs["search_filter"] == 5 and jobs["search_score"] == 6 and jobs["search_merge"] == 1
+    assert jobs["search_candidates"] == 1 and jobs["search_filter"] == 5 and jobs["search_score"] == 6
+    assert jobs["search_merge"] == 1
     assert jobs["ensemble_verdicts"] == len(paper.statement_scenes())
 
 
@@ -104,6 +105,7 @@ def test_a_pinned_seed_rescores_that_chain_without_a_search(tmp_path):
     assert code == 0, out[-4000:]
     jobs = planned_jobs(out)
     assert "search_filter" not in jobs and jobs["search_score"] == 1 and jobs["search_merge"] == 1
+    assert jobs["search_candidates"] == 1
 
 
 @pytest.mark.parametrize("yaml_text, key", [

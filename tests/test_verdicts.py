@@ -120,14 +120,16 @@ def test_search_filters_scores_and_chooses_the_best(tmp_path):
     plan = search.SearchPlan(candidates=3, candidates_per_job=2, survivors=2, lanes=2, filter_t_final=20.0)
     settings = OrbitSettings(t_final=50.0, dt=0.05, samples_per_decade=5, final_samples=10)
     c = Criteria()
-    rows = search.candidate_list(selection, plan)
+    found = search.candidates(selection, plan)
+    rows = search.candidate_rows(found)
     assert len(rows) == 3 and [r["score"] for r in rows] == sorted(r["score"] for r in rows)
-    filters = [search.filter_group(selection, plan, settings, c, g, 21) for g in range(plan.n_filter_jobs)]
+    assert found.attrs["n_qualifying"] >= 3
+    filters = [search.filter_group(selection, plan, settings, c, rows, g, 21) for g in range(plan.n_filter_jobs)]
     assert [f.sizes["candidate"] for f in filters] == [2, 1]
     kept = search.survivors(filters, plan)
     assert len(kept) == 2
-    scores = [search.score_candidate(selection, plan, settings, c, int(k), 21) for k in kept]
-    ds = search.merge(selection, plan, settings, c, filters, scores)
+    scores = [search.score_candidate(selection, plan, settings, c, rows, int(k), 21) for k in kept]
+    ds = search.merge(selection, plan, settings, c, found, filters, scores)
     assert ds.sizes == {"candidate": 3, "statement": len(paper.STATEMENTS)}
     scored = np.flatnonzero(ds["scored"].values == 1)
     assert set(scored) == set(int(k) for k in kept)
@@ -137,6 +139,7 @@ def test_search_filters_scores_and_chooses_the_best(tmp_path):
     # pinned: one candidate, no filter jobs
     pinned = search.SearchPlan(pinned_seed=int(rows[1]["seed"]), lanes=2)
     assert pinned.n_filter_jobs == 0 and pinned.n_score_jobs == 1
-    assert search.candidate_list(selection, pinned)[0]["seed"] == rows[1]["seed"]
+    only = search.candidates(selection, pinned)
+    assert list(only["seed"].values) == [rows[1]["seed"]] and only.attrs["n_qualifying"] == found.attrs["n_qualifying"]
     with pytest.raises(Exception, match="pinned_seed"):
         search.SearchPlan(pinned_seed=-3)

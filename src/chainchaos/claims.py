@@ -36,13 +36,11 @@ from dataclasses import asdict, dataclass, field, fields
 import numpy as np
 import xarray as xr
 
-from chainchaos import exactmath
 from chainchaos import paper as _paper
 from chainchaos import scan as _scan
 from chainchaos import verdicts as _verdicts
-from chainchaos.reductions import chaos_onset as reductions_chaos_onset
-from chainchaos.reductions import (excess_growth, final_average, is_chaotic, log_time_smooth, loglog_slope,
-                                   sustained_onset, time_average)
+from chainchaos import reductions
+from chainchaos.reductions import excess_growth, final_average, is_chaotic, loglog_slope, time_average, within_factor
 from chainchaos.criteria import Criteria, Tolerances  # noqa: F401  (re-exported)
 
 VERDICTS = ("reproduced", "differs", "undecided", "not testable at this scale")
@@ -98,12 +96,7 @@ def spreading_onset(ds: xr.Dataset, factor: float = 2.0, smoothing_decades: floa
     """Onset of spreading: the first time t >= t_ref from which the log-time running mean of P
     stays above ``factor`` times its value at t_ref for ``hold_decades`` (None when never)."""
     t, P = _positive_times(ds, "participation")
-    smooth = log_time_smooth(t, P, smoothing_decades)
-    after = t >= t_ref
-    if not after.any():
-        return None
-    reference = smooth[np.flatnonzero(after)[0]]
-    return _none_if_nan(sustained_onset(t, smooth, factor * reference, hold_decades, t_ref))
+    return _none_if_nan(reductions.spreading_onset(t, P, factor, smoothing_decades, t_ref, hold_decades))
 
 
 def saturation_time(ds: xr.Dataset, fraction: float = 0.9, smoothing_decades: float = 0.5,
@@ -111,8 +104,7 @@ def saturation_time(ds: xr.Dataset, fraction: float = 0.9, smoothing_decades: fl
     """First time from which the smoothed P stays above ``fraction`` of its final time average
     for ``hold_decades`` (None when never)."""
     t, P = _positive_times(ds, "participation")
-    target = fraction * final_mean(ds, "participation", final_decades)
-    return _none_if_nan(sustained_onset(t, log_time_smooth(t, P, smoothing_decades), target, hold_decades))
+    return _none_if_nan(reductions.saturation_time(t, P, fraction, smoothing_decades, final_decades, hold_decades))
 
 
 def mlce_slope(ds: xr.Dataset, decades: float = 1.0, t_end: float | None = None) -> float:
@@ -139,7 +131,7 @@ def scene_chaotic(ds: xr.Dataset, c: Criteria) -> bool:
 def chaos_onset(ds: xr.Dataset, c: Criteria) -> float | None:
     """Onset of chaos of a scene's single orbit (``reductions.chaos_onset``), None if not chaotic."""
     t, L = _positive_times(ds, "mlce")
-    return _none_if_nan(reductions_chaos_onset(t, t * L, c.chaos_slope, c.chaos_growth_margin,
+    return _none_if_nan(reductions.chaos_onset(t, t * L, c.chaos_slope, c.chaos_growth_margin,
                                                c.chaos_window_decades))
 
 
@@ -365,10 +357,6 @@ def m(x, digits: int = 3) -> str:
     return f"${fmt(x, digits)}$"
 
 
-def _within_factor(measured: float | None, paper: float, factor: float) -> bool:
-    return measured is not None and measured > 0 and 1 / factor <= measured / paper <= factor
-
-
 @dataclass
 class _Context:
     scenes: dict
@@ -413,12 +401,10 @@ class _Context:
         d = self.disorder
         if d is None or model not in d.model.values:
             return text
-        E = d.energy.values
-        p = d[f"probability_{key}"].sel(model=model).values
 
         def at(H):
-            return (f"{fmt(100 * float(np.interp(exactmath.ln(H), exactmath.log(E), p)), 2)}\\,\\%" if E[0] <= H <= E[-1]
-                    else "(outside the grid)")
+            p = _scan.probability_at(d, model, key, H)
+            return f"{fmt(100 * p, 2)}\\,\\%" if np.isfinite(p) else "(outside the grid)"
 
         return (f"{text}: over {d.sizes['realization']} realizations (Sec.~\\ref{{sec:scan}}) "
                 f"{at(H_chain)} are {key} at $H^*$ and {at(H_paper)} at the paper's $H = {g(H_paper)}$")
@@ -796,7 +782,7 @@ def evaluate_claims(scenes: dict, chain: xr.Dataset, ensemble: xr.Dataset,
         (f"smoothed $P$ stays above {g(c.spreading_factor)} times its value at $t = {g(c.plateau_start)}$ "
          f"at $t = {fmt(onset())}$" if onset() is not None else "the smoothed $P$ never doubles") if has18 else "--",
         "time", f"onset within a factor {g(tol.time_factor)} of $2\\times 10^2$",
-        lambda: _within_factor(onset(), 2e2, tol.time_factor), scenes=(hz18,), t_required=2e2 * tol.time_factor,
+        lambda: within_factor(onset(), 2e2, tol.time_factor), scenes=(hz18,), t_required=2e2 * tol.time_factor,
         refutable_early=True, variables=("participation",), statements=("spread-onset-H1.8-hertz",))
 
     Psat = _lazy(lambda: final_mean(scenes[hz18], "participation", fw))
@@ -815,7 +801,7 @@ def evaluate_claims(scenes: dict, chain: xr.Dataset, ensemble: xr.Dataset,
         (f"smoothed $P$ reaches {g(100 * c.saturation_fraction)}\\,\\% of its final value at "
          f"$t = {fmt(tsat())}$") if has18 else "--", "time",
         f"within a factor {g(tol.time_factor)} of $4\\times 10^3$",
-        lambda: _within_factor(tsat(), 4e3, tol.time_factor), scenes=(hz18,), t_required=4e4,
+        lambda: within_factor(tsat(), 4e3, tol.time_factor), scenes=(hz18,), t_required=4e4,
         variables=("participation",), statements=("spread-until-H1.8-hertz",))
 
     lam = _lazy(lambda: final_mlce(scenes[hz18]))
@@ -824,7 +810,7 @@ def evaluate_claims(scenes: dict, chain: xr.Dataset, ensemble: xr.Dataset,
         lam() if ctx.has((hz18,), "mlce") else None,
         f"$\\Lambda(t_\\mathrm{{end}}) = {fmt(lam())}$" if ctx.has((hz18,), "mlce") else "--", "1/time",
         f"within a factor {g(tol.mlce_factor)} of $10^{{-3}}$",
-        lambda: _within_factor(lam(), 1e-3, tol.mlce_factor), scenes=(hz18,), t_required=1e4,
+        lambda: within_factor(lam(), 1e-3, tol.mlce_factor), scenes=(hz18,), t_required=1e4,
         variables=("mlce",), statements=("mlce-H1.8-hertz",))
 
     def chaos_onset_claim(id, where, name, statement, paper_t, paper_tex, t_required, statement_id):
@@ -833,7 +819,7 @@ def evaluate_claims(scenes: dict, chain: xr.Dataset, ensemble: xr.Dataset,
         add(id, where, statement, f"${paper_tex}$", con() if ok else None,
             (f"chaotic from $t = {fmt(con())}$ on" if con() is not None else "not chaotic at the end")
             if ok else "--", "time", f"onset of chaos within a factor {g(tol.time_factor)} of ${paper_tex}$",
-            lambda: _within_factor(con(), paper_t, tol.time_factor), scenes=(name,), t_required=t_required,
+            lambda: within_factor(con(), paper_t, tol.time_factor), scenes=(name,), t_required=t_required,
             variables=("mlce",), statements=(statement_id,))
 
     chaos_onset_claim("chaos-H1.8-onset", "Fig. 4(d), Sec. III B", hz18,
@@ -848,7 +834,7 @@ def evaluate_claims(scenes: dict, chain: xr.Dataset, ensemble: xr.Dataset,
          + (f"; spreading onset $t = {fmt(onset())}$" if has18 and onset() is not None else "")
          if tg() is not None else "no gap leaves bead 21") if ctx.has((hz18,), "gap_fraction") else "--",
         "time", f"within a factor {g(tol.time_factor)} of $3\\times 10^2$",
-        lambda: _within_factor(tg(), 3e2, tol.time_factor), scenes=(hz18,), t_required=3e2 * tol.time_factor,
+        lambda: within_factor(tg(), 3e2, tol.time_factor), scenes=(hz18,), t_required=3e2 * tol.time_factor,
         refutable_early=True, variables=("gap_fraction",))
 
     cover = _lazy(lambda: bonds_ever_open(scenes[hz18]).size / scenes[hz18].sizes["bond"])
@@ -1000,7 +986,7 @@ def _threshold_claims(ctx: _Context) -> None:
                 f"$H^* \\approx {g(H)}$", star if ok and np.isfinite(star) else None, measured_text, "energy",
                 (f"{criterion_text(key)} at every scanned $H \\ge {g(H)}$, and the lowest $H^*$ above which "
                  f"this holds at every scanned energy within a factor {g(f)} of {g(H)}"),
-                (lambda: holds_above and _within_factor(star, H, f)) if holds_above is not None else None,
+                (lambda: holds_above and within_factor(star, H, f)) if holds_above is not None else None,
                 scenes=(ENERGY_SCAN,), t_required=1e5, variables=("delocalized", "chaotic", "valid"),
                 reason_differs=reason)
 
@@ -1026,10 +1012,10 @@ def _threshold_claims(ctx: _Context) -> None:
             f"from $H \\approx {g(H)}$", first if beyond is not None else None, measured_text, "energy",
             (f"the lowest scanned $H$ with {criterion_text('delocalized')} lies within a factor {g(f)} of {g(H)}, "
              f"and above it the state changes at least twice (delocalized, localized, delocalized)"),
-            (lambda: _within_factor(first, H, f) and n_switch >= 2) if ok else None,
+            (lambda: within_factor(first, H, f) and n_switch >= 2) if ok else None,
             scenes=(ENERGY_SCAN,), t_required=1e5, variables=("delocalized", "chaotic", "valid"),
             reason_differs=(ctx.threshold_reason("fput", "delocalized", first, H)
-                            if beyond is not None and not _within_factor(first, H, f)
+                            if beyond is not None and not within_factor(first, H, f)
                             else f"the state changes only {n_switch} times above the first delocalized energy"))
 
 

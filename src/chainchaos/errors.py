@@ -1,5 +1,7 @@
 """Exceptions with messages that name the bad value and what is allowed."""
 
+import math
+
 
 class ParameterError(ValueError):
     """An invalid parameter: the message names the parameter, its value and what is allowed."""
@@ -26,3 +28,11 @@ def require(condition: bool, name: str, value, allowed: str) -> None:
     """Raise :class:`ParameterError` unless ``condition`` holds."""
     if not condition:
         raise ParameterError(name, value, allowed)
+
+
+def require_finite_positive(owner, *keys: str) -> None:
+    """Every named attribute of ``owner`` is a finite number > 0 (else :class:`ParameterError`)."""
+    for key in keys:
+        value = getattr(owner, key)
+        require(isinstance(value, (int, float)) and math.isfinite(value) and value > 0, key, value,
+                "a finite number > 0")

@@ -21,7 +21,7 @@ import numpy as np
 
 from chainchaos import observables as obs
 from chainchaos.batch import Batch
-from chainchaos.errors import ParameterError, require
+from chainchaos.errors import ParameterError, require, require_finite_positive
 from chainchaos.initial import initial_deviation, initial_displacement
 from chainchaos.integrators import advance, get_scheme
 from chainchaos.linear import modal_energies, normal_modes, participation_number
@@ -75,10 +75,7 @@ class OrbitSettings:
 
     def __post_init__(self):
         get_scheme(self.integrator)
-        for key in ("t_final", "dt", "t_first_sample", "max_energy_error"):
-            value = getattr(self, key)
-            require(isinstance(value, (int, float)) and np.isfinite(value) and value > 0, key, value,
-                    "a finite number > 0")
+        require_finite_positive(self, "t_final", "dt", "t_first_sample", "max_energy_error")
         require(self.dt <= self.t_final, "dt", self.dt, f"<= t_final = {self.t_final}")
         require(self.k4_sign in (1, -1), "k4_sign", self.k4_sign, "+1 or -1")
         require(self.engine in ("batch", "single"), "engine", self.engine, "'batch' or 'single'")

@@ -20,6 +20,7 @@ import numpy as np
 
 from chainchaos import exactmath
 from chainchaos.errors import require
+from chainchaos.observables import finite_time_mlce
 
 
 def time_average(t, y, t0: float, t1: float | None = None) -> float:
@@ -89,9 +90,7 @@ def is_chaotic(t, log_growth, slope_threshold: float = -0.5, growth_margin: floa
     start = end * 10.0 ** (-decades)
     if start < t[t > 0][0]:
         return False
-    with np.errstate(divide="ignore", invalid="ignore"):
-        mlce = np.where(t > 0, g / np.where(t > 0, t, 1.0), np.nan)
-    slope = loglog_slope(t, mlce, start, end)
+    slope = loglog_slope(t, finite_time_mlce(g, t), start, end)
     return bool(np.isfinite(slope) and slope > slope_threshold
                 and excess_growth(t, g, start, end) > growth_margin)
 
@@ -139,3 +138,36 @@ def chaos_onset(t, log_growth, slope_threshold: float = -0.5, growth_margin: flo
     regular = np.flatnonzero(~chaotic)
     first = 0 if regular.size == 0 else regular[-1] + 1
     return float(ends[first] * 10.0 ** (-decades / 2))
+
+
+def within_factor(x, target: float, factor: float) -> bool:
+    """x / target lies in [1/factor, factor] (False for None, NaN or x <= 0)."""
+    return x is not None and bool(np.isfinite(x) and x > 0 and 1.0 / factor <= x / target <= factor)
+
+
+def spreading_onset(t, P, factor: float, smoothing_decades: float, t_ref: float, hold_decades: float) -> float:
+    """Onset of spreading: the first time t >= t_ref from which the log-time running mean of P
+    (:func:`log_time_smooth`) stays above ``factor`` times its value at t_ref (the end of the
+    initial transient) for ``hold_decades``; NaN when never. Samples at t <= 0 are ignored."""
+    t, P = _positive(t, P)
+    smooth = log_time_smooth(t, P, smoothing_decades)
+    after = t >= t_ref
+    if not after.any():
+        return float("nan")
+    reference = smooth[np.flatnonzero(after)[0]]
+    return sustained_onset(t, smooth, factor * reference, hold_decades, t_ref)
+
+
+def saturation_time(t, P, fraction: float, smoothing_decades: float, final_decades: float,
+                    hold_decades: float) -> float:
+    """First time from which the smoothed P stays above ``fraction`` of its time average over
+    the last ``final_decades`` decades for ``hold_decades``; NaN when never."""
+    t, P = _positive(t, P)
+    target = fraction * final_average(t, P, final_decades)
+    return sustained_onset(t, log_time_smooth(t, P, smoothing_decades), target, hold_decades)
+
+
+def _positive(t, y):
+    t = np.asarray(t, dtype=float)
+    keep = t > 0
+    return t[keep], np.asarray(y, dtype=float)[keep]

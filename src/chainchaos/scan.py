@@ -43,7 +43,7 @@ import xarray as xr
 
 from chainchaos import exactmath
 from chainchaos.chain import GENERATOR, random_chain
-from chainchaos.errors import require
+from chainchaos.errors import require, require_finite_positive
 from chainchaos.linear import mode_energy_density, normal_modes, participation_number
 from chainchaos.orbits import MODELS, Orbit, OrbitSettings, integrate
 from chainchaos.provenance import provenance_attrs
@@ -75,8 +75,7 @@ class ScanSettings(OrbitSettings):
 
     def __post_init__(self):
         super().__post_init__()
-        require(np.isfinite(self.p_delocalized) and self.p_delocalized > 0, "p_delocalized",
-                self.p_delocalized, "a finite number > 0")
+        require_finite_positive(self, "p_delocalized")
         require(np.isfinite(self.chaos_slope) and self.chaos_slope <= 0, "chaos_slope", self.chaos_slope, "<= 0")
         for key in ("chaos_growth_margin", "onset_hold_decades"):
             require(np.isfinite(getattr(self, key)) and getattr(self, key) >= 0, key, getattr(self, key), ">= 0")
@@ -376,6 +375,16 @@ def merge_energy_scan(groups: list[xr.Dataset], scan_cfg: dict, chain=None) -> x
     if chain is not None:
         ds.attrs.update(alpha=float(chain.alpha))
     return ds
+
+
+def probability_at(disorder: xr.Dataset, model: str, key: str, H: float) -> float:
+    """Fraction of the realizations of the disorder statistics that are ``key`` ("delocalized"
+    or "chaotic") at energy H, interpolated linearly in ln H on their grid; NaN outside it."""
+    E = disorder.energy.values
+    if not (np.isfinite(H) and E[0] <= H <= E[-1]):
+        return float("nan")
+    p = disorder[f"probability_{key}"].sel(model=model).values
+    return float(np.interp(exactmath.ln(H), exactmath.log(E), p))
 
 
 def merge_disorder(groups: list[xr.Dataset], scan_cfg: dict) -> xr.Dataset:

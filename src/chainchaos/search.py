@@ -31,7 +31,7 @@ from chainchaos.chain import random_chain
 from chainchaos.criteria import Criteria
 from chainchaos.errors import require
 from chainchaos.orbits import Orbit, OrbitSettings, integrate
-from chainchaos.selection import SelectionCriteria, candidates as linear_candidates
+from chainchaos.selection import SelectionCriteria, candidate_row, candidates as linear_candidates
 from chainchaos.verdicts import HOLDS, ensemble_verdict, evaluate
 
 
@@ -100,37 +100,47 @@ def _outcomes(chains: list, site: int, lanes: int, settings: OrbitSettings, crit
     return out, value, np.max(energy_error, axis=1) if C else np.zeros(0)
 
 
-def candidate_list(selection: SelectionCriteria, plan: SearchPlan) -> list[dict]:
-    """Stage 0: the candidates of the search (or the pinned seed), each a dict with seed,
-    linear-rule score, P of the selection mode and the two overlaps."""
-    if plan.pinned:
-        chain = random_chain(plan.pinned_seed, selection.alpha, selection.N)
-        from chainchaos.selection import qualifies
+def candidates(selection: SelectionCriteria, plan: SearchPlan) -> xr.Dataset:
+    """Stage 0, once per search: the candidates (the first ``plan.candidates`` chains passing the
+    linear rule, or the pinned seed) with their linear-rule data, and in the attribute
+    ``n_qualifying`` how many of the scanned seeds pass the rule. Later stages read this."""
+    qualifying = linear_candidates(selection)
+    rows = [candidate_row(plan.pinned_seed, selection)] if plan.pinned else qualifying[:plan.candidates]
+    ds = xr.Dataset(_seed_dataset(rows), coords={"candidate": np.arange(len(rows))})
+    ds.attrs.update(n_qualifying=len(qualifying), seeds_scanned=int(selection.n_seeds), pinned=int(plan.pinned))
+    return ds
 
-        ok, P = qualifies(chain, selection)
-        overlaps = chain.delta[selection.site - 1:selection.site + 1]
-        return [{"seed": plan.pinned_seed, "score": float(np.abs(overlaps - selection.target_overlap).sum()),
-                 "mode_participation": P, "overlap_left": float(overlaps[0]),
-                 "overlap_right": float(overlaps[1]), "qualifies": bool(ok)}]
-    return linear_candidates(selection)[:plan.candidates]
+
+def candidate_rows(ds: xr.Dataset) -> list[dict]:
+    """The rows of :func:`candidates`' Dataset as dicts (seed, score, mode_participation, ...)."""
+    return [{"seed": int(ds["seed"].values[i]), "score": float(ds["linear_score"].values[i]),
+             "mode_participation": float(ds["mode_participation"].values[i]),
+             "overlap_left": float(ds["overlap_left"].values[i]), "overlap_right": float(ds["overlap_right"].values[i])}
+            for i in range(ds.sizes["candidate"])]
 
 
 def _seed_dataset(rows: list[dict]) -> dict:
+    one = {"units": "1"}
     return {
         "seed": ("candidate", np.array([r["seed"] for r in rows], dtype=np.int64),
-                 {"units": "1", "long_name": "seed of numpy.random.default_rng drawing the radii"}),
+                 {**one, "long_name": "seed of numpy.random.default_rng drawing the radii"}),
         "linear_score": ("candidate", np.array([r["score"] for r in rows]),
-                         {"units": "1", "long_name": "|delta_site - target| + |delta_site+1 - target| (linear rule)"}),
+                         {**one, "long_name": "|delta_site - target| + |delta_site+1 - target| (linear rule)"}),
         "mode_participation": ("candidate", np.array([r["mode_participation"] for r in rows]),
-                               {"units": "1", "long_name": "participation number of the selection mode"}),
+                               {**one, "long_name": "participation number of the selection mode"}),
+        "overlap_left": ("candidate", np.array([r["overlap_left"] for r in rows]),
+                         {**one, "long_name": "static overlap delta of the excited bead's left bond"}),
+        "overlap_right": ("candidate", np.array([r["overlap_right"] for r in rows]),
+                          {**one, "long_name": "static overlap delta of the excited bead's right bond"}),
     }
 
 
 def filter_group(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSettings, criteria: Criteria,
-                 group: int, site: int, progress=None) -> xr.Dataset:
-    """Stage 1 for the candidates of one job: one orbit per scene to ``plan.filter_t_final``."""
+                 rows: list[dict], group: int, site: int, progress=None) -> xr.Dataset:
+    """Stage 1 for the candidates of one job (``rows``: :func:`candidate_rows`): one orbit per
+    scene to ``plan.filter_t_final``."""
     require(0 <= group < max(plan.n_filter_jobs, 1), "group", group, f"0..{plan.n_filter_jobs - 1}")
-    rows = candidate_list(selection, plan)[group * plan.candidates_per_job:(group + 1) * plan.candidates_per_job]
+    rows = rows[group * plan.candidates_per_job:(group + 1) * plan.candidates_per_job]
     short = OrbitSettings(**{**vars(settings), "t_final": float(plan.filter_t_final)})
     chains = [random_chain(r["seed"], selection.alpha, selection.N) for r in rows]
     out, value, err = _outcomes(chains, site, 1, short, criteria, progress)
@@ -161,10 +171,10 @@ def survivors(filter_groups: list[xr.Dataset], plan: SearchPlan) -> np.ndarray:
 
 
 def score_candidate(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSettings, criteria: Criteria,
-                    candidate: int, site: int, progress=None) -> xr.Dataset:
-    """Stage 2 for one candidate (index into ``candidate_list``): ``plan.lanes`` perturbed orbits
-    per scene to ``settings.t_final``; per statement the lanes' outcomes, fraction and verdict."""
-    row = candidate_list(selection, plan)[candidate]
+                    rows: list[dict], candidate: int, site: int, progress=None) -> xr.Dataset:
+    """Stage 2 for one candidate (index into ``rows``): ``plan.lanes`` perturbed orbits per scene
+    to ``settings.t_final``; per statement the lanes' outcomes, fraction and verdict."""
+    row = rows[candidate]
     chain = random_chain(row["seed"], selection.alpha, selection.N)
     out, value, err = _outcomes([chain], site, plan.lanes, settings, criteria, progress)
     verdicts = [ensemble_verdict(o, criteria.agreement) for o in out[0]]
@@ -193,10 +203,11 @@ def chain_score(fraction: np.ndarray) -> float:
 
 
 def merge(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSettings, criteria: Criteria,
-          filter_groups: list[xr.Dataset], scores: list[xr.Dataset]) -> xr.Dataset:
-    """The search as one Dataset: every candidate's stage-1 outcomes, the survivors' stage-2
-    fractions and verdicts, scores, and the chosen seed (attribute ``chosen_seed``)."""
-    rows = candidate_list(selection, plan)
+          found: xr.Dataset, filter_groups: list[xr.Dataset], scores: list[xr.Dataset]) -> xr.Dataset:
+    """The search as one Dataset: the candidates (``found``, from :func:`candidates`), every
+    candidate's stage-1 outcomes, the survivors' stage-2 fractions and verdicts, scores, and the
+    chosen seed (attribute ``chosen_seed``)."""
+    rows = candidate_rows(found)
     C, S = len(rows), len(paper.STATEMENTS)
     data = _seed_dataset(rows)
     filt = np.full((C, S), np.nan)
@@ -250,5 +261,6 @@ def merge(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSetting
         dt=float(settings.dt), integrator=settings.integrator, lanes=int(plan.lanes),
         perturbation=float(settings.perturbation), agreement=float(criteria.agreement),
         seeds_scanned=int(selection.n_seeds), alpha=float(selection.alpha),
+        n_qualifying=int(found.attrs["n_qualifying"]),
     )
     return ds

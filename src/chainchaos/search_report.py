@@ -7,10 +7,10 @@ Reads results/search/search.nc (``search.merge``), the ensemble verdicts of the 
 import numpy as np
 import xarray as xr
 
-from chainchaos import exactmath, paper
+from chainchaos import paper
 from chainchaos.claims import fmt, g
-from chainchaos.scan import criterion_holds, first_energy
-from chainchaos.verdicts import HOLDS, VERDICT_NAMES
+from chainchaos.scan import criterion_holds, first_energy, probability_at
+from chainchaos.verdicts import HOLDS, VERDICT_NAMES, verdict_code
 
 
 def _statement_rows(search: xr.Dataset, verdicts: dict) -> list[dict]:
@@ -43,16 +43,8 @@ def step_agreement(search: xr.Dataset, verdicts: dict, agreement: float) -> tupl
         if not (np.isfinite(a) and np.isfinite(b)):
             continue
         total += 1
-        same += _side(a, agreement) == _side(b, agreement)
+        same += verdict_code(a, agreement) == verdict_code(b, agreement)
     return same, total
-
-
-def _side(fraction: float, agreement: float) -> str:
-    if fraction >= agreement - 1e-12:
-        return "holds"
-    if fraction <= 1 - agreement + 1e-12:
-        return "fails"
-    return "undecided"
 
 
 def search_table_tex(search: xr.Dataset, verdicts: dict) -> str:
@@ -89,14 +81,10 @@ def threshold_quantiles(energy_scan: xr.Dataset, disorder: xr.Dataset) -> dict:
     statistics' realizations that already satisfy it at H* (log-linear interpolation on their
     grid; NaN outside it). A typical chain sits near one half."""
     out = {}
-    E = disorder.energy.values
     for model in energy_scan.model.values:
         for key in ("delocalized", "chaotic"):
             H = first_energy(energy_scan.energy.values, criterion_holds(energy_scan, str(model), key))
-            p = disorder[f"probability_{key}"].sel(model=model).values
-            inside = np.isfinite(H) and E[0] <= H <= E[-1]
-            frac = float(np.interp(exactmath.ln(H), exactmath.log(E), p)) if inside else float("nan")
-            out[(str(model), key)] = (H, frac)
+            out[(str(model), key)] = (H, probability_at(disorder, str(model), key, H))
     return out
 
 

@@ -44,19 +44,21 @@ def qualifies(chain: Chain, c: SelectionCriteria) -> tuple[bool, float]:
     return (c.p_min <= P <= c.p_max and int(np.argmax(h)) == c.site - 1), P
 
 
+def candidate_row(seed: int, c: SelectionCriteria) -> dict:
+    """The linear rule on the chain of ``seed``: whether it qualifies, its overlap score
+    |delta_site - target| + |delta_site+1 - target|, P of the selection mode, the two overlaps."""
+    chain = random_chain(seed, c.alpha, c.N)
+    ok, P = qualifies(chain, c)
+    overlaps = chain.delta[c.site - 1 : c.site + 1]
+    return {"seed": int(seed), "score": float(np.abs(overlaps - c.target_overlap).sum()), "mode_participation": P,
+            "overlap_left": float(overlaps[0]), "overlap_right": float(overlaps[1]), "qualifies": bool(ok)}
+
+
 def candidates(criteria: SelectionCriteria = SelectionCriteria()) -> list[dict]:
     """Every chain of seeds 0..n_seeds-1 that passes the linear rule, best overlap score first
     (the lower seed on ties): dicts with seed, score, mode_participation, overlap_left/right."""
     c = criteria
-    rows = []
-    for seed in range(c.n_seeds):
-        chain = random_chain(seed, c.alpha, c.N)
-        ok, P = qualifies(chain, c)
-        if ok:
-            overlaps = chain.delta[c.site - 1 : c.site + 1]
-            rows.append({"seed": seed, "score": float(np.abs(overlaps - c.target_overlap).sum()),
-                         "mode_participation": P, "overlap_left": float(overlaps[0]),
-                         "overlap_right": float(overlaps[1]), "qualifies": True})
+    rows = [row for row in map(lambda seed: candidate_row(seed, c), range(c.n_seeds)) if row["qualifies"]]
     if not rows:
         raise RuntimeError(f"no alpha = {c.alpha} chain among seeds 0..{c.n_seeds - 1} has mode {c.mode} "
                            f"with {c.p_min} <= P <= {c.p_max} peaked at site {c.site}; raise n_seeds")

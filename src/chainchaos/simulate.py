@@ -16,7 +16,7 @@ import xarray as xr
 
 from chainchaos import exactmath
 from chainchaos import observables as obs
-from chainchaos.errors import SimulationError, require
+from chainchaos.errors import SimulationError, require, require_finite_positive
 from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.integrators import advance, get_scheme
 from chainchaos.linear import modal_energies, normal_modes, participation_number
@@ -53,10 +53,7 @@ class SceneParameters:
     def __post_init__(self):
         model_id(self.model)
         get_scheme(self.integrator)
-        for key in ("energy", "t_final", "dt", "t_first_sample"):
-            value = getattr(self, key)
-            require(isinstance(value, (int, float)) and np.isfinite(value) and value > 0, key, value,
-                    "a finite number > 0")
+        require_finite_positive(self, "energy", "t_final", "dt", "t_first_sample")
         require(self.dt <= self.t_final, "dt", self.dt, f"dt <= t_final = {self.t_final}")
         unknown = [o for o in self.observables if o not in OBSERVABLES]
         require(not unknown, "observables", unknown, f"names among {list(OBSERVABLES)}")

@@ -18,7 +18,7 @@ from chainchaos.io import read_chain, write_netcdf
 from chainchaos.orbits import OrbitSettings
 from chainchaos.provenance import provenance_attrs
 from chainchaos.search import SearchPlan
-from chainchaos.selection import SelectionCriteria
+from chainchaos.selection import SelectionCriteria, candidate_row
 
 
 def run_rule(smk) -> None:
@@ -53,67 +53,80 @@ def _search_parts(params: dict):
             Criteria.from_config(params.get("claims")), int(params["site"]))
 
 
+def _write_search_product(ds, params: dict, selection: SelectionCriteria, path) -> None:
+    ds.attrs.update(provenance_attrs({"search": params["search"], "selection": vars(selection)}))
+    write_netcdf(ds, path)
+
+
+def search_candidates(inputs, outputs, params, wildcards) -> None:
+    """Stage 0 of the realization search: the candidates, by the linear rule (or the pinned seed)."""
+    selection, plan, *_ = _search_parts(params)
+    ds = search.candidates(selection, plan)
+    print(f"{ds.attrs['n_qualifying']} of {selection.n_seeds} seeds pass the linear rule; "
+          f"{ds.sizes['candidate']} candidates", file=sys.stderr)
+    _write_search_product(ds, params, selection, outputs["result"])
+
+
 def search_filter(inputs, outputs, params, wildcards) -> None:
     """Stage 1 of the realization search for one group of candidates."""
     selection, plan, settings, criteria, site = _search_parts(params)
+    rows = search.candidate_rows(xr.load_dataset(inputs["candidates"]))
     group = int(wildcards["group"])
-    ds = search.filter_group(selection, plan, settings, criteria, group, site, _progress(f"filter {group}"))
-    ds.attrs.update(provenance_attrs({"search": params["search"], "selection": vars(selection)}))
-    write_netcdf(ds, outputs["result"])
+    ds = search.filter_group(selection, plan, settings, criteria, rows, group, site, _progress(f"filter {group}"))
+    _write_search_product(ds, params, selection, outputs["result"])
 
 
 def search_score(inputs, outputs, params, wildcards) -> None:
     """Stage 2 of the realization search for the survivor of the given rank."""
     selection, plan, settings, criteria, site = _search_parts(params)
+    rows = search.candidate_rows(xr.load_dataset(inputs["candidates"]))
     filters = [xr.load_dataset(p) for p in _as_list(inputs.get("filters"))]
     rank = int(wildcards["rank"])
     candidate = int(search.survivors(filters, plan)[rank])
     print(f"survivor {rank}: candidate {candidate}", file=sys.stderr)
-    ds = search.score_candidate(selection, plan, settings, criteria, candidate, site, _progress(f"score {rank}"))
-    ds.attrs.update(provenance_attrs({"search": params["search"], "selection": vars(selection)}))
-    write_netcdf(ds, outputs["result"])
+    ds = search.score_candidate(selection, plan, settings, criteria, rows, candidate, site,
+                                _progress(f"score {rank}"))
+    _write_search_product(ds, params, selection, outputs["result"])
 
 
 def search_merge(inputs, outputs, params, wildcards) -> None:
     """The search's candidates, scores and choice as one file."""
     selection, plan, settings, criteria, site = _search_parts(params)
+    found = xr.load_dataset(inputs["candidates"])
     filters = [xr.load_dataset(p) for p in _as_list(inputs.get("filters"))]
     scores = [xr.load_dataset(p) for p in _as_list(inputs["scores"])]
-    ds = search.merge(selection, plan, settings, criteria, filters, scores)
-    ds.attrs.update(provenance_attrs({"search": params["search"], "selection": vars(selection)}))
+    ds = search.merge(selection, plan, settings, criteria, found, filters, scores)
     print(f"chose seed {ds.attrs['chosen_seed']} (score {ds.attrs['chosen_score']:.3f} of "
           f"{ds.attrs['n_statements']})", file=sys.stderr)
-    write_netcdf(ds, outputs["result"])
+    _write_search_product(ds, params, selection, outputs["result"])
 
 
 def select_chain(inputs, outputs, params, wildcards) -> None:
     """The chain file of the realization the search chose (or the pinned seed)."""
     from chainchaos.chain import random_chain
     from chainchaos.io import chain_dataset
-    from chainchaos.selection import candidates
 
     selection = _selection(params)
     found = xr.load_dataset(inputs["search"])
     seed = int(found.attrs["chosen_seed"])
     chain = random_chain(seed, selection.alpha, selection.N, float(params["chain"].get("wall_radius", 1.0)))
-    rows = candidates(selection)
-    row = next((r for r in rows if r["seed"] == seed), None)
+    row = search.candidate_rows(found)[int(found.attrs["chosen_candidate"])]
+    passes = bool(candidate_row(seed, selection)["qualifies"])
     record = {
         "selection_seed": seed,
-        "selection_candidates": len(rows),
+        "selection_candidates": int(found.attrs["n_qualifying"]),
         "selection_seeds_scanned": selection.n_seeds,
         "selection_mode": selection.mode,
         "selection_site": selection.site,
-        "selection_linear_rule": int(row is not None),
+        "selection_linear_rule": int(passes),
         "selection_pinned": int(found.attrs["pinned"]),
         "selection_search_score": float(found.attrs["chosen_score"]),
         "selection_search_candidates": int(found.attrs["n_candidates"]),
         "selection_rule": ("the linear rule (selection module) as a first filter, then the chain whose orbits "
                            "satisfy the most of the paper's qualitative statements (search module)"),
     }
-    if row is not None:
-        record.update(selection_score=row["score"], selection_mode_participation=row["mode_participation"],
-                      selection_overlap_left=row["overlap_left"], selection_overlap_right=row["overlap_right"])
+    record.update(selection_score=row["score"], selection_mode_participation=row["mode_participation"],
+                  selection_overlap_left=row["overlap_left"], selection_overlap_right=row["overlap_right"])
     print(f"chose seed {seed}", file=sys.stderr)
     write_netcdf(chain_dataset(chain, record), outputs["chain"])
 
@@ -155,5 +168,5 @@ def _as_list(value) -> list:
     return [value] if isinstance(value, str) else list(value)
 
 
-TASKS = {f.__name__: f for f in (search_filter, search_score, search_merge, select_chain, ensemble_verdicts,
+TASKS = {f.__name__: f for f in (search_candidates, search_filter, search_score, search_merge, select_chain, ensemble_verdicts,
                                   plot_search)}

@@ -20,22 +20,14 @@ import xarray as xr
 
 from chainchaos import paper
 from chainchaos.criteria import Criteria
-from chainchaos.reductions import (chaos_onset, final_average, is_chaotic, log_time_smooth, sustained_onset,
-                                   time_average)
+from chainchaos.observables import finite_time_mlce
+from chainchaos.reductions import (chaos_onset, final_average, is_chaotic, saturation_time, spreading_onset,
+                                   time_average, within_factor)
 
 T_PAPER = 1e5
 
 HOLDS, FAILS, UNDECIDED, UNTESTABLE = 1, 0, -1, -2
 VERDICT_NAMES = {HOLDS: "holds", FAILS: "fails", UNDECIDED: "undecided", UNTESTABLE: "not testable"}
-
-
-def _mlce(t, g):
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(t > 0, g / np.where(t > 0, t, 1.0), np.nan)
-
-
-def _within_factor(x, target, factor):
-    return bool(np.isfinite(x) and x > 0 and 1.0 / factor <= x / target <= factor)
 
 
 def _final_p(t, s, st, c):
@@ -54,28 +46,17 @@ def _p_until(t, s, st, c):
 
 
 def _saturation(t, s, st, c):
-    P = s["participation"]
-    target = c.saturation_fraction * final_average(t, P, c.final_window_decades)
-    keep = t > 0
-    return sustained_onset(t[keep], log_time_smooth(t[keep], P[keep], c.smoothing_decades), target,
-                           c.onset_hold_decades)
+    return saturation_time(t, s["participation"], c.saturation_fraction, c.smoothing_decades,
+                           c.final_window_decades, c.onset_hold_decades)
 
 
 def _spreading_onset(t, s, st, c):
-    """First time after plateau_start from which the smoothed P stays above spreading_factor
-    times its value at plateau_start (the end of the initial transient)."""
-    keep = t > 0
-    tt = t[keep]
-    smooth = log_time_smooth(tt, s["participation"][keep], c.smoothing_decades)
-    after = tt >= c.plateau_start
-    if not after.any():
-        return float("nan")
-    reference = smooth[np.flatnonzero(after)[0]]
-    return sustained_onset(tt, smooth, c.spreading_factor * reference, c.onset_hold_decades, c.plateau_start)
+    return spreading_onset(t, s["participation"], c.spreading_factor, c.smoothing_decades, c.plateau_start,
+                           c.onset_hold_decades)
 
 
 def _final_mlce(t, s, st, c):
-    return float(_mlce(t, s["log_growth"])[-1])
+    return float(finite_time_mlce(s["log_growth"], t)[-1])
 
 
 def _chaos_onset(t, s, st, c):
@@ -102,19 +83,19 @@ STATEMENT_KINDS = {
                       "not chaotic over the decade before the statement's end time"),
     "participation_below_until": (_p_until, lambda v, st, c: v < st.value, lambda st: st.until, "1",
                                   "time-averaged $P$ from $t = \\cc{crit.plateaustart}$ to the statement's end time below the paper's level"),
-    "saturation_near": (_saturation, lambda v, st, c: _within_factor(v, st.value, c.tolerance.time_factor),
+    "saturation_near": (_saturation, lambda v, st, c: within_factor(v, st.value, c.tolerance.time_factor),
                         lambda st: T_PAPER, "time",
                         "smoothed $P$ stays above \\cc{crit.saturationfraction} of its final average from a "
                         "time within a factor \\cc{tol.timefactor} of the paper's"),
     "spreading_onset_near": (_spreading_onset,
-                             lambda v, st, c: _within_factor(v, st.value, c.tolerance.time_factor),
+                             lambda v, st, c: within_factor(v, st.value, c.tolerance.time_factor),
                              lambda st: T_PAPER, "time",
                              "smoothed $P$ stays above \\cc{crit.spreadingfactor} times its value at "
                              "$t = \\cc{crit.plateaustart}$ from a time within a factor \\cc{tol.timefactor} of the paper's"),
-    "mlce_near": (_final_mlce, lambda v, st, c: _within_factor(v, st.value, c.tolerance.mlce_factor),
+    "mlce_near": (_final_mlce, lambda v, st, c: within_factor(v, st.value, c.tolerance.mlce_factor),
                   lambda st: T_PAPER, "1/time",
                   "$\\Lambda(t_\\mathrm{end})$ within a factor \\cc{tol.mlcefactor} of the paper's"),
-    "chaos_onset_near": (_chaos_onset, lambda v, st, c: _within_factor(v, st.value, c.tolerance.time_factor),
+    "chaos_onset_near": (_chaos_onset, lambda v, st, c: within_factor(v, st.value, c.tolerance.time_factor),
                          lambda st: T_PAPER, "time",
                          "onset of chaos (the criterion holding to the end) within a factor "
                          "\\cc{tol.timefactor} of the paper's time"),
@@ -141,19 +122,25 @@ def outcome(statement: paper.Statement, t, series: dict, criteria: Criteria, val
     return value, float(ok)
 
 
+def verdict_code(fraction: float, agreement: float) -> int:
+    """HOLDS when at least ``agreement`` of the orbits satisfy a statement, FAILS when at most
+    1 - ``agreement`` do, UNDECIDED between, UNTESTABLE for NaN (no orbit decided it)."""
+    if not np.isfinite(fraction):
+        return UNTESTABLE
+    if fraction >= agreement - 1e-12:
+        return HOLDS
+    if fraction <= 1.0 - agreement + 1e-12:
+        return FAILS
+    return UNDECIDED
+
+
 def ensemble_verdict(outcomes, agreement: float) -> tuple[float, int, int]:
     """(fraction satisfied among the decided orbits, number decided, verdict code)."""
     x = np.asarray(outcomes, dtype=float)
     decided = np.isfinite(x)
     n = int(decided.sum())
-    if n == 0:
-        return float("nan"), 0, UNTESTABLE
-    frac = float(x[decided].mean())
-    if frac >= agreement - 1e-12:
-        return frac, n, HOLDS
-    if frac <= 1.0 - agreement + 1e-12:
-        return frac, n, FAILS
-    return frac, n, UNDECIDED
+    frac = float(x[decided].mean()) if n else float("nan")
+    return frac, n, verdict_code(frac, agreement)
 
 
 def evaluate(statements, t, runs: list[dict], criteria: Criteria) -> dict[str, np.ndarray]:

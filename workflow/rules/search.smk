@@ -42,9 +42,24 @@ def search_runtime(orbits_per_job, t_final):
 N_STATEMENT_SCENES = len(paper.statement_scenes())
 
 
+rule search_candidates:
+    """Stage 0: the chains that pass the linear rule (or the pinned seed), computed once."""
+    output:
+        result=result("search", "candidates.nc"),
+    params:
+        **search_params(),
+    log:
+        log_file("search_candidates"),
+    benchmark:
+        benchmark_file("search_candidates")
+    script:
+        "../scripts/search_candidates.py"
+
+
 rule search_filter:
     """Stage 1: one short orbit per scene for a group of candidates."""
     input:
+        candidates=result("search", "candidates.nc"),
         kernels=result("scan", "kernels_compiled.txt"),
     output:
         result=result("search", "filter", "{group}.nc"),
@@ -66,6 +81,7 @@ rule search_filter:
 rule search_score:
     """Stage 2: the ensembles of the survivor of a given rank."""
     input:
+        candidates=result("search", "candidates.nc"),
         filters=search_filter_files(),
         kernels=result("scan", "kernels_compiled.txt"),
     output:
@@ -88,6 +104,7 @@ rule search_score:
 
 rule search_merge:
     input:
+        candidates=result("search", "candidates.nc"),
         filters=search_filter_files(),
         scores=search_score_files(),
     output:
