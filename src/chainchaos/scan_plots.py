@@ -73,7 +73,7 @@ def energy_scan_figure(ds):
             ax.set_xscale("log")
         for ax in axes[1]:
             ax.set_xlabel(ENERGY_LABEL)
-        aP.legend(loc="upper left")
+        aP.legend(loc="center left")
         aL.legend(loc="upper left")
         for ax, tag in zip(axes.flat, "abcd"):
             ax.set_title(f"({tag})", loc="left")
