@@ -28,7 +28,9 @@ from chainchaos.integrators import SCHEMES  # noqa: E402
 HERE = Path(__file__).resolve().parent
 SOURCE = HERE / "c_reference" / "srkn6b_chain.c"
 BUILD = HERE / "build"
-CFLAGS = ["-O3", "-march=native", "-std=c99", "-fno-math-errno"]
+#: gcc targets the CPU Numba compiles for (NUMBA_CPU_NAME, e.g. haswell for an AVX2 build), else the host.
+MARCH = os.environ.get("NUMBA_CPU_NAME") or "native"
+CFLAGS = ["-O3", f"-march={MARCH}", "-std=c99", "-fno-math-errno"]
 
 
 def compile_c(N: int) -> Path:

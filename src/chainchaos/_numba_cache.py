@@ -38,9 +38,13 @@ def kernel_sources() -> list[Path]:
 
 
 def kernel_key() -> str:
+    """A hash of the shared kernel modules and of a chosen vector width (``CHAINCHAOS_SIMD_LANES``,
+    which changes compiled code without changing a source file; the width fitted to the CPU needs
+    no key, as Numba keys its cache entries by the target CPU)."""
     digest = hashlib.sha256()
     for path in kernel_sources():
         digest.update(path.relative_to(PACKAGE).as_posix().encode() + b"\0" + path.read_bytes())
+    digest.update(b"lanes\0" + os.environ.get("CHAINCHAOS_SIMD_LANES", "").strip().encode())
     return digest.hexdigest()[:16]
 
 

@@ -33,12 +33,13 @@ same trajectories through both engines): about 0.17 us (Hertz, with gap counting
 """
 
 import numpy as np
-from numba import njit
+from numba import literally, njit
 
 from chainchaos.errors import require
-from chainchaos.integrators import _renormalise, get_scheme
-from chainchaos.models import HERTZ, coefficients, fput_force, fput_stiffness, hertz_force_stiffness, model_id
-from chainchaos.simd import LANES, vload, vstore
+from chainchaos.integrators import _renormalise, advance, get_scheme
+from chainchaos.models import (HERTZ, coefficients, fput_force, fput_stiffness, hertz_force, hertz_force_stiffness,
+                               model_id)
+from chainchaos.simd import LANES, vbelow, vload, vstore
 
 #: The per-row contents of a block's buffer, LANES doubles each. Row r of U and DQ is bead r-1
 #: (the walls are rows 0 and N+1); row n of P, DP and IM is bead n; row b of the bond parameters
@@ -51,53 +52,72 @@ ROW = len(QUANTITIES) * LANES
 
 
 @njit(cache=True, error_model="numpy")
-def _sweep(hertz, tangent, N, Z, a, c, do_drift, do_kick):
-    """One pass over the bonds b = 0..N of a block: drift(a) of bead b, then (if ``do_kick``) the
-    force and stiffness of bond b at the new positions and kick(c) of bead b-1, whose two bonds
-    are then both up to date. Per lane the operations are those of ``integrators.advance``'s
-    separate drift, force and kick loops, in the same order."""
+def _sweep(hertz, tangent, drift, kick, keep_forces, N, Z, a, c):
+    """One pass over the bonds b = 0..N of a block: (if ``drift``) drift(a) of bead b, then (if
+    ``kick``) the force and stiffness of bond b at the new positions and kick(c) of bead b-1,
+    whose two bonds are then both up to date; with ``keep_forces`` the forces and stiffnesses are
+    stored for a kick that follows without a drift. A bead's momenta stay in registers from its
+    drift to its kick. Per lane the operations are those of ``integrators.advance``, in the same
+    order. Row N (no bead) has zero momenta and inverse masses, so its drift leaves the right
+    wall at zero and the loop needs no branch."""
+    literally(hertz)
+    literally(tangent)
+    literally(drift)
+    literally(kick)
+    literally(keep_forces)
     u_left = vload(Z, _U)  # the wall
     dq_left2 = vload(Z, _DQ)  # deviation of bead b-2, then b-1
     dq_left = dq_left2
-    f_left = vload(Z, _F)
-    k_left = vload(Z, _K)
+    p_left = vload(Z, _P)  # momenta of bead b-1 (row 0 is bead 0: its kick comes at b = 1)
+    dp_left = p_left
+    f_left = p_left
+    k_left = p_left
     for b in range(N + 1):
         bond = b * ROW
         bead = bond + ROW  # row of bead b in U and DQ
         u_right = vload(Z, bead + _U)
         dq_right = vload(Z, bead + _DQ)
-        if do_drift and b < N:
+        p_right = vload(Z, bond + _P)
+        dp_right = vload(Z, bond + _DP) if tangent else p_right
+        if drift:
             im = vload(Z, bond + _IM)
-            u_right = u_right + a * im * vload(Z, bond + _P)
+            u_right = u_right + a * im * p_right
             vstore(Z, bead + _U, u_right)
             if tangent:
-                dq_right = dq_right + a * im * vload(Z, bond + _DP)
+                dq_right = dq_right + a * im * dp_right
                 vstore(Z, bead + _DQ, dq_right)
-        if do_kick:
+        if kick:
             if hertz:
-                f, k = hertz_force_stiffness(vload(Z, bond + _A), vload(Z, bond + _DL) + u_left - u_right)
+                overlap = vload(Z, bond + _DL) + u_left - u_right
+                if tangent:
+                    f, k = hertz_force_stiffness(vload(Z, bond + _A), overlap)
+                else:
+                    f = hertz_force(vload(Z, bond + _A), overlap)
+                    k = f
             else:
                 D = u_left - u_right
                 K2, K3, K4 = vload(Z, bond + _K2), vload(Z, bond + _K3), vload(Z, bond + _K4)
                 f = fput_force(K2, K3, K4, D)
-                k = fput_stiffness(K2, K3, K4, D)
-            vstore(Z, bond + _F, f)
-            if tangent:
-                vstore(Z, bond + _K, k)
+                k = fput_stiffness(K2, K3, K4, D) if tangent else f
+            if keep_forces:
+                vstore(Z, bond + _F, f)
+                if tangent:
+                    vstore(Z, bond + _K, k)
             if b >= 1:
                 m = bond - ROW  # bead b-1
-                vstore(Z, m + _P, vload(Z, m + _P) + c * (f_left - f))
+                vstore(Z, m + _P, p_left + c * (f_left - f))
                 if tangent:
-                    vstore(Z, m + _DP, vload(Z, m + _DP)
-                           + c * (k_left * (dq_left2 - dq_left) - k * (dq_left - dq_right)))
+                    vstore(Z, m + _DP, dp_left + c * (k_left * (dq_left2 - dq_left) - k * (dq_left - dq_right)))
             f_left, k_left = f, k
         u_left = u_right
         dq_left2, dq_left = dq_left, dq_right
+        p_left, dp_left = p_right, dp_right
 
 
 @njit(cache=True, error_model="numpy")
 def _kick_only(tangent, N, Z, c):
     """kick(c) of every bead with the stored forces and stiffnesses."""
+    literally(tangent)
     for n in range(N):
         row = n * ROW
         vstore(Z, row + _P, vload(Z, row + _P) + c * (vload(Z, row + _F) - vload(Z, row + ROW + _F)))
@@ -108,33 +128,46 @@ def _kick_only(tangent, N, Z, c):
 
 
 @njit(cache=True, error_model="numpy")
+def _count_gaps(N, Z, gap_steps, max_gaps):
+    """Open Hertz bonds of every lane, delta_b + u_{b-1} - u_b < 0: one step added to
+    gap_steps[b] (a row of LANES counts per bond, as doubles) and max_gaps (LANES) raised to the
+    number open now where that is larger."""
+    n_open = vload(max_gaps, 0) * 0.0
+    for b in range(N + 1):
+        bond = b * ROW
+        is_open = vbelow(vload(Z, bond + _DL) + vload(Z, bond + _U) - vload(Z, bond + ROW + _U), 0.0)
+        vstore(gap_steps, b * LANES, vload(gap_steps, b * LANES) + is_open)
+        n_open = n_open + is_open
+    vstore(max_gaps, 0, max(n_open, vload(max_gaps, 0)))
+
+
+@njit(cache=True, error_model="numpy")
 def _advance_block(hertz, tangent, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, gap_steps,
                    log_growth, max_gaps, bad):
-    """``advance_batch`` for one block in its buffer Z; gap_steps is (N+1) x LANES, flattened."""
+    """``advance_batch`` for one block in its buffer Z; gap_steps is (N+1) x LANES, flattened, and
+    with max_gaps held as doubles."""
+    literally(hertz)
+    literally(tangent)
     n_stages = drifts.shape[0]
     force_valid = False
-    n_open = np.zeros(LANES, dtype=np.int64)
     for step in range(n_steps):
         c = kicks[0] * dt
         if c != 0.0:
             if force_valid:
                 _kick_only(tangent, N, Z, c)
             else:
-                _sweep(hertz, tangent, N, Z, 0.0, c, False, True)
+                _sweep(hertz, tangent, False, True, False, N, Z, 0.0, c)
         for i in range(n_stages):
-            c = kicks[i + 1] * dt
-            _sweep(hertz, tangent, N, Z, drifts[i] * dt, c, True, c != 0.0)
+            a, c = drifts[i] * dt, kicks[i + 1] * dt
+            if c == 0.0:
+                _sweep(hertz, tangent, True, False, False, N, Z, a, c)
+            elif i == n_stages - 1:  # the next step's first kick reuses these forces
+                _sweep(hertz, tangent, True, True, True, N, Z, a, c)
+            else:
+                _sweep(hertz, tangent, True, True, False, N, Z, a, c)
             force_valid = c != 0.0
-        if track_gaps:  # open Hertz bonds: delta_b + u_{b-1} - u_b < 0
-            n_open[:] = 0
-            for b in range(N + 1):
-                for j in range(LANES):
-                    e = b * ROW + j
-                    if Z[e + _DL] + Z[e + _U] - Z[e + ROW + _U] < 0.0:
-                        gap_steps[b * LANES + j] += 1
-                        n_open[j] += 1
-            for j in range(LANES):
-                max_gaps[j] = max(max_gaps[j], n_open[j])
+        if track_gaps:
+            _count_gaps(N, Z, gap_steps, max_gaps)
         if (step + 1) % check_every == 0 or step + 1 == n_steps:
             for j in range(LANES):
                 s = 0.0
@@ -173,9 +206,9 @@ def advance_batch(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, dr
     N, B = q.shape
     hertz = model == HERTZ
     Z = _aligned_zeros((N + 2) * ROW)
-    block_gaps = np.zeros((N + 1) * LANES, dtype=np.int64)
+    block_gaps = _aligned_zeros((N + 1) * LANES)  # counts as doubles, exact below 2**53
     block_growth = np.zeros(LANES)
-    block_max_gaps = np.zeros(LANES, dtype=np.int64)
+    block_max_gaps = _aligned_zeros(LANES)
     block_bad = np.zeros(LANES, dtype=np.int64)
     for first in range(0, B, LANES):
         Z[:] = 0.0
@@ -196,16 +229,18 @@ def advance_batch(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, dr
             block_max_gaps[lane] = max_gaps[j]
             block_bad[lane] = bad[j]
         # literal flags: each combination compiles to its own code without these branches
-        args = (N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, block_gaps, block_growth,
-                block_max_gaps, block_bad)
         if hertz and tangent:
-            _advance_block(True, True, *args)
+            _advance_block(True, True, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+                           block_gaps, block_growth, block_max_gaps, block_bad)
         elif hertz:
-            _advance_block(True, False, *args)
+            _advance_block(True, False, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+                           block_gaps, block_growth, block_max_gaps, block_bad)
         elif tangent:
-            _advance_block(False, True, *args)
+            _advance_block(False, True, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+                           block_gaps, block_growth, block_max_gaps, block_bad)
         else:
-            _advance_block(False, False, *args)
+            _advance_block(False, False, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+                           block_gaps, block_growth, block_max_gaps, block_bad)
         for lane in range(min(LANES, B - first)):
             j = first + lane
             for n in range(N):
@@ -214,10 +249,14 @@ def advance_batch(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, dr
                 p[n, j] = Z[n * ROW + _P + lane]
                 dp[n, j] = Z[n * ROW + _DP + lane]
             for b in range(N + 1):
-                gap_steps[b, j] = block_gaps[b * LANES + lane]
+                gap_steps[b, j] = np.int64(block_gaps[b * LANES + lane])
             log_growth[j] = block_growth[lane]
-            max_gaps[j] = block_max_gaps[lane]
+            max_gaps[j] = np.int64(block_max_gaps[lane])
             bad[j] = block_bad[lane]
+
+
+#: The per-lane parameter arrays of ``lane_parameters``, in the engines' argument order.
+_PARAMETERS = ("inv_mass", "A", "delta", "K2", "K3", "K4")
 
 
 def lane_parameters(model: int, chains) -> dict[str, np.ndarray]:
@@ -230,7 +269,7 @@ def lane_parameters(model: int, chains) -> dict[str, np.ndarray]:
     require(len(chains) >= 1, "chains", len(chains), "at least one chain")
     N = chains[0].N
     require(all(c.N == N for c in chains), "N", sorted({c.N for c in chains}), "one N per batch")
-    cols = {k: [] for k in ("inv_mass", "A", "delta", "K2", "K3", "K4")}
+    cols = {k: [] for k in _PARAMETERS}
     for chain in chains:
         K2, K3, K4 = coefficients(model, chain)
         for key, value in zip(cols, (1.0 / chain.mass, chain.A, chain.delta, K2, K3, K4)):
@@ -281,12 +320,36 @@ class Batch:
             return
         bad = np.full(self.size, -1, dtype=np.int64)
         P = self.params
-        advance_batch(self.model, self.q, self.p, self.dq, self.dp, P["inv_mass"], P["A"], P["delta"],
-                      P["K2"], P["K3"], P["K4"], self.scheme.kicks, self.scheme.drifts, self.dt,
-                      int(n_steps), self.tangent, self.check_every, self.track_gaps, self.gap_steps,
+        advance_batch(self.model, self.q, self.p, self.dq, self.dp, *(P[key] for key in _PARAMETERS),
+                      self.scheme.kicks, self.scheme.drifts, self.dt, int(n_steps), self.tangent, self.check_every, self.track_gaps, self.gap_steps,
                       self.log_growth, self.max_gaps, bad)
         newly = (bad >= 0) & (self.bad < 0)
         self.bad[newly] = self.steps + bad[newly]
+        self.steps += int(n_steps)
+
+
+class SerialBatch(Batch):
+    """The interface of :class:`Batch` on the single-trajectory engine (``integrators.advance``),
+    one lane after the other: the cheaper engine for one lane or a few, with the same numbers."""
+
+    def advance(self, n_steps: int) -> None:
+        if n_steps <= 0:
+            return
+        N, B = self.q.shape
+        P = self.params
+        f, k = np.empty(N + 1), np.empty(N + 1)
+        for j in range(B):
+            q, p, dq, dp = (np.ascontiguousarray(a[:, j]) for a in (self.q, self.p, self.dq, self.dp))
+            diagnostics = np.array([self.log_growth[j], float(self.max_gaps[j])])
+            gaps = np.ascontiguousarray(self.gap_steps[:, j])
+            bad = advance(self.model, q, p, dq, dp, *(np.ascontiguousarray(P[key][:, j]) for key in _PARAMETERS),
+                          self.scheme.kicks, self.scheme.drifts, self.dt, int(n_steps), self.tangent,
+                          self.check_every, self.track_gaps, gaps, diagnostics, f, k)
+            self.q[:, j], self.p[:, j], self.dq[:, j], self.dp[:, j] = q, p, dq, dp
+            self.gap_steps[:, j] = gaps
+            self.log_growth[j], self.max_gaps[j] = diagnostics[0], int(diagnostics[1])
+            if bad >= 0 and self.bad[j] < 0:
+                self.bad[j] = self.steps + bad
         self.steps += int(n_steps)
 
 

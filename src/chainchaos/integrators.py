@@ -17,11 +17,12 @@ and ends with a kick (BAB, "first same as last") cost one force evaluation less 
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
+from numba import literally, njit
 
 from chainchaos.errors import require
 from chainchaos.exactmath import ln
 from chainchaos.models import HERTZ, fput_force, fput_stiffness, hertz_force, hertz_force_stiffness
+from chainchaos.simd import LANES, vload, vnext, vprev, vstore
 
 
 @dataclass(frozen=True)
@@ -116,11 +117,6 @@ def get_scheme(name: str) -> Scheme:
     return SCHEMES[name]
 
 
-#: Doubles per SIMD register (AVX-512; a multiple of AVX2's 4). The engine pads the bond loop to
-#: a multiple of it, so the square roots of the Hertz force run in full vectors, no scalar tail.
-SIMD_WIDTH = 8
-
-
 @njit(cache=True)
 def _renormalise(dq, dp):
     s = 0.0
@@ -133,7 +129,120 @@ def _renormalise(dq, dp):
     return ln(norm)
 
 
+#: The rows of the single engine's work buffer, all indexed alike and padded to whole vectors:
+#: displacements U and deviations DQ with the walls (U[0] = U[N+1] = 0, beads at 1..N), momenta
+#: P, DP and inverse masses IM of the beads at 1..N, bond force F and stiffness K and bond
+#: parameters A, DL (delta), K2, K3, K4 of bond b = 0..N, which joins U[b] and U[b+1].
+ROWS = ("U", "DQ", "P", "DP", "IM", "F", "K", "A", "DL", "K2", "K3", "K4")
+
+
+@njit(cache=True, inline="always")
+def _row_offsets(L):
+    """Where each of ``ROWS`` starts in the work buffer: rows of L + LANES doubles, so that every
+    row starts on a vector boundary and a sweep may read one vector past L."""
+    R = L + LANES
+    return 0, R, 2 * R, 3 * R, 4 * R, 5 * R, 6 * R, 7 * R, 8 * R, 9 * R, 10 * R, 11 * R
+
+
+@njit(cache=True, error_model="numpy")
+def _step_loop(hertz, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, gap_steps,
+               diagnostics):
+    """The steps of ``advance`` on its work buffer Z (``ROWS``, ``_row_offsets``).
+
+    Every loop runs over whole, aligned vectors of LANES elements, 0..L-1 with L >= N + 2; a
+    neighbour's values (U[b+1], F[i-1], ...) come from the vector before or after by a shuffle
+    (``simd.vnext``, ``simd.vprev``), not from an unaligned load of data just stored. Padding
+    beads (0 and N+1.. L-1) have zero inverse mass and never move (P[0] and P[N+1] collect the
+    walls' impulse, unused); padding bonds have zero parameters and carry no force. Per element
+    the operations are those of the scalar expressions, in the same order.
+    """
+    literally(hertz)
+    literally(tangent)
+    U, DQ, P, DP, IM, F, K, A, DL, K2, K3, K4 = _row_offsets(L)
+    zero = vload(Z, L)  # U[L:L+LANES], always zero
+    n_stages = drifts.shape[0]
+    force_valid = False
+    bad = -1
+    for step in range(n_steps):
+        for i in range(n_stages + 1):
+            c = kicks[i] * dt
+            if c != 0.0:
+                if not force_valid:  # bond b between U[b] and U[b+1]
+                    u = vload(Z, U)
+                    for b in range(0, L, LANES):
+                        u_after = vload(Z, U + b + LANES)
+                        u_right = vnext(u, u_after)
+                        if hertz:
+                            overlap = vload(Z, DL + b) + u - u_right
+                            if tangent:
+                                f, k = hertz_force_stiffness(vload(Z, A + b), overlap)
+                                vstore(Z, K + b, k)
+                            else:
+                                f = hertz_force(vload(Z, A + b), overlap)
+                        else:
+                            D = u - u_right
+                            k2, k3, k4 = vload(Z, K2 + b), vload(Z, K3 + b), vload(Z, K4 + b)
+                            f = fput_force(k2, k3, k4, D)
+                            if tangent:
+                                vstore(Z, K + b, fput_stiffness(k2, k3, k4, D))
+                        vstore(Z, F + b, f)
+                        u = u_after
+                    force_valid = True
+                # kick: p_i += c (F_{i-1} - F_i);  dp_i += c (G_{i-1} - G_i), G_b = K_b (dq_b - dq_{b+1})
+                f_before = zero
+                k_before = zero
+                dq_before = zero
+                dq = vload(Z, DQ)
+                for n in range(0, L, LANES):
+                    f = vload(Z, F + n)
+                    vstore(Z, P + n, vload(Z, P + n) + c * (vprev(f_before, f) - f))
+                    f_before = f
+                    if tangent:
+                        k = vload(Z, K + n)
+                        dq_after = vload(Z, DQ + n + LANES)
+                        d0, d2 = vprev(dq_before, dq), vnext(dq, dq_after)
+                        vstore(Z, DP + n, vload(Z, DP + n)
+                               + c * (vprev(k_before, k) * (d0 - dq) - k * (dq - d2)))
+                        k_before, dq_before, dq = k, dq, dq_after
+            if i < n_stages:
+                # drift: u_i += c p_i / m_i;  dq_i += c dp_i / m_i
+                c = drifts[i] * dt
+                for n in range(0, L, LANES):
+                    im = vload(Z, IM + n)
+                    vstore(Z, U + n, vload(Z, U + n) + c * im * vload(Z, P + n))
+                    if tangent:
+                        vstore(Z, DQ + n, vload(Z, DQ + n) + c * im * vload(Z, DP + n))
+                force_valid = False
+        if track_gaps:  # open Hertz bonds: delta_b + D_b < 0
+            n_open = 0
+            for b in range(N + 1):
+                is_open = Z[DL + b] + Z[U + b] - Z[U + b + 1] < 0.0
+                gap_steps[b] += is_open
+                n_open += is_open
+            if n_open > diagnostics[1]:
+                diagnostics[1] = n_open
+        if (step + 1) % check_every == 0 or step + 1 == n_steps:
+            s = 0.0
+            for n in range(1, N + 1):
+                s += Z[U + n] + Z[P + n]
+            if tangent:
+                diagnostics[0] += _renormalise(Z[DQ + 1:DQ + N + 1], Z[DP + 1:DP + N + 1])
+                s += Z[DQ + 1]
+            if not np.isfinite(s):
+                bad = step + 1
+                break
+    return bad
+
+
 @njit(cache=True)
+def _aligned_zeros(n):
+    """n zeros starting on a 64-byte boundary (a cache line, an AVX-512 vector)."""
+    buf = np.zeros(n + 8)
+    misalignment = int(buf.ctypes.data % np.uint64(64)) // 8
+    return buf[(8 - misalignment) % 8:][:n]
+
+
+@njit(cache=True, error_model="numpy")
 def advance(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, drifts, dt, n_steps,
             tangent, check_every, track_gaps, gap_steps, diagnostics, f, k):
     """Advance the state (q, p) and, if ``tangent``, the deviation vector (dq, dp) by n_steps.
@@ -145,87 +254,43 @@ def advance(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, drifts, 
     left holding the last bond forces and stiffnesses.
     Returns -1, or the number of steps done when a non-finite state stopped the run.
 
-    Speed (benchmarks/kernel_vs_c.py): the displacements and their deviations live in
-    U = (0, q, 0, ...) and DQ = (0, dq, 0, ...) with the walls, and the bond parameters are
-    zero-padded to L >= N+1 bonds, L a multiple of SIMD_WIDTH (padding bonds carry zero force), so
-    the loops carry no branch and the force loop no scalar tail; q and dq are written back on
-    exit. The loops are written out here, not in helpers taking arrays: a Numba call passes every
-    array field by value and an inlined one adds reference counting to the loop. The per-bond
-    force laws come from chainchaos.models and are compiled into this function; the cache directory
-    is keyed by the kernels' source (chainchaos._numba_cache), so an edit there recompiles it.
+    The state and parameters are copied into one aligned work buffer (``ROWS``), padded to whole
+    SIMD vectors (``chainchaos.simd``), and the steps run on explicit vectors across the bonds:
+    no loop has a scalar remainder or needs a runtime check that two arrays do not overlap. The
+    per-bond force laws come from chainchaos.models and are compiled in; the cache directory is
+    keyed by the kernels' source (chainchaos._numba_cache), so an edit there recompiles this.
     """
     N = q.shape[0]
-    L = (N + SIMD_WIDTH) // SIMD_WIDTH * SIMD_WIDTH
-    work = np.zeros((9, L + 2))
-    U, DQ = work[0], work[8]
-    U[1:N + 1] = q
-    DQ[1:N + 1] = dq
-    F, K, A_, delta_, K2_, K3_, K4_ = work[1], work[2], work[3], work[4], work[5], work[6], work[7]
-    A_[:N + 1] = A
-    delta_[:N + 1] = delta
-    K2_[:N + 1] = K2
-    K3_[:N + 1] = K3
-    K4_[:N + 1] = K4
-    hertz = model == HERTZ
-    n_stages = drifts.shape[0]
-    force_valid = False
-    bad = -1
-    for step in range(n_steps):
-        for i in range(n_stages + 1):
-            c = kicks[i] * dt
-            if c != 0.0:
-                if not force_valid:
-                    # bond b = 0..L-1 between U[b] and U[b+1]: force F[b], stiffness K[b]
-                    if hertz and tangent:
-                        for b in range(L):
-                            F[b], K[b] = hertz_force_stiffness(A_[b], delta_[b] + U[b] - U[b + 1])
-                    elif hertz:
-                        for b in range(L):
-                            F[b] = hertz_force(A_[b], delta_[b] + U[b] - U[b + 1])
-                    elif tangent:
-                        for b in range(L):
-                            D = U[b] - U[b + 1]
-                            F[b] = fput_force(K2_[b], K3_[b], K4_[b], D)
-                            K[b] = fput_stiffness(K2_[b], K3_[b], K4_[b], D)
-                    else:
-                        for b in range(L):
-                            F[b] = fput_force(K2_[b], K3_[b], K4_[b], U[b] - U[b + 1])
-                    force_valid = True
-                # kick: p_n += c (F_n - F_{n+1});  dp_n += c (G_n - G_{n+1}), G_b = K_b (dq_{b-1} - dq_b)
-                for n in range(N):
-                    p[n] += c * (F[n] - F[n + 1])
-                if tangent:
-                    for n in range(N):
-                        dp[n] += c * (K[n] * (DQ[n] - DQ[n + 1]) - K[n + 1] * (DQ[n + 1] - DQ[n + 2]))
-            if i < n_stages:
-                # drift: u_n += c p_n / m_n;  dq_n += c dp_n / m_n
-                c = drifts[i] * dt
-                for n in range(N):
-                    U[n + 1] += c * inv_mass[n] * p[n]
-                if tangent:
-                    for n in range(N):
-                        DQ[n + 1] += c * inv_mass[n] * dp[n]
-                force_valid = False
-        if track_gaps:  # open Hertz bonds: delta_b + D_b < 0
-            n_open = 0
-            for b in range(N + 1):
-                is_open = delta_[b] + U[b] - U[b + 1] < 0.0
-                gap_steps[b] += is_open
-                n_open += is_open
-            if n_open > diagnostics[1]:
-                diagnostics[1] = n_open
-        if (step + 1) % check_every == 0 or step + 1 == n_steps:
-            s = 0.0
-            for n in range(N):
-                s += U[n + 1] + p[n]
-            if tangent:
-                diagnostics[0] += _renormalise(DQ[1:N + 1], dp)
-                s += DQ[1]
-            if not np.isfinite(s):
-                bad = step + 1
-                break
-    q[:] = U[1:N + 1]
-    dq[:] = DQ[1:N + 1]
-    f[:N + 1] = F[:N + 1]
-    k[:N + 1] = K[:N + 1]
+    L = (N + 1 + LANES) // LANES * LANES
+    Z = _aligned_zeros(len(ROWS) * (L + LANES))
+    U, DQ, P, DP, IM, F, K, A_, DL, K2_, K3_, K4_ = _row_offsets(L)
+    Z[U + 1:U + N + 1] = q
+    Z[DQ + 1:DQ + N + 1] = dq
+    Z[P + 1:P + N + 1] = p
+    Z[DP + 1:DP + N + 1] = dp
+    Z[IM + 1:IM + N + 1] = inv_mass
+    Z[A_:A_ + N + 1] = A
+    Z[DL:DL + N + 1] = delta
+    Z[K2_:K2_ + N + 1] = K2
+    Z[K3_:K3_ + N + 1] = K3
+    Z[K4_:K4_ + N + 1] = K4
+    # literal flags: each combination compiles to its own code without these branches
+    if model == HERTZ and tangent:
+        bad = _step_loop(True, True, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+                         gap_steps, diagnostics)
+    elif model == HERTZ:
+        bad = _step_loop(True, False, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+                         gap_steps, diagnostics)
+    elif tangent:
+        bad = _step_loop(False, True, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+                         gap_steps, diagnostics)
+    else:
+        bad = _step_loop(False, False, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+                         gap_steps, diagnostics)
+    q[:] = Z[U + 1:U + N + 1]
+    dq[:] = Z[DQ + 1:DQ + N + 1]
+    p[:] = Z[P + 1:P + N + 1]
+    dp[:] = Z[DP + 1:DP + N + 1]
+    f[:N + 1] = Z[F:F + N + 1]
+    k[:N + 1] = Z[K:K + N + 1]
     return bad

@@ -20,10 +20,10 @@ from dataclasses import dataclass, field, fields
 import numpy as np
 
 from chainchaos import observables as obs
-from chainchaos.batch import Batch
+from chainchaos.batch import Batch, SerialBatch
 from chainchaos.errors import ParameterError, require, require_finite_positive
 from chainchaos.initial import initial_deviation, initial_displacement
-from chainchaos.integrators import advance, get_scheme
+from chainchaos.integrators import get_scheme
 from chainchaos.linear import modal_energies, normal_modes, participation_number
 from chainchaos.models import HERTZ, coefficients, energy_density, model_id, open_gaps, total_energy
 from chainchaos.simulate import sample_steps
@@ -109,43 +109,6 @@ def lane_factor(lane: int, settings: OrbitSettings) -> float:
     return 1.0 + settings.perturbation * xi
 
 
-class _SingleLoop:
-    """The Batch interface on top of the single-trajectory engine, one lane after the other."""
-
-    def __init__(self, model, chains, q, p, dq, dp, integrator, dt, tangent, track_gaps, check_every):
-        self.model = model_id(model)
-        self.chains = chains
-        self.scheme = get_scheme(integrator)
-        self.q, self.p, self.dq, self.dp = (np.ascontiguousarray(a, dtype=float).copy() for a in (q, p, dq, dp))
-        N, B = self.q.shape
-        self.dt, self.tangent, self.track_gaps, self.check_every = dt, tangent, track_gaps, check_every
-        self.gap_steps = np.zeros((N + 1, B), dtype=np.int64)
-        self.max_gaps = np.zeros(B, dtype=np.int64)
-        self.log_growth = np.zeros(B)
-        self.bad = np.full(B, -1, dtype=np.int64)
-        self.steps = 0
-        self._coef = [coefficients(self.model, c) for c in chains]
-
-    def advance(self, n_steps):
-        N, B = self.q.shape
-        for j in range(B):
-            c = self.chains[j]
-            q, p, dq, dp = (np.ascontiguousarray(a[:, j]) for a in (self.q, self.p, self.dq, self.dp))
-            diag = np.array([self.log_growth[j], float(self.max_gaps[j])])
-            gaps = np.ascontiguousarray(self.gap_steps[:, j])
-            f, k = np.empty(N + 1), np.empty(N + 1)
-            K2, K3, K4 = self._coef[j]
-            bad = advance(self.model, q, p, dq, dp, 1.0 / c.mass, c.A, c.delta, K2, K3, K4, self.scheme.kicks,
-                          self.scheme.drifts, self.dt, int(n_steps), self.tangent, self.check_every,
-                          self.track_gaps, gaps, diag, f, k)
-            self.q[:, j], self.p[:, j], self.dq[:, j], self.dp[:, j] = q, p, dq, dp
-            self.gap_steps[:, j] = gaps
-            self.log_growth[j], self.max_gaps[j] = diag[0], int(diag[1])
-            if bad >= 0 and self.bad[j] < 0:
-                self.bad[j] = self.steps + bad
-        self.steps += int(n_steps)
-
-
 def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None) -> tuple[np.ndarray, list[dict]]:
     """Integrate every orbit with its tangent map (and, for Hertz, gap counting) and sample it.
 
@@ -188,7 +151,7 @@ def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings) ->
     if settings.engine == "batch":
         engine = Batch(model, chains, Q0, P0, DQ0, DP0, **args)
     else:
-        engine = _SingleLoop(name, chains, Q0, P0, DQ0, DP0, **args)
+        engine = SerialBatch(model, chains, Q0, P0, DQ0, DP0, **args)
 
     steps = sample_schedule(settings)
     S = steps.size

@@ -8,23 +8,62 @@ writes it back, and ``+ - *`` (vector with vector or with a float, which is broa
 ``max(v, x)`` and ``np.sqrt(v)`` act lane by lane. Each lane gets exactly the IEEE operation its
 scalar expression would (no fused multiply-add, no reassociation), so the force laws of
 ``chainchaos.models``, written for floats, compile unchanged for vectors and give bit-identical
-results. LLVM lowers a vector of 8 doubles to one AVX-512 register, two AVX2 registers or four
-SSE2 registers, so the code runs on any x86-64 (and other) CPU.
+results.
+
+The width is fitted to the CPU the kernels are compiled for (``target_lanes``): 8 doubles where
+LLVM lowers such a vector to one 512-bit register (AVX-512), 4 otherwise (one AVX2 register).
+A vector wider than a register is split into several, and a sweep that carries a few vectors from
+one bond to the next then runs out of AVX2's 16 registers. ``CHAINCHAOS_SIMD_LANES`` (2, 4 or 8)
+selects another width; the result of every lane is the same at every width, to the bit.
 
 ``i`` is an element index (not bytes); the caller keeps i + LANES within the array: there is no
 bounds check. Loads and stores assume only the alignment of a double.
 """
 
 import operator
+import os
 
+import llvmlite.binding as llvm
 import numpy as np
 from llvmlite import ir
-from numba import types
-from numba.core import cgutils
+from numba import njit, types
+from numba.core import cgutils, config
+from numba.core.codegen import get_host_cpu_features
 from numba.extending import intrinsic, models, overload, register_model
 
-#: Doubles per vector: one AVX-512 register.
-LANES = 8
+from chainchaos.errors import require
+
+#: The environment variable that overrides the width fitted to the CPU.
+LANES_VARIABLE = "CHAINCHAOS_SIMD_LANES"
+ALLOWED_LANES = (2, 4, 8)
+
+
+def target_has_512_bit_vectors() -> bool:
+    """Whether LLVM, compiling for Numba's target CPU (NUMBA_CPU_NAME and NUMBA_CPU_FEATURES, else
+    the host), keeps a vector of 8 doubles in one register: asked of LLVM itself, by compiling
+    one vector addition, so that a CPU named without its feature list is judged right."""
+    cpu = config.CPU_NAME or llvm.get_host_cpu_name()
+    features = config.CPU_FEATURES if config.CPU_FEATURES is not None else get_host_cpu_features()
+    machine = llvm.Target.from_default_triple().create_target_machine(cpu=cpu, features=features)
+    module = llvm.parse_assembly(
+        "define <8 x double> @add(<8 x double> %a, <8 x double> %b) {\n"
+        "  %c = fadd <8 x double> %a, %b\n  ret <8 x double> %c\n}\n")
+    return "zmm" in machine.emit_assembly(module)
+
+
+def target_lanes() -> int:
+    """Doubles per vector: ``CHAINCHAOS_SIMD_LANES`` if set, else 8 on a CPU with 512-bit vectors
+    and 4 on others."""
+    override = os.environ.get(LANES_VARIABLE, "").strip()
+    if override:
+        require(override in {str(n) for n in ALLOWED_LANES}, LANES_VARIABLE, override,
+                f"one of {list(ALLOWED_LANES)}")
+        return int(override)
+    return 8 if target_has_512_bit_vectors() else 4
+
+
+#: Doubles per vector, fixed when the package is imported.
+LANES = target_lanes()
 
 _DOUBLE = ir.DoubleType()
 _VECTOR = ir.VectorType(_DOUBLE, LANES)
@@ -152,3 +191,47 @@ def _square_root(typingctx, a):
 def _sqrt(a):
     if isinstance(a, VectorType):
         return lambda a: _square_root(a)
+
+
+def _window_intrinsic(first: int, doc: str):
+    """The LANES consecutive lanes from lane ``first`` of the concatenation (a, b) of two vectors:
+    one shuffle in registers instead of an unaligned load of data just stored, which the CPU
+    cannot forward from its store buffer."""
+
+    @intrinsic
+    def window(typingctx, a, b):
+        if not (isinstance(a, VectorType) and isinstance(b, VectorType)):
+            return None
+
+        def codegen(context, builder, sig, args):
+            mask = ir.Constant(ir.VectorType(ir.IntType(32), LANES), list(range(first, first + LANES)))
+            return builder.shuffle_vector(args[0], args[1], mask)
+
+        return vector(a, b), codegen
+
+    window.__doc__ = doc
+    return window
+
+
+vnext = _window_intrinsic(1, "vnext(a, b) = (a[1], ..., a[LANES-1], b[0]): with a = x[i:i+LANES] and "
+                             "b = x[i+LANES:i+2*LANES], x[i+1:i+1+LANES].")
+vprev = _window_intrinsic(LANES - 1, "vprev(a, b) = (a[LANES-1], b[0], ..., b[LANES-2]): with "
+                                     "a = x[i-LANES:i] and b = x[i:i+LANES], x[i-1:i-1+LANES].")
+
+
+@intrinsic
+def _below(typingctx, a, b):
+    def codegen(context, builder, sig, args):
+        x = _broadcast(context, builder, args[0], sig.args[0])
+        y = _broadcast(context, builder, args[1], sig.args[1])
+        one, zero = ir.Constant(_VECTOR, [1.0] * LANES), ir.Constant(_VECTOR, [0.0] * LANES)
+        return builder.select(builder.fcmp_ordered("<", x, y), one, zero)
+
+    return vector(a, b), codegen
+
+
+@njit(cache=True, inline="always")
+def vbelow(a, b):
+    """1.0 in the lanes where a < b, else 0.0 (NaN compares false): a count that adds up in a
+    vector."""
+    return _below(a, b)

@@ -18,7 +18,8 @@ from chainchaos import exactmath
 from chainchaos import observables as obs
 from chainchaos.errors import SimulationError, require, require_finite_positive
 from chainchaos.initial import initial_deviation, initial_state
-from chainchaos.integrators import advance, get_scheme
+from chainchaos.batch import Batch, SerialBatch
+from chainchaos.integrators import get_scheme
 from chainchaos.linear import modal_energies, normal_modes, participation_number
 from chainchaos.models import coefficients, energy_density, model_id, open_gaps, total_energy
 from chainchaos.provenance import provenance_attrs
@@ -106,69 +107,96 @@ class ProgressReporter:
               f"elapsed {elapsed:.1f} s, left ~{left:.1f} s", file=self.stream or sys.stderr, flush=True)
 
 
+#: The settings that scenes integrated together in one batch must share: one step, one sampling
+#: schedule, one force law. Energies, excited beads, deviation vectors and observables may differ.
+BATCH_KEYS = ("model", "integrator", "dt", "t_final", "samples_per_decade", "t_first_sample", "check_every",
+              "k4_sign")
+
+
+def batch_key(params: SceneParameters) -> tuple:
+    return tuple(getattr(params, key) for key in BATCH_KEYS)
+
+
 def simulate(chain, params: SceneParameters, progress=None) -> xr.Dataset:
-    """Integrate the scene and return its Dataset (data contract of DESIGN section 7).
+    """Integrate one scene and return its Dataset (data contract of DESIGN section 7).
 
     Raises SimulationError naming the scene, the time and the value when the state becomes
     non-finite or the relative energy error exceeds ``params.max_energy_error``.
     """
-    chain = chain.with_k4_sign(params.k4_sign)
-    model = model_id(params.model)
-    scheme = get_scheme(params.integrator)
-    wanted = set(params.observables)
-    tangent = bool(wanted & TANGENT)
-    track_gaps = bool(wanted & GAPS)
-    N = chain.N
+    return simulate_scenes(chain, [params], progress)[0]
 
-    q, p, u0 = initial_state(model, chain, params.energy, params.excited_site)
-    dq, dp = initial_deviation(N, params.deviation_seed)
-    deviation0 = np.concatenate([dq, dp])
+
+def simulate_scenes(chain, scenes: list[SceneParameters], progress=None) -> list[xr.Dataset]:
+    """Integrate scenes that share ``BATCH_KEYS`` together, one lane each, and return their
+    Datasets in order. Several scenes run on the batch engine, a single one on
+    ``integrators.advance``; every lane's numbers are those of the scene integrated alone.
+
+    The tangent map runs when any scene needs it and gap counting when any counts gaps (neither
+    changes the orbit); each Dataset holds only its own scene's observables. A non-finite state or
+    an energy error above a scene's ``max_energy_error`` raises SimulationError naming that scene.
+    """
+    scenes = list(scenes)
+    require(len(scenes) >= 1, "scenes", len(scenes), "at least one scene")
+    keys = {batch_key(s) for s in scenes}
+    require(len(keys) == 1, "scenes", [s.name for s in scenes],
+            f"scenes that share {list(BATCH_KEYS)}")
+    first = scenes[0]
+    chain = chain.with_k4_sign(first.k4_sign)
+    model = model_id(first.model)
+    wanted = set().union(*(set(s.observables) for s in scenes))
+    tangent, track_gaps = bool(wanted & TANGENT), bool(wanted & GAPS)
+    N, B = chain.N, len(scenes)
+
+    Q0, P0, DQ0, DP0 = (np.zeros((N, B)) for _ in range(4))
+    u0, deviation0 = np.zeros(B), np.zeros((B, 2 * N))
+    for j, params in enumerate(scenes):
+        Q0[:, j], P0[:, j], u0[j] = initial_state(model, chain, params.energy, params.excited_site)
+        DQ0[:, j], DP0[:, j] = initial_deviation(N, params.deviation_seed)
+        deviation0[j] = np.concatenate([DQ0[:, j], DP0[:, j]])
     if not tangent:
-        dq, dp = np.zeros(N), np.zeros(N)
-    H0 = float(total_energy(model, chain, q, p))
+        DQ0[:], DP0[:] = 0.0, 0.0
+    H0 = np.array([float(total_energy(model, chain, Q0[:, j], P0[:, j])) for j in range(B)])
+    engine_type = Batch if B > 1 else SerialBatch
+    engine = engine_type(model, [chain] * B, Q0, P0, DQ0, DP0, integrator=first.integrator, dt=first.dt,
+                         tangent=tangent, track_gaps=track_gaps, check_every=first.check_every)
 
-    steps = sample_steps(params.t_final, params.dt, params.samples_per_decade, params.t_first_sample)
-    times = steps * params.dt
+    steps = sample_steps(first.t_final, first.dt, first.samples_per_decade, first.t_first_sample)
+    times = steps * first.dt
     S = steps.size
-    Q, Pm = np.empty((S, N)), np.empty((S, N))
-    DQ, DP = np.empty((S, N)), np.empty((S, N))
-    log_growth = np.zeros(S)
-    gap_steps = np.zeros((S, N + 1), dtype=np.int64)
-    max_gaps = np.zeros(S, dtype=np.int64)
-    energy_error = np.zeros(S)
-    Q[0], Pm[0], DQ[0], DP[0] = q, p, dq, dp
-
-    inv_mass = 1.0 / chain.mass
-    K2, K3, K4 = coefficients(model, chain)
-    f, k = np.empty(N + 1), np.empty(N + 1)
-    diagnostics = np.zeros(2)
-    counts = np.zeros(N + 1, dtype=np.int64)
+    Q, Pm, DQ, DP = (np.empty((B, S, N)) for _ in range(4))
+    log_growth, energy_error = np.zeros((B, S)), np.zeros((B, S))
+    gap_steps = np.zeros((B, S, N + 1), dtype=np.int64)
+    max_gaps = np.zeros((B, S), dtype=np.int64)
+    Q[:, 0], Pm[:, 0] = Q0.T, P0.T
+    DQ[:, 0], DP[:, 0] = DQ0.T, DP0.T
     if track_gaps:
-        max_gaps[0] = int(open_gaps(chain, q).sum())
+        max_gaps[:, 0] = open_gaps(chain, Q0.T).sum(axis=-1)
 
     for i in range(1, S):
-        counts[:] = 0
-        diagnostics[1] = 0.0
-        bad = advance(model, q, p, dq, dp, inv_mass, chain.A, chain.delta, K2, K3, K4,
-                      scheme.kicks, scheme.drifts, params.dt, int(steps[i] - steps[i - 1]), tangent,
-                      params.check_every, track_gaps, counts, diagnostics, f, k)
-        if bad >= 0:
-            raise SimulationError(params.name, (steps[i - 1] + bad) * params.dt,
-                                  "non-finite state (the orbit escaped to infinity or the step is unstable)",
-                                  float("nan"))
-        Q[i], Pm[i], DQ[i], DP[i] = q, p, dq, dp
-        log_growth[i] = diagnostics[0]
-        gap_steps[i] = counts
-        max_gaps[i] = int(diagnostics[1])
-        energy_error[i] = abs(total_energy(model, chain, q, p) - H0) / abs(H0)
-        if not energy_error[i] <= params.max_energy_error:
-            raise SimulationError(params.name, times[i], "relative energy error", energy_error[i],
-                                  f"{params.max_energy_error:g}")
+        engine.gap_steps[:] = 0  # counts and the largest number open are per sample interval
+        engine.max_gaps[:] = 0
+        engine.advance(int(steps[i] - steps[i - 1]))
+        for j, params in enumerate(scenes):
+            if engine.bad[j] >= 0:
+                raise SimulationError(params.name, engine.bad[j] * params.dt,
+                                      "non-finite state (the orbit escaped to infinity or the step is unstable)",
+                                      float("nan"))
+        Q[:, i], Pm[:, i] = engine.q.T, engine.p.T
+        DQ[:, i], DP[:, i] = engine.dq.T, engine.dp.T
+        log_growth[:, i] = engine.log_growth
+        gap_steps[:, i] = engine.gap_steps.T
+        max_gaps[:, i] = engine.max_gaps
+        for j, params in enumerate(scenes):
+            energy_error[j, i] = abs(total_energy(model, chain, Q[j, i], Pm[j, i]) - H0[j]) / abs(H0[j])
+            if not energy_error[j, i] <= params.max_energy_error:
+                raise SimulationError(params.name, times[i], "relative energy error", energy_error[j, i],
+                                      f"{params.max_energy_error:g}")
         if progress is not None:
             progress(times[i], steps[i] / steps[-1])
 
-    return _dataset(chain, params, model, times, steps, Q, Pm, DQ, DP, log_growth, gap_steps, max_gaps,
-                    energy_error, u0, H0, deviation0)
+    return [_dataset(chain, params, model, times, steps, Q[j], Pm[j], DQ[j], DP[j], log_growth[j], gap_steps[j],
+                     max_gaps[j], energy_error[j], u0[j], H0[j], deviation0[j])
+            for j, params in enumerate(scenes)]
 
 
 def _dataset(chain, params, model, times, steps, Q, Pm, DQ, DP, log_growth, gap_steps, max_gaps,
