@@ -2,7 +2,10 @@
 (chainchaos.integrators.advance) at N = 40: trajectories x steps per second, both models, with the
 tangent map (the scan's configuration: SRKN6b, Hertz with gap counting).
 
-    python benchmarks/batch_throughput.py [--steps 20000] [--lanes 8 16 32 64] [--json out.json]
+    python benchmarks/batch_throughput.py [--steps 20000] [--lanes B ...] [--json out.json]
+
+``--lanes`` defaults to one, two and eight SIMD blocks (``chainchaos.simd.LANES`` trajectories
+each). The first line names the machine: CPU model, vector extensions, Numba's target, the width.
 
 Both engines integrate the same trajectories: B single-site excitations of the alpha = 5 chain of
 seed 879 at energies log-spaced from 0.2 to 5 (a state's tails can underflow to subnormal
@@ -25,6 +28,8 @@ from chainchaos.batch import Batch
 from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.integrators import advance, get_scheme
 from chainchaos.models import coefficients, model_id
+from chainchaos.provenance import machine_line
+from chainchaos.simd import LANES
 
 
 def states(model, chain, B, site=21):
@@ -75,7 +80,7 @@ def batch_rate(name, chain, B, steps, dt, integrator, tangent, repeats):
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--steps", type=int, default=20000)
-    ap.add_argument("--lanes", type=int, nargs="+", default=[8, 16, 32, 64])
+    ap.add_argument("--lanes", type=int, nargs="+", default=[LANES, 2 * LANES, 8 * LANES])
     ap.add_argument("--dt", type=float, default=5e-3)
     ap.add_argument("--integrator", default="SRKN6b")
     ap.add_argument("--repeats", type=int, default=3)
@@ -85,6 +90,7 @@ def main(argv=None):
     chain = random_chain(879, 5.0, 40)
     tangent = not a.no_tangent
     rows = []
+    print(machine_line())
     print(f"N = {chain.N}, {a.integrator}, dt = {a.dt}, tangent = {tangent}, {a.steps} steps")
     print(f"{'model':6} {'engine':8} {'lanes':>5} {'traj*steps/s':>14} {'us/step/traj':>13} {'ratio':>6}")
     for name in ("hertz", "fput"):
@@ -97,7 +103,7 @@ def main(argv=None):
         print(f"{name:6} {'single':8} {1:5d} {single:14.4g} {1e6 / single:13.3f} {1.0:6.2f}")
     if a.json:
         with open(a.json, "w") as fh:
-            json.dump({"N": chain.N, "integrator": a.integrator, "dt": a.dt, "tangent": tangent,
+            json.dump({"machine": machine_line(), "N": chain.N, "integrator": a.integrator, "dt": a.dt, "tangent": tangent,
                        "steps": a.steps, "results": rows}, fh, indent=1)
     return rows
 

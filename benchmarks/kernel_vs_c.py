@@ -24,6 +24,7 @@ import numpy as np  # noqa: E402
 
 from chainchaos.bench import CHECK_EVERY, DT, benchmark_problem, run_kernel  # noqa: E402
 from chainchaos.integrators import SCHEMES  # noqa: E402
+from chainchaos.provenance import machine_line  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 SOURCE = HERE / "c_reference" / "srkn6b_chain.c"
@@ -81,6 +82,7 @@ def main(argv=None) -> int:
 
     exe = compile_c(args.N)
     problems = {model: benchmark_problem(model, args.N) for model in ("hertz", "fput")}
+    print(machine_line())
     print(f"N = {args.N}, H = 1.8, dt = {DT}, best of {args.repeats} runs of {args.steps} steps, "
           f"one thread (NUMBA_NUM_THREADS = {os.environ['NUMBA_NUM_THREADS']}); "
           f"C: gcc {' '.join(CFLAGS)}\n")

@@ -15,6 +15,7 @@ import xarray as xr
 from matplotlib.image import imread
 
 from chainchaos import paper
+from chainchaos.simd import LANES
 
 ROOT = Path(__file__).resolve().parents[1]
 QUICK = ["--configfile", "config/quick.yaml"]
@@ -73,14 +74,18 @@ def test_deleted_panel_reruns_only_its_plot_rule(quick):
 
 
 @pytest.mark.slow
-def test_changed_scene_parameter_reruns_only_that_scene(quick, tmp_path):
+def test_changed_scene_parameter_reruns_only_its_batch(quick, tmp_path):
+    """The changed scene leaves its batch (its step differs now), so it and the scenes it shared a
+    SIMD block with rerun, and the panels drawn from them; nothing else."""
     override = tmp_path / "override.yaml"
     override.write_text("scenes:\n  hertz_H1.8:\n    dt: 0.005\n")
     code, out = snakemake(*QUICK, str(override), "--config", f"results={quick}", "-n")
     assert code == 0, out
     jobs = planned_jobs(out)
-    assert jobs["simulate_scene"] == 1 and "hertz_H1.8.nc" in out
-    affected = paper.panels_of_scene("hertz_H1.8")
+    rerun = set(re.findall(r"scenes/(\w+_H[\d.]+)\.nc", out))
+    assert "hertz_H1.8" in rerun and all(name.startswith("hertz_") for name in rerun)
+    assert jobs["simulate_scene"] == len(rerun) and jobs["simulate_scenes"] == 2
+    affected = {p for name in rerun for p in paper.panels_of_scene(name)}
     assert jobs["plot_panel"] == len(affected)
     assert jobs["plot_figure"] == len({p[:-1] for p in affected})
     assert "compute_ensemble" not in jobs and "select_chain" not in jobs
@@ -91,6 +96,9 @@ def test_paper_scale_dry_run_plans_every_scene(tmp_path):
     assert code == 0, out[-4000:]
     jobs = planned_jobs(out)
     assert jobs["simulate_scene"] == len(paper.scenes()) and jobs["plot_panel"] == len(paper.PANELS)
+    # scenes that share their settings run together, one SIMD block per job
+    per_model = [sum(s.model == model for s in paper.scenes().values()) for model in ("hertz", "fput")]
+    assert jobs["simulate_scenes"] == sum(-(-n // LANES) for n in per_model)
     # the realization search: stage-1 jobs of 8 candidates, the survivors' scores, one verdict per scene
     assert jobs["search_candidates"] == 1 and jobs["search_filter"] == 5 and jobs["search_score"] == 6
     assert jobs["search_merge"] == 1

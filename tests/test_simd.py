@@ -5,7 +5,7 @@ import pytest
 from numba import njit
 
 from chainchaos.models import fput_force, fput_stiffness, hertz_force_stiffness
-from chainchaos.simd import LANES, vload, vstore
+from chainchaos.simd import LANES, vbelow, vload, vnext, vprev, vstore
 
 # normal numbers, signed zeros, subnormals, infinities and NaN in every operand position
 SPECIAL = np.array([1.5, -2.25, 0.0, -0.0, 5e-324, -1e-310, np.inf, -np.inf, np.nan, 3.0e300, -7.0, 0.125])
@@ -90,3 +90,24 @@ def test_load_and_store_move_lanes_elements_from_any_offset():
 def test_vectors_reject_arrays_they_are_not_made_for():
     with pytest.raises(Exception, match="vload"):
         _load_store(np.arange(3 * LANES, dtype=np.int64), 0, np.zeros(3 * LANES), 0)
+
+
+@njit
+def _windows(x, out):
+    a, b = vload(x, 0), vload(x, LANES)
+    vstore(out[0], 0, vnext(a, b))
+    vstore(out[1], 0, vprev(a, b))
+    vstore(out[2], 0, vbelow(a, 0.0))
+    vstore(out[3], 0, vbelow(a, b))
+
+
+def test_windows_shift_by_one_element_across_two_vectors_and_below_counts():
+    x = np.array([3.0, -1.0, -0.0, np.nan, -np.inf, 2.0, -5e-324, 7.0] * (2 * LANES))[:2 * LANES]
+    x[LANES:] = np.arange(LANES) - 1.5
+    out = np.zeros((4, LANES))
+    _windows(x, out)
+    np.testing.assert_array_equal(out[0], x[1:1 + LANES])
+    np.testing.assert_array_equal(out[1], x[LANES - 1:2 * LANES - 1])
+    with np.errstate(invalid="ignore"):
+        np.testing.assert_array_equal(out[2], (x[:LANES] < 0.0).astype(float))  # NaN: not below
+        np.testing.assert_array_equal(out[3], (x[:LANES] < x[LANES:]).astype(float))

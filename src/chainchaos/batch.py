@@ -1,42 +1,41 @@
 """A batch engine: B trajectories integrated at once, vectorised across trajectories.
 
 ``integrators.advance`` integrates one trajectory, vectorised across its bonds: every split step
-makes five passes over arrays of ~N doubles (drift, force, kick, and the same for the tangent
-map), each bounded by loads, stores and loop overhead. Here the trajectories go in blocks of
-``LANES`` (8) and the arithmetic runs on explicit SIMD vectors (``chainchaos.simd``), one lane per
-trajectory: a drift, the forces and stiffnesses at the new positions and a kick are one sweep over
-the bonds that keeps the neighbouring beads' vectors in registers, so the square roots of the
-Hertz force overlap with the rest of the work. A block's state and parameters live in one
-64-byte aligned buffer, row by row (row r: the 8 lanes of each of the ``QUANTITIES`` in turn):
-all a sweep touches fits in L1 cache, every vector load is aligned, and no two quantities that
-one iteration reads and writes sit 4 KiB apart (which made the timing vary by a third from one
-process to the next with separately allocated arrays).
+makes separate passes over the bonds (forces, kick, drift), each storing what the next one loads.
+Here the trajectories go in blocks of ``LANES`` (the SIMD width fitted to the CPU,
+``chainchaos.simd``), one lane per trajectory: a drift, the forces and stiffnesses at the new
+positions and a kick are one sweep over the bonds that keeps the neighbouring beads' vectors, and
+a bead's momenta from its drift to its kick, in registers, so the square roots of the Hertz force
+overlap with the rest of the work; forces are stored only where the next step's first kick reuses
+them. A block's state and parameters live in one 64-byte aligned buffer, row by row (row r: the
+LANES lanes of each of the ``QUANTITIES`` in turn): all a sweep touches fits in L1 cache, every
+vector load is aligned, and no two quantities that one iteration reads and writes sit 4 KiB apart
+(separately allocated arrays made the timing vary from one process to the next).
 
 The trajectories of a batch share the model, the scheme, dt and the number of steps; each has its
 own state, deviation vector and chain parameters (per-trajectory arrays shaped (N+1, B) for bond
 parameters and (N, B) for inverse masses: one chain repeated, or B different realizations). A
 batch of any size B is padded to whole blocks by repeating its last trajectory.
+:class:`SerialBatch` offers the same interface on the single-trajectory engine, the cheaper one
+for a lane or two.
 
-Semantics are those of ``integrators.advance`` lane by lane, to the bit (tests/test_batch.py): the
-same kick/drift table (``integrators.SCHEMES``), the same floating-point operations in the same
-order, a force evaluation reused by the next kick when no drift came in between, the tangent map
-drift(c): dq += c dt M^-1 dp, kick(d): dp -= d dt Hess V(u) dq with Hess V tridiagonal from the
-bond stiffness, and every ``check_every`` steps and at the end of a call the deviation vector of
-each trajectory renormalised, its log growth added to ``log_growth[j]``. A trajectory whose state
-becomes non-finite is reported in ``bad[j]`` (the step of the first failed check) while the other
-lanes go on: lanes never mix.
+Semantics are those of ``integrators.advance`` lane by lane, to the bit (tests/test_batch.py,
+tests/test_lane_width.py, at every width): the same kick/drift table (``integrators.SCHEMES``),
+the same floating-point operations in the same order, a force evaluation reused by the next kick
+when no drift came in between, the tangent map drift(c): dq += c dt M^-1 dp, kick(d): dp -= d dt
+Hess V(u) dq with Hess V tridiagonal from the bond stiffness, and every ``check_every`` steps and
+at the end of a call the deviation vector of each trajectory renormalised, its log growth added
+to ``log_growth[j]``. A trajectory whose state becomes non-finite is reported in ``bad[j]`` (the
+step of the first failed check) while the other lanes go on: lanes never mix.
 
-Throughput (benchmarks/batch_throughput.py, CPU time, N = 40, SRKN6b with the tangent map, the
-same trajectories through both engines): about 0.17 us (Hertz, with gap counting) and 0.14 us
-(FPUT) per step and trajectory, against 0.37-0.40 us for ``integrators.advance``: 2.1-2.4x and
-2.7-3x, from 8 lanes up.
+Speed: ``benchmarks/batch_throughput.py`` (figures in the README, per machine).
 """
 
 import numpy as np
 from numba import literally, njit
 
 from chainchaos.errors import require
-from chainchaos.integrators import _renormalise, advance, get_scheme
+from chainchaos.integrators import _aligned_zeros, _renormalise, advance, get_scheme
 from chainchaos.models import (HERTZ, coefficients, fput_force, fput_stiffness, hertz_force, hertz_force_stiffness,
                                model_id)
 from chainchaos.simd import LANES, vbelow, vload, vstore
@@ -57,8 +56,9 @@ def _sweep(hertz, tangent, drift, kick, keep_forces, N, Z, a, c):
     ``kick``) the force and stiffness of bond b at the new positions and kick(c) of bead b-1,
     whose two bonds are then both up to date; with ``keep_forces`` the forces and stiffnesses are
     stored for a kick that follows without a drift. A bead's momenta stay in registers from its
-    drift to its kick. Per lane the operations are those of ``integrators.advance``, in the same
-    order. Row N (no bead) has zero momenta and inverse masses, so its drift leaves the right
+    drift to its kick, and a bond's force f and tangent force g = k (dq_{b-1} - dq_b) from the
+    kick of the bead on its left to that of the bead on its right: each is computed once. Per lane
+    the operations are those of ``integrators.advance``, in the same order. Row N (no bead) has zero momenta and inverse masses, so its drift leaves the right
     wall at zero and the loop needs no branch."""
     literally(hertz)
     literally(tangent)
@@ -66,12 +66,11 @@ def _sweep(hertz, tangent, drift, kick, keep_forces, N, Z, a, c):
     literally(kick)
     literally(keep_forces)
     u_left = vload(Z, _U)  # the wall
-    dq_left2 = vload(Z, _DQ)  # deviation of bead b-2, then b-1
-    dq_left = dq_left2
+    dq_left = vload(Z, _DQ)  # deviation of bead b-1
     p_left = vload(Z, _P)  # momenta of bead b-1 (row 0 is bead 0: its kick comes at b = 1)
     dp_left = p_left
-    f_left = p_left
-    k_left = p_left
+    f_left = p_left  # force of bond b-1
+    g_left = p_left  # tangent force k (dq_{b-2} - dq_{b-1}) of bond b-1
     for b in range(N + 1):
         bond = b * ROW
         bead = bond + ROW  # row of bead b in U and DQ
@@ -103,28 +102,34 @@ def _sweep(hertz, tangent, drift, kick, keep_forces, N, Z, a, c):
                 vstore(Z, bond + _F, f)
                 if tangent:
                     vstore(Z, bond + _K, k)
+            g = k * (dq_left - dq_right) if tangent else f
             if b >= 1:
                 m = bond - ROW  # bead b-1
                 vstore(Z, m + _P, p_left + c * (f_left - f))
                 if tangent:
-                    vstore(Z, m + _DP, dp_left + c * (k_left * (dq_left2 - dq_left) - k * (dq_left - dq_right)))
-            f_left, k_left = f, k
+                    vstore(Z, m + _DP, dp_left + c * (g_left - g))
+            f_left, g_left = f, g
         u_left = u_right
-        dq_left2, dq_left = dq_left, dq_right
+        dq_left = dq_right
         p_left, dp_left = p_right, dp_right
 
 
 @njit(cache=True, error_model="numpy")
 def _kick_only(tangent, N, Z, c):
-    """kick(c) of every bead with the stored forces and stiffnesses."""
+    """kick(c) of every bead with the stored forces and stiffnesses (the tangent force of bond b,
+    g_b = k_b (dq_{b-1} - dq_b), carried from one bead to the next)."""
     literally(tangent)
+    f_left = vload(Z, _F)
+    g_left = vload(Z, _K) * (vload(Z, _DQ) - vload(Z, ROW + _DQ)) if tangent else f_left
     for n in range(N):
         row = n * ROW
-        vstore(Z, row + _P, vload(Z, row + _P) + c * (vload(Z, row + _F) - vload(Z, row + ROW + _F)))
+        f = vload(Z, row + ROW + _F)
+        vstore(Z, row + _P, vload(Z, row + _P) + c * (f_left - f))
+        f_left = f
         if tangent:
-            k0, k1 = vload(Z, row + _K), vload(Z, row + ROW + _K)
-            d0, d1, d2 = vload(Z, row + _DQ), vload(Z, row + ROW + _DQ), vload(Z, row + 2 * ROW + _DQ)
-            vstore(Z, row + _DP, vload(Z, row + _DP) + c * (k0 * (d0 - d1) - k1 * (d1 - d2)))
+            g = vload(Z, row + ROW + _K) * (vload(Z, row + ROW + _DQ) - vload(Z, row + 2 * ROW + _DQ))
+            vstore(Z, row + _DP, vload(Z, row + _DP) + c * (g_left - g))
+            g_left = g
 
 
 @njit(cache=True, error_model="numpy")
@@ -179,14 +184,6 @@ def _advance_block(hertz, tangent, N, Z, kicks, drifts, dt, n_steps, check_every
                     s += Z[ROW + _DQ + j]
                 if bad[j] < 0 and not np.isfinite(s):
                     bad[j] = step + 1
-
-
-@njit(cache=True)
-def _aligned_zeros(n):
-    """n zeros starting on a 64-byte boundary (a cache line, an AVX-512 vector)."""
-    buf = np.zeros(n + 8)
-    misalignment = int(buf.ctypes.data % np.uint64(64)) // 8
-    return buf[(8 - misalignment) % 8:][:n]
 
 
 @njit(cache=True, error_model="numpy")

@@ -190,20 +190,17 @@ def _step_loop(hertz, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every,
                     force_valid = True
                 # kick: p_i += c (F_{i-1} - F_i);  dp_i += c (G_{i-1} - G_i), G_b = K_b (dq_b - dq_{b+1})
                 f_before = zero
-                k_before = zero
-                dq_before = zero
+                g_before = zero
                 dq = vload(Z, DQ)
                 for n in range(0, L, LANES):
                     f = vload(Z, F + n)
                     vstore(Z, P + n, vload(Z, P + n) + c * (vprev(f_before, f) - f))
                     f_before = f
                     if tangent:
-                        k = vload(Z, K + n)
                         dq_after = vload(Z, DQ + n + LANES)
-                        d0, d2 = vprev(dq_before, dq), vnext(dq, dq_after)
-                        vstore(Z, DP + n, vload(Z, DP + n)
-                               + c * (vprev(k_before, k) * (d0 - dq) - k * (dq - d2)))
-                        k_before, dq_before, dq = k, dq, dq_after
+                        g = vload(Z, K + n) * (dq - vnext(dq, dq_after))
+                        vstore(Z, DP + n, vload(Z, DP + n) + c * (vprev(g_before, g) - g))
+                        g_before, dq = g, dq_after
             if i < n_stages:
                 # drift: u_i += c p_i / m_i;  dq_i += c dp_i / m_i
                 c = drifts[i] * dt

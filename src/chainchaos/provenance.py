@@ -121,6 +121,15 @@ def machine_attrs() -> dict:
     }
 
 
+def machine_line() -> str:
+    """One line naming the machine a benchmark ran on: CPU model, its vector extensions, the CPU
+    Numba compiles for and the SIMD width of the engines."""
+    from chainchaos.simd import LANES
+
+    return (f"CPU: {cpu_model()} | vector extensions: {cpu_vector_extensions() or 'unknown'} | "
+            f"Numba target: {numba_target_cpu()} | SIMD width: {LANES} doubles")
+
+
 def provenance_attrs(parameters: dict) -> dict:
     from chainchaos import __version__
 

@@ -117,6 +117,22 @@ def batch_key(params: SceneParameters) -> tuple:
     return tuple(getattr(params, key) for key in BATCH_KEYS)
 
 
+def scene_batches(scenes: dict[str, SceneParameters], lanes: int) -> dict[str, list[str]]:
+    """The scenes (by name, in order) that run together: those sharing ``BATCH_KEYS``, at most
+    ``lanes`` at a time (one SIMD block of the batch engine), named ``<model>-<n>``."""
+    require(int(lanes) >= 1, "lanes", lanes, "an integer >= 1")
+    groups: dict[tuple, list[str]] = {}
+    for name, params in scenes.items():
+        groups.setdefault(batch_key(params), []).append(name)
+    batches, count = {}, {}
+    for key, names in groups.items():
+        for start in range(0, len(names), int(lanes)):
+            model = key[0]
+            count[model] = count.get(model, 0) + 1
+            batches[f"{model}-{count[model]}"] = names[start:start + int(lanes)]
+    return batches
+
+
 def simulate(chain, params: SceneParameters, progress=None) -> xr.Dataset:
     """Integrate one scene and return its Dataset (data contract of DESIGN section 7).
 
@@ -269,13 +285,16 @@ def _dataset(chain, params, model, times, steps, Q, Pm, DQ, DP, log_growth, gap_
 
 
 def warm_up() -> str:
-    """Compile (or load from the on-disk cache) every kernel a scene uses; returns the cache dir."""
+    """Compile (or load from the on-disk cache) every kernel the scenes use, on both engines;
+    returns the cache directory."""
     import os
 
+    from chainchaos import batch
     from chainchaos.chain import random_chain
 
+    batch.warm_up()
     chain = random_chain(0, 2.0, 4)
     for model in ("hertz", "fput"):
-        observables = OBSERVABLES if model == "hertz" else tuple(o for o in OBSERVABLES if o not in GAPS)
-        simulate(chain, SceneParameters(model, 0.01, 1.0, 0.1, observables=observables, excited_site=2))
+        for observables in (("mlce", "n_gaps") if model == "hertz" else ("mlce",), ("participation",)):
+            simulate(chain, SceneParameters(model, 0.01, 1.0, 0.1, observables=observables, excited_site=2))
     return os.environ.get("NUMBA_CACHE_DIR", "")

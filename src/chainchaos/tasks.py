@@ -155,6 +155,26 @@ def ensemble_verdicts(inputs, outputs, params, wildcards) -> None:
     write_netcdf(ds, outputs["result"])
 
 
+def simulate_scenes(inputs, outputs, params, wildcards) -> None:
+    """The scenes of one batch integrated together; each scene's Dataset a group of one file."""
+    from chainchaos.io import atomic_output
+    from chainchaos.simulate import ProgressReporter, SceneParameters
+    from chainchaos.simulate import simulate_scenes as integrate_scenes
+
+    scenes = [SceneParameters(**{**p, "observables": tuple(p["observables"])}) for p in params["scenes"]]
+    chain = read_chain(inputs["chain"])
+    datasets = integrate_scenes(chain, scenes, ProgressReporter(wildcards["batch"], scenes[0].t_final, every=10.0))
+    with atomic_output(outputs["batch"]) as tmp:
+        for i, (scene, ds) in enumerate(zip(scenes, datasets)):
+            ds.to_netcdf(tmp, mode="w" if i == 0 else "a", group=scene.name, engine="netcdf4")
+
+
+def simulate_scene(inputs, outputs, params, wildcards) -> None:
+    """One scene's file, taken from the batch it was integrated in."""
+    with xr.open_dataset(inputs["batch"], group=wildcards["scene"], engine="netcdf4") as ds:
+        write_netcdf(ds.load(), outputs["scene"])
+
+
 def plot_search(inputs, outputs, params, wildcards) -> None:
     """The search figure: how many candidates satisfy each statement, and every candidate."""
     from chainchaos.search_plots import plot_search as draw
@@ -169,4 +189,4 @@ def _as_list(value) -> list:
 
 
 TASKS = {f.__name__: f for f in (search_candidates, search_filter, search_score, search_merge, select_chain, ensemble_verdicts,
-                                  plot_search)}
+                                  simulate_scenes, simulate_scene, plot_search)}

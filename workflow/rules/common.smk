@@ -4,6 +4,8 @@ import json
 import re
 
 from chainchaos import paper
+from chainchaos.simd import LANES
+from chainchaos.simulate import SceneParameters, scene_batches
 
 RESULTS = config["results"]
 SCENES = paper.scenes()
@@ -40,6 +42,14 @@ def scene_parameters(scene_name):
         name=scene_name,
     )
     return params
+
+
+# Scenes that share their integration settings run together, as many as the SIMD width of this
+# machine's batch engine (chainchaos.simd.LANES); results do not depend on the grouping.
+SCENE_BATCHES = scene_batches(
+    {name: SceneParameters(**scene_parameters(name)) for name in SCENES}, LANES
+)
+SCENE_BATCH = {name: batch for batch, names in SCENE_BATCHES.items() for name in names}
 
 
 def scene_file(scene_name):

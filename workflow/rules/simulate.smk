@@ -1,4 +1,5 @@
-# One simulation per scene, each computing only the observables its panels use.
+# The scenes, integrated in batches of those that share their settings (one SIMD block each), each
+# computing only the observables its panels use, then one file per scene.
 
 
 from chainchaos._numba_cache import kernel_sources
@@ -6,6 +7,7 @@ from chainchaos._numba_cache import kernel_sources
 
 wildcard_constraints:
     scene="|".join(re.escape(name) for name in SCENES),
+    batch="|".join(re.escape(name) for name in SCENE_BATCHES),
 
 
 rule compile_kernels:
@@ -23,21 +25,38 @@ rule compile_kernels:
         "../scripts/compile_kernels.py"
 
 
-rule simulate_scene:
+rule simulate_scenes:
+    """The scenes of one batch (those sharing their integration settings, one SIMD block of the
+    batch engine) integrated together; every lane's numbers are those of its scene alone."""
     input:
         chain=result("chain", "chain.nc"),
         kernels=result("kernels_compiled.txt"),
     output:
-        scene=result("scenes", "{scene}.nc"),
-    priority: 5  # 1-1.5 min each: before the many short scan and plot jobs, so the figures do not wait
+        batch=temp(result("scenes", "batches", "{batch}.nc")),
+    priority: 5  # the longest jobs: before the many short scan and plot jobs, so the figures do not wait
     params:
-        scene=lambda wildcards: scene_parameters(wildcards.scene),
+        scenes=lambda wildcards: [scene_parameters(name) for name in SCENE_BATCHES[wildcards.batch]],
+    log:
+        log_file("simulate_scenes", "{batch}"),
+    benchmark:
+        benchmark_file("simulate_scenes", "{batch}")
+    resources:
+        mem_mb=1000,
+        runtime=60,  # paper scale: 2e8 steps of one SIMD block
+    script:
+        "../scripts/simulate_scenes.py"
+
+
+rule simulate_scene:
+    """One scene's file, from its batch."""
+    input:
+        batch=lambda wildcards: result("scenes", "batches", f"{SCENE_BATCH[wildcards.scene]}.nc"),
+    output:
+        scene=result("scenes", "{scene}.nc"),
+    priority: 5
     log:
         log_file("simulate_scene", "{scene}"),
     benchmark:
         benchmark_file("simulate_scene", "{scene}")
-    resources:
-        mem_mb=1000,
-        runtime=60,  # paper scale: 2e8 steps, ~1-3 CPU-minutes
     script:
         "../scripts/simulate_scene.py"

@@ -1,0 +1,5 @@
+"""simulate_scenes: see chainchaos.tasks.simulate_scenes."""
+
+from chainchaos.tasks import run_rule
+
+run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
