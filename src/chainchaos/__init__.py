@@ -11,23 +11,26 @@ configure_numba_cache()
 
 __version__ = "0.1.0"
 
-from chainchaos.chain import Chain, chain_from_radii, random_chain  # noqa: E402
-from chainchaos.linear import (  # noqa: E402
-    ensemble_participation,
-    mode_participation,
-    normal_modes,
-    participation_number,
-)
-from chainchaos.simulate import simulate  # noqa: E402
+#: The package's public names and the modules that define them, imported on first use: a job
+#: that draws a panel need not load the engines.
+_EXPORTS = {
+    "Chain": "chainchaos.chain",
+    "chain_from_radii": "chainchaos.chain",
+    "random_chain": "chainchaos.chain",
+    "normal_modes": "chainchaos.linear",
+    "mode_participation": "chainchaos.linear",
+    "participation_number": "chainchaos.linear",
+    "ensemble_participation": "chainchaos.linear",
+    "simulate": "chainchaos.simulate",
+}
+__all__ = [*_EXPORTS, "__version__"]
 
-__all__ = [
-    "Chain",
-    "chain_from_radii",
-    "random_chain",
-    "normal_modes",
-    "mode_participation",
-    "participation_number",
-    "ensemble_participation",
-    "simulate",
-    "__version__",
-]
+
+def __getattr__(name):
+    if name in _EXPORTS:
+        import importlib
+
+        value = getattr(importlib.import_module(_EXPORTS[name]), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'chainchaos' has no attribute {name!r}")
