@@ -42,6 +42,8 @@ def target_has_512_bit_vectors() -> bool:
     """Whether LLVM, compiling for Numba's target CPU (NUMBA_CPU_NAME and NUMBA_CPU_FEATURES, else
     the host), keeps a vector of 8 doubles in one register: asked of LLVM itself, by compiling
     one vector addition, so that a CPU named without its feature list is judged right."""
+    llvm.initialize_native_target()  # what Numba does when it first compiles; idempotent
+    llvm.initialize_native_asmprinter()
     cpu = config.CPU_NAME or llvm.get_host_cpu_name()
     features = config.CPU_FEATURES if config.CPU_FEATURES is not None else get_host_cpu_features()
     machine = llvm.Target.from_default_triple().create_target_machine(cpu=cpu, features=features)
