@@ -48,9 +48,9 @@ def _cmd_ensemble(args) -> None:
 
 def _cmd_simulate(args) -> None:
     from chainchaos.io import read_chain, write_netcdf
-    from chainchaos.simulate import OBSERVABLES, ProgressReporter, SceneParameters, simulate
+    from chainchaos.simulate import ProgressReporter, SceneParameters, simulate
 
-    observables = OBSERVABLES if args.observables == ["all"] else tuple(args.observables)
+    observables = None if "all" in args.observables else tuple(args.observables)
     params = SceneParameters(model=args.model, energy=args.energy, t_final=args.t_final, dt=args.dt,
                              integrator=args.integrator, observables=observables,
                              excited_site=args.site, k4_sign=args.k4_sign, deviation_seed=args.deviation_seed,
@@ -115,7 +115,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--dt", type=_positive_float, default=5e-4, help="time step (default 5e-4, the paper's)")
     p.add_argument("--integrator", choices=sorted(SCHEMES), default="SRKN6b", help="splitting scheme")
     p.add_argument("--observables", nargs="+", default=["all"], choices=["all", *OBSERVABLES],
-                   metavar="NAME", help=f"observables to compute (default all): {', '.join(OBSERVABLES)}")
+                   metavar="NAME", help=f"observables to compute: {', '.join(OBSERVABLES)} (default all the "
+                                        f"model has; the gap observables only for hertz)")
     p.add_argument("--site", type=int, default=21, help="excited bead (default 21)")
     p.add_argument("--k4-sign", type=float, choices=[1.0, -1.0], default=1.0,
                    help="sign of K4: +1 the paper's, -1 the Taylor expansion of Hertz (default +1)")
