@@ -6,14 +6,6 @@
 # grid. `resources:` (mem_mb, runtime in minutes) feed the SLURM profile (profiles/slurm/);
 # a group's runtime follows from its steps and the measured cost per step, `scan.us_per_step`.
 
-import math
-
-from chainchaos import scan as _scan
-
-SCAN = config["scan"]
-SCAN_KINDS = ("energy_scan", "disorder")
-SCAN_FILES = {"energy_scan": "energy_scan", "disorder": "disorder_statistics"}
-
 
 wildcard_constraints:
     group=r"\d+",
@@ -26,24 +18,6 @@ localrules:
     plot_energy_scan,
     plot_disorder_statistics,
     scan_thresholds,
-
-
-def scan_params(kind):
-    """The part of the scan block a kind's jobs depend on: a change elsewhere reruns nothing here."""
-    return {"settings": SCAN.get("settings", {}), kind: SCAN[kind]}
-
-
-def scan_group_files(kind):
-    return [result("scan", "groups", kind, f"{g:04d}.nc") for g in range(_scan.n_groups(kind, SCAN))]
-
-
-def scan_runtime(kind, per_job=True):
-    """Minutes a group job may take: its trajectories x steps x measured cost, x3 and + 10 min
-    for sampling, start-up and a busy node."""
-    s = _scan.settings_for(kind, SCAN)
-    n = SCAN[kind]["trajectories_per_job"] if per_job else len(_scan.items(kind, SCAN))
-    seconds = n * (s.t_final / s.dt) * SCAN.get("us_per_step", 1.0) * 1e-6
-    return int(math.ceil(3 * seconds / 60)) + 10
 
 
 rule compile_scan_kernels:
