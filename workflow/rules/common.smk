@@ -7,6 +7,7 @@ import re
 
 from chainchaos import paper
 from chainchaos import scan as _scan
+from chainchaos.report_captions import figure_labels, figure_subcategory, panel_labels
 from chainchaos.search import SearchPlan
 
 RESULTS = config["results"]
@@ -66,6 +67,17 @@ def figure_inputs(number):
     for panel_id in paper.panels_of_figure(number):
         files.update(panel_inputs(panel_id))
     return files
+
+
+# The categories of the HTML report (snakemake --report; captions in workflow/report/, whose
+# workflow.rst links to them by name).
+REPORT_CATEGORIES = {
+    "figures": "Paper figures",
+    "claims": "Claims",
+    "scan": "Energy scan and disorder statistics",
+    "search": "Realization search",
+    "numerics": "Numerical accuracy",
+}
 
 
 PANEL_TARGETS = [

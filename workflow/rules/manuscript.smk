@@ -33,7 +33,13 @@ rule evaluate_claims:
     input:
         unpack(claims_inputs),
     output:
-        **CLAIMS_OUTPUTS,
+        csv=report(
+            CLAIMS_OUTPUTS["csv"],
+            caption="../report/claims.rst",
+            category=REPORT_CATEGORIES["claims"],
+            labels={"result": "claims table (CSV)", "shows": "the paper's statements and verdicts"},
+        ),
+        **{key: path for key, path in CLAIMS_OUTPUTS.items() if key != "csv"},
     params:
         claims=config.get("claims", {}),
         simulation=config["simulation"],

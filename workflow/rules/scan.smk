@@ -122,7 +122,12 @@ rule plot_energy_scan:
         data=result("scan", "energy_scan.nc"),
     output:
         pdf=result("figures", "energy_scan.pdf"),
-        png=result("figures", "energy_scan.png"),
+        png=report(
+            result("figures", "energy_scan.png"),
+            caption="../report/energy_scan.rst",
+            category=REPORT_CATEGORIES["scan"],
+            labels={"result": "energy scan", "shows": "P, Lambda, eta and gaps against H"},
+        ),
     params:
         kind="energy_scan",
         dpi=config["figures"]["dpi"],
@@ -142,7 +147,12 @@ rule plot_disorder_statistics:
         data=result("scan", "disorder_statistics.nc"),
     output:
         pdf=result("figures", "disorder_statistics.pdf"),
-        png=result("figures", "disorder_statistics.png"),
+        png=report(
+            result("figures", "disorder_statistics.png"),
+            caption="../report/disorder_statistics.rst",
+            category=REPORT_CATEGORIES["scan"],
+            labels={"result": "disorder statistics", "shows": "probabilities and onsets against H"},
+        ),
     params:
         kind="disorder",
         dpi=config["figures"]["dpi"],
@@ -162,7 +172,12 @@ rule scan_thresholds:
     input:
         data=result("scan", "energy_scan.nc"),
     output:
-        csv=result("scan", "thresholds.csv"),
+        csv=report(
+            result("scan", "thresholds.csv"),
+            caption="../report/thresholds.rst",
+            category=REPORT_CATEGORIES["scan"],
+            labels={"result": "thresholds (CSV)", "shows": "threshold energies of the scan"},
+        ),
         tex=result("scan", "thresholds.tex"),
     log:
         log_file("scan_thresholds"),

@@ -93,7 +93,12 @@ rule plot_search:
         search=result("search", "search.nc"),
     output:
         pdf=result("figures", "search.pdf"),
-        png=result("figures", "search.png"),
+        png=report(
+            result("figures", "search.png"),
+            caption="../report/search.rst",
+            category=REPORT_CATEGORIES["search"],
+            labels={"result": "search", "shows": "statements kept by each candidate chain"},
+        ),
     params:
         dpi=config["figures"]["dpi"],
     log:
