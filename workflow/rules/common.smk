@@ -108,7 +108,9 @@ def scan_params(kind):
 
 
 def scan_group_files(kind):
-    return [result("scan", "groups", kind, f"{g:04d}.nc") for g in range(_scan.n_groups(kind, SCAN))]
+    return [
+        result("scan", "groups", kind, f"{g:04d}.nc") for g in range(_scan.n_groups(kind, SCAN))
+    ]
 
 
 def scan_runtime(kind):
@@ -141,7 +143,9 @@ def search_score_files():
 
 def search_runtime(orbits_per_job, t_final):
     """Minutes a search or verdict job may take, at the search's step."""
-    return cluster_runtime(orbits_per_job, float(t_final), float(config["search"]["settings"]["dt"]))
+    return cluster_runtime(
+        orbits_per_job, float(t_final), float(config["search"]["settings"]["dt"])
+    )
 
 
 # ---- claims and manuscript (workflow/rules/manuscript.smk) -------------------------------------
@@ -174,11 +178,13 @@ def manuscript_inputs(wildcards=None):
         **CLAIMS_OUTPUTS,
     }
     files.update({f"fig{n}": result("figures", f"fig{n}.pdf") for n in FIGURES})
-    files.update({
-        "figscan": result("figures", "energy_scan.pdf"),
-        "figdisorder": result("figures", "disorder_statistics.pdf"),
-        "thresholds": result("scan", "thresholds.tex"),
-        "figsearch": result("figures", "search.pdf"),
-    })
+    files.update(
+        {
+            "figscan": result("figures", "energy_scan.pdf"),
+            "figdisorder": result("figures", "disorder_statistics.pdf"),
+            "thresholds": result("scan", "thresholds.tex"),
+            "figsearch": result("figures", "search.pdf"),
+        }
+    )
     files.update({f"numerics_{key}": path for key, path in manuscript_numerics().items()})
     return files

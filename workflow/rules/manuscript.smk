@@ -29,7 +29,8 @@ NUMERICS_FOR_MANUSCRIPT = {
 
 rule evaluate_claims:
     """Measure every quantitative statement of the paper on the scene, chain and ensemble files:
-    claims.csv, the LaTeX table and notes, and macros.tex with every number the manuscript prints."""
+    claims.csv, the LaTeX table and notes, and macros.tex with every number the manuscript prints.
+    """
     input:
         unpack(claims_inputs),
     output:
@@ -37,9 +38,16 @@ rule evaluate_claims:
             CLAIMS_OUTPUTS["csv"],
             caption="../report/claims.rst",
             category=REPORT_CATEGORIES["claims"],
-            labels={"result": "claims table (CSV)", "shows": "the paper's statements and verdicts"},
+            labels={
+                "result": "claims table (CSV)",
+                "shows": "the paper's statements and verdicts",
+            },
         ),
-        **{key: path for key, path in CLAIMS_OUTPUTS.items() if key != "csv"},
+        table=CLAIMS_OUTPUTS["table"],
+        notes=CLAIMS_OUTPUTS["notes"],
+        scenes=CLAIMS_OUTPUTS["scenes"],
+        macros=CLAIMS_OUTPUTS["macros"],
+        search=CLAIMS_OUTPUTS["search"],
     params:
         claims=config.get("claims", {}),
         simulation=config["simulation"],

@@ -4,8 +4,10 @@
 # energy error of the production step per scene. Settings: the `numerics` block of the config.
 
 if "numerics" not in config:
-    raise ValueError("config lacks the `numerics` block that workflow/rules/numerics.smk reads "
-                     "(see config/config.yaml)")
+    raise ValueError(
+        "config lacks the `numerics` block that workflow/rules/numerics.smk reads "
+        "(see config/config.yaml)"
+    )
 
 NUMERICS = config["numerics"]
 # The scheme of the production runs: advice, drift and the Taylor-sign probe measure that one.

@@ -151,7 +151,10 @@ rule plot_disorder_statistics:
             result("figures", "disorder_statistics.png"),
             caption="../report/disorder_statistics.rst",
             category=REPORT_CATEGORIES["scan"],
-            labels={"result": "disorder statistics", "shows": "probabilities and onsets against H"},
+            labels={
+                "result": "disorder statistics",
+                "shows": "probabilities and onsets against H",
+            },
         ),
     params:
         kind="disorder",

@@ -4,6 +4,7 @@
 # (chainchaos.verdicts) that the claims table reads. With `search.pinned_seed` set, the search
 # re-scores that chain only.
 
+
 wildcard_constraints:
     rank=r"\d+",
 
