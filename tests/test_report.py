@@ -44,7 +44,10 @@ def test_every_panel_and_figure_has_a_caption_that_renders_cleanly():
     figure = (ROOT / report_captions.FIGURE_TEMPLATE).read_text()
     for n in paper.LAYOUTS:
         html = _render(figure, number=str(n))
-        assert f"Fig. {n}</strong>" in html and html.count("<li>") >= len(paper.panels_of_figure(n)), n
+        kinds = {paper.PANELS[p].kind for p in paper.panels_of_figure(n)}
+        assert f"Fig. {n}</strong>" in html and html.count("<li>") >= len(kinds), n
+        for p in paper.panels_of_figure(n):
+            assert re.search(rf"<em>\([a-z, ]*{p[-1]}[a-z, ]*\)</em>", html), p
 
 
 def test_every_statement_is_about_a_panel_of_the_figure_it_cites():

@@ -102,7 +102,10 @@ def figure_caption(number: int) -> str:
     scenes = _scenes_text(panels)
     lines = [f"**Fig. {number}** of the paper ({figure.title})." + (f" Scenes: {scenes}." if scenes else ""),
              "", "**Panels**", ""]
-    lines += [f"- *({p[-1]})* {rst(paper.KIND_TEXT[paper.PANELS[p].kind][1])}" for p in panels]
+    by_kind: dict[str, list[str]] = {}
+    for p in panels:
+        by_kind.setdefault(paper.PANELS[p].kind, []).append(p[-1])
+    lines += [f"- *({', '.join(letters)})* {rst(paper.KIND_TEXT[kind][1])}" for kind, letters in by_kind.items()]
     lines += ["", "**The paper reports**", ""]
     lines += [f"- *({', '.join(letters)})* {rst(text)}" for letters, text in figure.reports.items()]
     statements = [s for s in paper.STATEMENTS if any(p in panels for p in paper.statement_panels(s))]
