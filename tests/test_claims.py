@@ -416,3 +416,29 @@ def test_every_macro_the_manuscript_uses_is_generated(quick):
     used |= {f"claim.{k}.{f}" for k in re.findall(r"\\(?:claim|verdict)\{([^}]+)\}", tex) for f in ("n", "verdict")}
     used = {u for u in used if "#" not in u}
     assert used and used <= defined, sorted(used - defined)
+
+
+def test_threshold_sentences_read_correctly_when_no_grid_energy_qualifies():
+    """The manuscript's threshold phrases name the energy, or say that the grid has none, in words
+    that read as a sentence (no "H = (none on the grid)")."""
+    attrs = {"t_final": 1e5, "dt": 5e-3, "integrator": "SRKN6b", "p_delocalized": 10.0, "chaos_slope": -0.5}
+    scan = synthetic_scan("000000011111", ("000000000000", "000000001110"))
+    scan.attrs.update(attrs)
+    E = np.array([0.5, 1.0, 2.0])
+    probability = {"hertz": [0.25, 0.5, 1.0], "fput": [0.0, 0.25, 0.25]}
+    p = (("model", "energy"), np.array([probability["hertz"], probability["fput"]]))
+    disorder = xr.Dataset({f"probability_{key}{band}": p for key in ("delocalized", "chaotic")
+                           for band in ("", "_lower", "_upper")},
+                          coords={"model": ["hertz", "fput"], "energy": E, "realization": np.arange(4)},
+                          attrs={**attrs, "alpha": 5.0})
+    disorder["valid"] = (("model", "energy"), np.ones((2, 3), dtype=np.int8))
+    m = cl.scan_macros(scan, disorder)
+    assert m["scan.hertz.delocalized.always"] == r"delocalized at every scanned $H \ge 1.87$"
+    assert m["scan.fput.delocalized.first"] == m["scan.fput.delocalized.always"] == "delocalized at no scanned energy"
+    assert m["scan.fput.chaotic.first"] == "first chaotic at $H = 2.85$"
+    assert m["scan.fput.chaotic.always"] == "not chaotic at the highest scanned energy, $H = 10$"
+    assert m["disorder.hertz.delocalized.half"] == (
+        "the lowest energy of the grid at which at least half of the Hertz realizations delocalize is $H = 1.00$")
+    assert m["disorder.fput.delocalized.half"] == (
+        "at no energy of the grid do at least half of the FPUT realizations delocalize")
+    assert not any("none on the grid" in value for value in m.values())

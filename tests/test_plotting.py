@@ -8,8 +8,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
+from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.colors import LogNorm, to_rgb
 from matplotlib.image import imread
+from matplotlib.text import Text
 
 from chainchaos import paper
 from chainchaos.plotting import plot_figure, plot_panel, save_figure
@@ -120,6 +122,27 @@ def test_every_figure_draws_its_panels_lettered(number, data):
     assert letters == expected
     assert len(expected) == len(paper.panels_of_figure(number))
     assert _render(fig).startswith(b"\x89PNG")
+
+
+@pytest.mark.parametrize("number", sorted(paper.LAYOUTS))
+def test_panel_titles_clear_the_colour_bar_labels(number, data):
+    """A lettered title that reaches over a map's colour bar (Fig. 9h) does not touch its tick labels."""
+    fig = plot_figure(number, data)
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    renderer = canvas.get_renderer()
+    bars = [ax for ax in fig.axes if ax.get_label() == "<colorbar>"]
+    labels = [(label.get_text(), label.get_window_extent(renderer)) for bar in bars
+              for tick in bar.yaxis.get_major_ticks() if min(bar.get_ylim()) <= tick.get_loc() <= max(bar.get_ylim())
+              for label in (tick.label1, tick.label2) if label.get_visible() and label.get_text()]
+    for ax in fig.axes:
+        title = ax.get_title(loc="left")
+        if not title:
+            continue
+        text = next(t for t in ax.get_children() if isinstance(t, Text) and t.get_text() == title)
+        box = text.get_window_extent(renderer)
+        clashes = [name for name, extent in labels if box.overlaps(extent)]
+        assert not clashes, f"figure {number}: title {title!r} overlaps colour-bar label(s) {clashes}"
 
 
 def test_unknown_panel_and_figure_are_refused(data):

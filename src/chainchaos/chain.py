@@ -113,14 +113,23 @@ def random_chain(seed: int, alpha: float, N: int = 40, wall_radius: float = 1.0)
     return Chain(random_radii(seed, alpha, N), float(alpha), int(seed), wall_radius)
 
 
-def chain_from_radii(radii, reference_radius: float | None = None, wall_radius: float = 1.0) -> Chain:
-    """A chain from radii in any unit, scaled by ``reference_radius`` (default (min + max) / 2).
+def chain_from_radii(radii, reference_radius: float | None = None, wall_radius: float = 1.0,
+                     alpha: float | None = None) -> Chain:
+    """A chain from radii in any unit: r_n = R_n / ``reference_radius``.
 
-    The chain's ``alpha`` is max/min of the given radii, the paper's definition.
+    A random chain's R_ref is the mean (1 + alpha) / 2 of the distribution its radii were drawn
+    from, which the radii alone do not give: by default R_ref is their (min + max) / 2 and
+    ``alpha`` their max / min (the paper's definition). Reduced radii read from a chain file are
+    already in units of R_ref: ``reference_radius=1`` and the file's alpha give back that chain.
     """
     R = np.asarray(radii, dtype=float)
     require(R.ndim == 1 and R.size >= 2, "N", R.size, "N >= 2 radii")
     require(bool(np.all(np.isfinite(R)) and np.all(R > 0)), "radius", R.tolist(), "finite radii > 0")
     ref = (R.max() + R.min()) / 2.0 if reference_radius is None else float(reference_radius)
-    require(np.isfinite(ref) and ref > 0, "reference_radius", ref, "> 0")
-    return Chain(R / ref, float(R.max() / R.min()), None, wall_radius)
+    require(np.isfinite(ref) and ref > 0, "reference_radius", ref, "a finite number > 0")
+    spread = float(R.max() / R.min())
+    if alpha is not None:
+        # the radii were drawn from [R_min, alpha R_min]: their spread is at most alpha (to rounding)
+        require(np.isfinite(alpha) and alpha >= spread * (1 - 1e-12), "alpha", alpha,
+                f"a number >= max/min of the radii = {spread:.17g}")
+    return Chain(R / ref, spread if alpha is None else float(alpha), None, wall_radius)

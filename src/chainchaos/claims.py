@@ -1182,15 +1182,39 @@ def scene_macros(name: str, ds: xr.Dataset, criteria: Criteria) -> dict[str, str
     return out
 
 
-def _grid_energy(x: float) -> str:
-    """An energy of a scan grid for math mode, or a note that the grid has none."""
-    return fmt(x) if np.isfinite(x) else r"\text{(none on the grid)}"
+def _first_phrase(adjective: str, first: float) -> str:
+    """The lowest scanned energy where a criterion holds, as a phrase for running text (NaN:
+    it holds nowhere)."""
+    return f"first {adjective} at $H = {fmt(first)}$" if np.isfinite(first) else f"{adjective} at no scanned energy"
+
+
+def _always_phrase(adjective: str, always: float, first: float, top: float) -> str:
+    """The energy above which a criterion always holds, as a phrase for running text (NaN: it
+    fails at the highest scanned energy ``top``, or, with ``first`` NaN too, everywhere)."""
+    if np.isfinite(always):
+        return f"{adjective} at every scanned $H \\ge {fmt(always)}$"
+    if not np.isfinite(first):
+        return f"{adjective} at no scanned energy"
+    return f"not {adjective} at the highest scanned energy, $H = {g(float(f'{top:.3g}'))}$"
+
+
+MODEL_LABELS = {"hertz": "Hertz", "fput": "FPUT"}
+
+
+def _half_phrase(model: str, verb: str, half: float) -> str:
+    """The lowest grid energy at which at least half of a model's realizations ``verb`` (e.g.
+    delocalize), as a clause for running text (NaN: no energy of the grid)."""
+    runs = f"the {MODEL_LABELS.get(model, model)} realizations"
+    if np.isfinite(half):
+        return f"the lowest energy of the grid at which at least half of {runs} {verb} is $H = {fmt(half)}$"
+    return f"at no energy of the grid do at least half of {runs} {verb}"
 
 
 def scan_macros(energy_scan: xr.Dataset, disorder: xr.Dataset) -> dict[str, str]:
     """Numbers of the energy scan (grid, run, thresholds per model and criterion) and of the
     disorder statistics (realizations, grid, and per model and criterion: the probability at the
-    highest energy with its 95% band, the lowest energy where at least half of the runs qualify)."""
+    highest energy with its 95% band, the lowest energy where at least half of the runs qualify).
+    The thresholds are phrases for running text, which say so when no energy of the grid qualifies."""
     out = {}
     for prefix, ds in (("scan", energy_scan), ("disorder", disorder)):
         a = ds.attrs
@@ -1202,13 +1226,16 @@ def scan_macros(energy_scan: xr.Dataset, disorder: xr.Dataset) -> dict[str, str]
         out[f"{prefix}.invalid"] = str(int((ds["valid"].values != 1).sum()))
         out[f"{prefix}.maxerr"] = fmt(_max_energy_error(ds), 2)
     flags = {"delocalization": "delocalized", "chaos": "chaotic"}
+    top = float(energy_scan.energy.values[-1])
     for row in _scan.thresholds_table(energy_scan):
-        key = f"scan.{row['model']}.{flags[row['criterion']]}"
-        out[f"{key}.first"] = _grid_energy(row["first_energy"])
-        out[f"{key}.always"] = _grid_energy(row["always_above"])
+        adjective = flags[row["criterion"]]
+        key = f"scan.{row['model']}.{adjective}"
+        out[f"{key}.first"] = _first_phrase(adjective, row["first_energy"])
+        out[f"{key}.always"] = _always_phrase(adjective, row["always_above"], row["first_energy"], top)
     out["disorder.realizations"] = str(disorder.sizes["realization"])
     out["disorder.alpha"] = g(disorder.attrs["alpha"])
     E = disorder.energy.values
+    verbs = {"delocalized": "delocalize", "chaotic": "turn chaotic"}
     for model in disorder.model.values:
         for key in ("delocalized", "chaotic"):
             p = disorder[f"probability_{key}"].sel(model=model).values
@@ -1217,5 +1244,6 @@ def scan_macros(energy_scan: xr.Dataset, disorder: xr.Dataset) -> dict[str, str]
             out[f"disorder.{model}.{key}.top"] = (f"{fmt(100 * p[-1], 2)}\\,\\% "
                                                   f"({fmt(100 * lo[-1], 2)}--{fmt(100 * hi[-1], 2)}\\,\\%)")
             half = E[np.nan_to_num(p) >= 0.5]
-            out[f"disorder.{model}.{key}.half"] = _grid_energy(float(half[0]) if half.size else np.nan)
+            out[f"disorder.{model}.{key}.half"] = _half_phrase(str(model), verbs[key],
+                                                               float(half[0]) if half.size else np.nan)
     return out

@@ -7,34 +7,77 @@ from pathlib import Path
 
 import numpy as np
 
+from chainchaos.errors import ParameterError
 
-def _positive_float(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number")
-    if not (np.isfinite(value) and value > 0):
-        raise argparse.ArgumentTypeError(f"{text!r}: a finite number > 0 is required")
-    return value
+DEFAULT_ALPHA = 5.0
+
+
+def _number(minimum: float = 0.0, strict: bool = True):
+    """argparse type: a finite number > minimum (>= minimum when not ``strict``)."""
+    allowed = f"a finite number {'>' if strict else '>='} {minimum:g}"
+
+    def parse(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a number; allowed is {allowed}")
+        if not (np.isfinite(value) and (value > minimum if strict else value >= minimum)):
+            raise argparse.ArgumentTypeError(f"{text!r}: allowed is {allowed}")
+        return value
+
+    return parse
+
+
+def _integer(minimum: int):
+    """argparse type: an integer >= minimum."""
+    allowed = f"an integer >= {minimum}"
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not an integer; allowed is {allowed}")
+        if value < minimum:
+            raise argparse.ArgumentTypeError(f"{text!r}: allowed is {allowed}")
+        return value
+
+    return parse
+
+
+_positive_float = _number(0.0)
+
+
+def _output(text: str) -> str:
+    """argparse type: a file path to write (not an existing directory, nor below a file)."""
+    path = Path(text)
+    if path.is_dir() or not text:
+        raise argparse.ArgumentTypeError(f"{text!r} is a directory; allowed is a file path")
+    parent = next((p for p in path.absolute().parents if p.exists()), None)
+    if parent is not None and not parent.is_dir():
+        raise argparse.ArgumentTypeError(f"{text!r}: {str(parent)!r} is a file, not a directory")
+    return text
+
+
+def _alpha(args) -> float:
+    return DEFAULT_ALPHA if args.alpha is None else args.alpha
 
 
 def _cmd_chain(args) -> None:
     from chainchaos.chain import chain_from_radii, random_chain
-    from chainchaos.io import chain_dataset, write_netcdf
+    from chainchaos.io import chain_dataset, read_radii, write_netcdf
     from chainchaos.selection import SelectionCriteria, select_realization
 
     extra = {}
+    if args.reference_radius is not None and not args.radii:
+        raise ParameterError("reference_radius", args.reference_radius, "only together with --radii")
     if args.radii:
-        path = Path(args.radii)
-        if not path.is_file():
-            raise SystemExit(f"chainchaos chain: radii file {str(path)!r} does not exist")
-        chain = chain_from_radii(np.loadtxt(path, ndmin=1), wall_radius=args.wall_radius)
+        chain = chain_from_radii(read_radii(args.radii), args.reference_radius, args.wall_radius, args.alpha)
     elif args.search:
-        chain, extra = select_realization(SelectionCriteria(alpha=args.alpha, N=args.N, n_seeds=args.n_seeds))
+        chain, extra = select_realization(SelectionCriteria(alpha=_alpha(args), N=args.N, n_seeds=args.n_seeds))
         print(f"selected seed {extra['selection_seed']} among {extra['selection_candidates']} candidates "
               f"(score {extra['selection_score']:.4g})", file=sys.stderr)
     else:
-        chain = random_chain(args.seed, args.alpha, args.N, args.wall_radius)
+        chain = random_chain(args.seed, _alpha(args), args.N, args.wall_radius)
     write_netcdf(chain_dataset(chain, extra), args.out)
     print(args.out)
 
@@ -48,9 +91,9 @@ def _cmd_ensemble(args) -> None:
 
 def _cmd_simulate(args) -> None:
     from chainchaos.io import read_chain, write_netcdf
-    from chainchaos.simulate import OBSERVABLES, ProgressReporter, SceneParameters, simulate
+    from chainchaos.simulate import ProgressReporter, SceneParameters, simulate
 
-    observables = OBSERVABLES if args.observables == ["all"] else tuple(args.observables)
+    observables = None if "all" in args.observables else tuple(args.observables)
     params = SceneParameters(model=args.model, energy=args.energy, t_final=args.t_final, dt=args.dt,
                              integrator=args.integrator, observables=observables,
                              excited_site=args.site, k4_sign=args.k4_sign, deviation_seed=args.deviation_seed,
@@ -83,26 +126,36 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("chain", help="write a chain file (NetCDF)",
                        description="Write a chain file from --seed/--alpha, from --radii FILE (one radius "
-                                   "per line, any unit), or by the realization search of DESIGN section 4.")
+                                   "per line, any unit), or by the realization search of DESIGN section 4. "
+                                   "The radii of a chain file are in units of its R_ref: written one per line "
+                                   "and read back with --radii FILE --reference-radius 1 --alpha ALPHA they "
+                                   "give the same chain.")
     source = p.add_mutually_exclusive_group()
     source.add_argument("--radii", metavar="FILE", help="text file with one radius per line")
     source.add_argument("--search", action="store_true", help="scan seeds for the paper-like realization")
-    p.add_argument("--seed", type=int, default=0, help="seed of numpy.random.default_rng (default 0)")
-    p.add_argument("--alpha", type=float, default=5.0, help="disorder strength max R / min R (default 5)")
-    p.add_argument("--N", type=int, default=40, help="number of beads (default 40)")
-    p.add_argument("--n-seeds", type=int, default=10000, help="seeds scanned by --search (default 10000)")
-    p.add_argument("--wall-radius", type=float, default=1.0, help="reduced radius of the wall beads (default 1)")
-    p.add_argument("--out", required=True, help="output NetCDF file")
+    p.add_argument("--seed", type=_integer(0), default=0, help="seed of numpy.random.default_rng (default 0)")
+    p.add_argument("--alpha", type=_number(1.0, strict=False), default=None,
+                   help=f"disorder strength max R / min R (default {DEFAULT_ALPHA:g}; with --radii: max/min "
+                        "of the file's radii)")
+    p.add_argument("--reference-radius", type=_positive_float, metavar="R",
+                   help="with --radii: the radius R_ref that becomes 1, in the file's unit (default (min + max)/2 "
+                        "of the file's radii; 1 for radii taken from a chain file)")
+    p.add_argument("--N", type=_integer(2), default=40, help="number of beads (default 40)")
+    p.add_argument("--n-seeds", type=_integer(1), default=10000, help="seeds scanned by --search (default 10000)")
+    p.add_argument("--wall-radius", type=_positive_float, default=1.0,
+                   help="reduced radius of the wall beads (default 1)")
+    p.add_argument("--out", required=True, type=_output, help="output NetCDF file")
     p.set_defaults(func=_cmd_chain)
 
     p = sub.add_parser("ensemble", help="participation-number statistics over realizations (Fig. 1a)")
-    p.add_argument("--alpha", type=float, nargs="+", required=True, help="disorder strengths")
-    p.add_argument("--realizations", type=int, default=1000, help="realizations per alpha (default 1000)")
-    p.add_argument("--N", type=int, default=40, help="number of beads (default 40)")
-    p.add_argument("--first-seed", type=int, default=0, help="seed of the first realization (default 0)")
+    p.add_argument("--alpha", type=_number(1.0, strict=False), nargs="+", required=True,
+                   help="disorder strengths (each >= 1)")
+    p.add_argument("--realizations", type=_integer(2), default=1000, help="realizations per alpha (default 1000)")
+    p.add_argument("--N", type=_integer(2), default=40, help="number of beads (default 40)")
+    p.add_argument("--first-seed", type=_integer(0), default=0, help="seed of the first realization (default 0)")
     p.add_argument("--convention", choices=CONVENTIONS, default="potential",
                    help="participation-number convention (default potential)")
-    p.add_argument("--out", required=True, help="output NetCDF file")
+    p.add_argument("--out", required=True, type=_output, help="output NetCDF file")
     p.set_defaults(func=_cmd_ensemble)
 
     p = sub.add_parser("simulate", help="integrate one scene from a chain file",
@@ -115,36 +168,44 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--dt", type=_positive_float, default=5e-4, help="time step (default 5e-4, the paper's)")
     p.add_argument("--integrator", choices=sorted(SCHEMES), default="SRKN6b", help="splitting scheme")
     p.add_argument("--observables", nargs="+", default=["all"], choices=["all", *OBSERVABLES],
-                   metavar="NAME", help=f"observables to compute (default all): {', '.join(OBSERVABLES)}")
-    p.add_argument("--site", type=int, default=21, help="excited bead (default 21)")
+                   metavar="NAME", help=f"observables to compute: {', '.join(OBSERVABLES)} (default all the "
+                                        f"model has; the gap observables only for hertz)")
+    p.add_argument("--site", type=_integer(1), default=21, help="excited bead, 1..N (default 21)")
     p.add_argument("--k4-sign", type=float, choices=[1.0, -1.0], default=1.0,
                    help="sign of K4: +1 the paper's, -1 the Taylor expansion of Hertz (default +1)")
-    p.add_argument("--deviation-seed", type=int, default=0, help="seed of the initial deviation vector")
-    p.add_argument("--samples-per-decade", type=int, default=40, help="log-spaced samples per decade")
+    p.add_argument("--deviation-seed", type=_integer(0), default=0, help="seed of the initial deviation vector")
+    p.add_argument("--samples-per-decade", type=_integer(1), default=40, help="log-spaced samples per decade")
     p.add_argument("--max-energy-error", type=_positive_float, default=1e-2,
                    help="stop when the relative energy error exceeds this (default 1e-2)")
-    p.add_argument("--out", required=True, help="output NetCDF file")
+    p.add_argument("--out", required=True, type=_output, help="output NetCDF file")
     p.set_defaults(func=_cmd_simulate)
 
     p = sub.add_parser("bench", help="nanoseconds per step of the kernel, with and without tangent dynamics")
     p.add_argument("--model", choices=sorted(MODELS), default="hertz")
     p.add_argument("--integrator", choices=sorted(SCHEMES), default="SRKN6b")
-    p.add_argument("--N", type=int, default=40, help="number of beads (default 40)")
-    p.add_argument("--steps", type=int, default=10000, help="steps per timing (default 10000)")
-    p.add_argument("--repeats", type=int, default=50, help="timings; the best is reported (default 50)")
+    p.add_argument("--N", type=_integer(2), default=40, help="number of beads (default 40)")
+    p.add_argument("--steps", type=_integer(1), default=10000, help="steps per timing (default 10000)")
+    p.add_argument("--repeats", type=_integer(1), default=50, help="timings; the best is reported (default 50)")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=_cmd_bench)
     return parser
 
 
+#: Option of a parameter whose name differs from the option's (ParameterError.name -> dest).
+OPTION_OF_PARAMETER = {"excited_site": "site", "K4_sign": "k4_sign", "n_realizations": "realizations",
+                       "n_steps": "steps", "radius": "radii"}
+
+
 def main(argv=None) -> int:
-    from chainchaos.errors import ChainFileError, ParameterError, SimulationError
+    from chainchaos.errors import ChainFileError, SimulationError
 
     args = build_parser().parse_args(argv)
     try:
         args.func(args)
     except (ParameterError, ChainFileError, SimulationError) as err:
-        print(f"chainchaos {args.command}: error: {err}", file=sys.stderr)
+        dest = OPTION_OF_PARAMETER.get(getattr(err, "name", ""), getattr(err, "name", ""))
+        option = f"option --{dest.replace('_', '-')}: " if dest and hasattr(args, dest) else ""
+        print(f"chainchaos {args.command}: error: {option}{err}", file=sys.stderr)
         return 2
     return 0
 

@@ -12,7 +12,8 @@ class ParameterError(ValueError):
 
 
 class ChainFileError(ValueError):
-    """A chain file that is missing or lacks a variable of the data contract."""
+    """A chain or radii file that is missing, unreadable, or not a chain (the data contract of DESIGN
+    section 7)."""
 
 
 class SimulationError(RuntimeError):

@@ -3,6 +3,7 @@
 import contextlib
 import os
 import tempfile
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -90,22 +91,78 @@ def chain_dataset(chain: Chain, extra_attrs: dict | None = None) -> xr.Dataset:
     return ds
 
 
+#: Dimension of each variable of a chain file that read_chain relies on.
+CHAIN_DIMS = {"radius": ("site",), "mass": ("site",), "A": ("bond",), "delta": ("bond",), "K2": ("bond",),
+              "K3": ("bond",), "K4": ("bond",), "frequency": ("mode",), "mode_shape": ("site", "mode"),
+              "mode_participation": ("mode",)}
+
+
 def read_chain(path, k4_sign: float = 1.0) -> Chain:
-    """The chain stored in a chain file; a missing file or variable raises ChainFileError."""
+    """The chain stored in a chain file (written by ``chainchaos chain`` or chain_dataset).
+
+    Raises ChainFileError naming the file and what is wrong: missing, not a readable NetCDF file,
+    a NetCDF file that is not a chain (a variable, dimension or attribute of the data contract
+    missing or of the wrong shape), or radii that make no chain."""
     path = Path(path)
+    name = repr(str(path))
+    if not path.exists():
+        raise ChainFileError(f"chain file {name} does not exist")
     if not path.is_file():
-        raise ChainFileError(f"chain file {str(path)!r} does not exist")
-    with xr.open_dataset(path, engine="netcdf4") as ds:
-        missing = [v for v in CHAIN_VARIABLES if v not in ds.variables]
-        if missing:
-            raise ChainFileError(f"chain file {str(path)!r} lacks variable(s) {missing}; "
-                                 f"a chain file holds {list(CHAIN_VARIABLES)}")
-        for attr in ("alpha", "seed"):
-            if attr not in ds.attrs:
-                raise ChainFileError(f"chain file {str(path)!r} lacks attribute {attr!r}")
-        seed = int(ds.attrs["seed"])
-        return Chain(ds["radius"].values, float(ds.attrs["alpha"]), None if seed < 0 else seed,
-                     float(ds.attrs.get("wall_radius", 1.0)), float(k4_sign))
+        raise ChainFileError(f"chain file {name} is not a file")
+    try:
+        with xr.open_dataset(path, engine="netcdf4") as ds:
+            _check_chain_dataset(ds, name)
+            radius, attrs = ds["radius"].values, dict(ds.attrs)
+    except ChainFileError:
+        raise
+    except (OSError, ValueError, RuntimeError) as err:
+        raise ChainFileError(f"chain file {name} is not a readable NetCDF file ({err}); "
+                             "write one with 'chainchaos chain'") from err
+    try:
+        seed = int(attrs["seed"])
+        return Chain(radius, float(attrs["alpha"]), None if seed < 0 else seed,
+                     float(attrs.get("wall_radius", 1.0)), float(k4_sign))
+    except (ValueError, TypeError) as err:  # ParameterError is a ValueError
+        raise ChainFileError(f"chain file {name} holds no valid chain: {err}") from err
+
+
+def read_radii(path) -> np.ndarray:
+    """The radii of a text file, one number per line ('#' starts a comment); ChainFileError names
+    the file when it is missing, unreadable, or holds anything but at least two numbers."""
+    path = Path(path)
+    name = repr(str(path))
+    if not path.is_file():
+        raise ChainFileError(f"radii file {name} does not exist" if not path.exists()
+                             else f"radii file {name} is not a file")
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", UserWarning)  # numpy's "input contained no data"
+            radii = np.loadtxt(path, ndmin=1)
+    except (ValueError, UnicodeDecodeError) as err:
+        raise ChainFileError(f"radii file {name} is not one number per line ({err})") from err
+    if radii.ndim != 1 or radii.size < 2:
+        raise ChainFileError(f"radii file {name} holds {radii.size} number(s) in shape {radii.shape}; "
+                             "a chain needs one radius per line, at least 2")
+    return radii
+
+
+def _check_chain_dataset(ds: xr.Dataset, name: str) -> None:
+    missing = [v for v in CHAIN_VARIABLES if v not in ds.variables]
+    if missing:
+        raise ChainFileError(f"chain file {name} lacks variable(s) {missing}; "
+                             f"a chain file holds {list(CHAIN_VARIABLES)}")
+    wrong = {v: ds[v].dims for v, dims in CHAIN_DIMS.items() if ds[v].dims != dims}
+    if wrong:
+        raise ChainFileError(f"chain file {name}: variable(s) with the wrong dimensions {wrong}; "
+                             f"a chain file has {CHAIN_DIMS}")
+    N = ds.sizes["site"]
+    sizes = {"site": N, "bond": ds.sizes["bond"], "mode": ds.sizes["mode"]}
+    if N < 2 or sizes != {"site": N, "bond": N + 1, "mode": N}:
+        raise ChainFileError(f"chain file {name}: dimension sizes {sizes}; a chain of N >= 2 beads has "
+                             "N sites, N + 1 bonds and N modes")
+    for attr in ("alpha", "seed"):
+        if attr not in ds.attrs:
+            raise ChainFileError(f"chain file {name} lacks attribute {attr!r}")
 
 
 def ensemble_dataset(alphas, n_realizations: int, N: int = 40, first_seed: int = 0,

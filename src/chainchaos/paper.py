@@ -5,6 +5,7 @@ derives from it which scenes to run and which observables each scene computes, a
 code reads from it what to draw.
 """
 
+import re
 from dataclasses import dataclass, field
 
 
@@ -41,6 +42,62 @@ KIND_OBSERVABLES = {
     "gap_count": ("n_gaps",),
     "eta": ("eta",),
     "mode_energy_map": ("mode_energy",),
+}
+
+# What a panel of each kind shows: a few words (the HTML report's label) and a sentence (its
+# caption, chainchaos.report_captions); math in $...$ as in the statements below.
+KIND_TEXT = {
+    "ensemble_participation": (
+        "mean P of the linear modes",
+        r"mean participation number $\langle P \rangle$ of the linear modes over the disorder "
+        r"realizations against rank $k$ (modes sorted by descending $P$ in each realization), one curve "
+        r"per disorder strength $\alpha$, error bars one standard deviation"),
+    "chain_spectrum": (
+        "spectrum of the chain",
+        r"linear frequencies $\omega_k$ of the chosen $\alpha = 5$ chain against mode number $k$; the "
+        r"inset shows the profile of mode 34 against site"),
+    "energy_map": (
+        "energy density map",
+        r"energy density $h_n(t)$ of each site against time (logarithmic colour scale), with the "
+        r"mean position of the energy as a black line"),
+    "participation": (
+        "participation number P",
+        r"participation number $P(t)$ of the energy distribution, smoothed (LOWESS in $\log t$) with "
+        r"the raw values faint behind; Hertz red, FPUT blue, energies told apart by shade and dash"),
+    "participation_with_dvd": (
+        "P and P_D",
+        r"participation numbers $P(t)$ of the energy and $P_{\mathrm{D}}(t)$ of the deviation vector "
+        r"density, both smoothed (LOWESS in $\log t$)"),
+    "mlce": (
+        "finite-time mLCE",
+        r"finite-time maximum Lyapunov exponent $\Lambda(t)$ on log-log axes, with the law "
+        r"$\Lambda \propto t^{-1}$ of regular orbits dashed"),
+    "dvd_map": (
+        "DVD map",
+        r"deviation vector density $w_n(t)$ of each site against time (logarithmic colour scale), with "
+        r"the times of the profile panel marked"),
+    "dvd_profiles": (
+        "DVD profiles",
+        r"deviation vector density $w_n$ against site (logarithmic scale) at the times the paper picks"),
+    "dvd_participation": (
+        "P_D of the DVD",
+        r"participation number $P_{\mathrm{D}}(t)$ of the deviation vector density, smoothed (LOWESS in "
+        r"$\log t$)"),
+    "gap_map": (
+        "gap map",
+        r"open bonds (gaps, $u_n - u_{n-1} > \delta_n$) against time: the fraction of the time since "
+        r"the previous sample each bond was open"),
+    "gap_count": (
+        "number of gaps",
+        r"number of open gaps against time, at each sample and the largest since the previous one"),
+    "eta": (
+        "spectral entropy",
+        r"normalized spectral entropy $\eta(t)$ of the linear-mode energies; where the paper draws it, "
+        r"the mean $\langle \eta \rangle$ at equipartition as a dashed line"),
+    "mode_energy_map": (
+        "mode energy map",
+        r"normalized harmonic energies $v_k(t)$ of the linear modes, numbered by increasing "
+        r"frequency, against time (logarithmic colour scale)"),
 }
 
 HZ = {e: Scene("hertz", e) for e in (0.25, 0.5, 1.8, 3.0)}
@@ -116,6 +173,89 @@ LAYOUTS: dict[int, list[str]] = {
     7: ["ab", "cd"],
     8: ["abcd", "efgh"],
     9: ["abcd", "efgh"],
+}
+
+
+
+@dataclass(frozen=True)
+class Figure:
+    title: str
+    reports: dict[str, str]  # panel letters -> what the paper reports about those panels
+
+
+# Each figure's subject and, by panel, what the paper reports (its captions and Sec. II-III).
+FIGURES: dict[int, Figure] = {
+    1: Figure("disorder statistics and the chosen chain", {
+        "a": r"Already at $\alpha = 2$ the curve $\langle P \rangle(k)$ lies far from the homogeneous "
+             r"chain's; for $\alpha \ge 4$ it reaches a limiting curve with about 10 strongly localized "
+             r"modes, $\langle P \rangle \approx 2$. The most extended mode has $P \approx 26$.",
+        "b": r"Low-frequency modes extend over many sites, high-frequency ones are localized; mode 34 is "
+             r"strongly localized ($P \approx 2.5$) at site $n = 21$, the site every run excites.",
+    }),
+    2: Figure("H = 0.25: both chains localized and regular", {
+        "ab": r"The energy stays localized around the excited site $n = 21$ in both chains.",
+        "c": r"$P \approx 1.8$ throughout, the Hertz and FPUT curves almost overlap.",
+        "d": r"$\Lambda(t) \propto t^{-1}$ for both chains (regular orbits); the curves practically "
+             r"overlap.",
+    }),
+    3: Figure("H = 0.25: deviation vectors", {
+        "ab": r"The DVD is extended and smooth, unlike the pointy DVD of chaotic orbits.",
+        "cd": r"The profiles at $t \approx 10^1$, $10^3$, $10^5$ cover the excited part of the lattice "
+              r"smoothly.",
+        "ef": r"$P_{\mathrm{D}} \approx 20$ in both chains up to $t \approx 10^3$; afterwards the Hertz "
+              r"$P_{\mathrm{D}}$ starts to drop, a precursor of a chaotic spot.",
+    }),
+    4: Figure("H = 0.5 and 1.8: chaos and spreading of the Hertz chain", {
+        "a": r"Hertz $H = 0.5$: the energy stays localized.",
+        "b": r"Hertz $H = 1.8$: localized up to $t \approx 2\times 10^2$, then the packet spreads over "
+             r"the chain.",
+        "c": r"Hertz $H = 0.5$: $P$ grows a little in the last decade. Hertz $H = 1.8$: $P < 3$ up to "
+             r"$t \approx 2\times 10^2$, rapid spreading until $t \approx 4\times 10^3$, then "
+             r"$P \approx 26$. FPUT stays localized at both energies.",
+        "d": r"Hertz $H = 0.5$: $\Lambda$ leaves the $t^{-1}$ law in the last decade (localized chaos). "
+             r"Hertz $H = 1.8$: chaotic from $t \approx 2\times 10^2$, $\Lambda \approx 10^{-3}$. FPUT "
+             r"stays regular at both energies.",
+    }),
+    5: Figure("Hertz chain: localized and extended chaos in the DVD", {
+        "ab": r"$H = 0.5$: the DVD is extended while the orbit is regular, converges on site 21 up to "
+              r"$t \approx 4\times 10^3$ and then stays strongly localized there (localized chaos).",
+        "cd": r"$H = 1.8$: after an extended start the DVD has one dominant peak that moves over the "
+              r"whole lattice (extended chaos).",
+    }),
+    6: Figure("FPUT chain at H = 2.9, 4 and 8.7381", {
+        "abcd": r"$H = 2.9$, the first energy at which FPUT delocalizes: the packet spreads in the last "
+                r"decade, $\Lambda$ leaves the $t^{-1}$ law for $t \gtrsim 4\times 10^3$, the DVD "
+                r"peaks in changing places (extended chaos).",
+        "efgh": r"$H = 4$: the packet stays localized and $P$ hardly changes; the DVD stays at site 21 "
+                r"up to $t \approx 2\times 10^4$, then wanders to the left part while $\Lambda$ "
+                r"deviates only slightly from the regular law.",
+        "ijkl": r"$H = 8.7381$: delocalized and chaotic, as at $H = 2.9$. Above $H \approx 2.8$ FPUT is "
+                r"always chaotic, localized or not.",
+    }),
+    7: Figure("Hertz chain: gaps", {
+        "ac": r"$H = 0.5$: gaps open next to site 21 only, never more than one at a time; the "
+              r"non-smooth nonlinearity there is what makes the orbit chaotic.",
+        "bd": r"$H = 1.8$: more gaps open and move away from site 21 from $t \approx 3\times 10^2$, "
+              r"when $P$ starts to grow, and eventually cover the whole lattice.",
+    }),
+    8: Figure("Hertz chain: spectral entropy and mode energies", {
+        "ae": r"$H = 0.25$: $\eta$ stays near 1; mode 34 dominates with a few weak low-frequency "
+              r"modes, constant after $t \approx 10^2$.",
+        "bf": r"$H = 0.5$: the same, but $\eta$ drops in steps as new modes come in near "
+              r"$t \approx 8\times 10^3$ and $8\times 10^4$.",
+        "cdgh": r"$H = 1.8$ and 3: a plateau near $\eta \approx 0.5$, then a fall to the equipartition "
+                r"value $\langle \eta \rangle$; in the last decade all modes take part.",
+    }),
+    9: Figure("FPUT chain: spectral entropy and mode energies", {
+        "ae": r"$H = 0.25$: as for Hertz, $\eta$ stays close to 1, one dominant mode and a few "
+              r"low-frequency ones.",
+        "bf": r"$H = 2.9$: a plateau at $\eta \approx 0.7$ (a metastable phase), an abrupt fall at "
+              r"$t \approx 5\times 10^3$ to about $\langle \eta \rangle$; almost all modes excited.",
+        "cg": r"$H = 4$: $\eta \approx 0.82$ for most of the run, falling only slowly in the last two "
+              r"decades; the highest-frequency modes stay silent.",
+        "dh": r"$H = 8.7381$: a plateau near $\eta \approx 0.8$, a drop from $t \approx 10^4$ to "
+              r"about $\langle \eta \rangle$; at the end all modes take part.",
+    }),
 }
 
 
@@ -213,3 +353,37 @@ def statements_of_scene(scene_name: str) -> list[Statement]:
 def statement_scenes() -> dict[str, Scene]:
     """The scenes the statements are about, by name, in table order."""
     return {s.scene.name: s.scene for s in STATEMENTS}
+
+
+# Which kinds of panel show what a statement of each kind is about.
+STATEMENT_PANEL_KINDS = {
+    "localized": ("energy_map", "participation", "participation_with_dvd"),
+    "delocalized": ("energy_map", "participation", "participation_with_dvd"),
+    "participation_below_until": ("participation", "participation_with_dvd"),
+    "spreading_onset_near": ("participation", "participation_with_dvd"),
+    "saturation_near": ("participation", "participation_with_dvd"),
+    "chaotic": ("mlce",),
+    "regular": ("mlce",),
+    "regular_until": ("mlce",),
+    "chaos_onset_near": ("mlce",),
+    "mlce_near": ("mlce",),
+    "eta_near": ("eta",),
+}
+
+
+def statement_panels(statement: Statement) -> list[str]:
+    """The panels a statement is about: those of the figure its text cites, "(Fig. 4)" or
+    "(Fig. 4d)", that show its scene, narrowed to the kinds that show its kind of statement when
+    the figure has such a panel."""
+    cited = re.search(r"\(Fig\. (\d+)([a-z]?)\)$", statement.text)
+    if cited is None:
+        raise ValueError(f"statement {statement.id!r} cites no figure as (Fig. N) or (Fig. Nx) at its end")
+    figure, letter = int(cited.group(1)), cited.group(2)
+    showing = [p for p in panels_of_figure(figure) if statement.scene in PANELS[p].scenes
+               and (not letter or p == f"{figure}{letter}")]
+    matching = [p for p in showing if PANELS[p].kind in STATEMENT_PANEL_KINDS[statement.kind]]
+    return matching or showing
+
+
+def statements_of_panel(panel_id: str) -> list[Statement]:
+    return [s for s in STATEMENTS if panel_id in statement_panels(s)]

@@ -32,6 +32,13 @@ GAPS = {"gap_open", "gap_fraction", "n_gaps"}
 MODAL = {"mode_energy", "spectral_entropy", "eta"}
 
 
+def model_observables(model: str) -> tuple:
+    """Every observable ``model`` has: gaps exist only in the Hertz chain (the polynomial bonds of
+    FPUT and the harmonic chain never open)."""
+    model_id(model)
+    return OBSERVABLES if model == "hertz" else tuple(o for o in OBSERVABLES if o not in GAPS)
+
+
 @dataclass
 class SceneParameters:
     """Everything that defines a run besides the chain. Times in units of 1/omega_max."""
@@ -41,7 +48,7 @@ class SceneParameters:
     t_final: float
     dt: float
     integrator: str = "SRKN6b"
-    observables: tuple = OBSERVABLES
+    observables: tuple | None = None  # None: every observable of the model (model_observables)
     excited_site: int = 21
     k4_sign: float = 1.0
     deviation_seed: int = 0
@@ -52,6 +59,8 @@ class SceneParameters:
     name: str = field(default="")
 
     def __post_init__(self):
+        if self.observables is None:
+            self.observables = model_observables(self.model)
         model_id(self.model)
         get_scheme(self.integrator)
         require_finite_positive(self, "energy", "t_final", "dt", "t_first_sample")

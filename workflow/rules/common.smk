@@ -1,9 +1,14 @@
-# Shared helpers: where things go, and what each scene and panel needs (from the panel table).
+# Shared helpers: where things go, what each scene and panel needs (from the panel table), and the
+# inputs, parameters and cluster runtimes of the scan, search and manuscript rules. The functions
+# of the workflow live here and the rules in the other files, as snakemake --lint asks.
 
-import json
+import math
 import re
 
 from chainchaos import paper
+from chainchaos import scan as _scan
+from chainchaos.report_captions import figure_labels, figure_subcategory, panel_labels
+from chainchaos.search import SearchPlan
 from chainchaos.simd import LANES
 from chainchaos.simulate import SceneParameters, scene_batches
 
@@ -74,8 +79,122 @@ def figure_inputs(number):
     return files
 
 
+# The categories of the HTML report (snakemake --report; captions in workflow/report/, whose
+# workflow.rst links to them by name).
+REPORT_CATEGORIES = {
+    "figures": "Paper figures",
+    "claims": "Claims",
+    "scan": "Energy scan and disorder statistics",
+    "search": "Realization search",
+    "numerics": "Numerical accuracy",
+}
+
+
 PANEL_TARGETS = [
     result("figures", f"fig{p}.{ext}") for p in sorted(paper.PANELS) for ext in ("pdf", "png")
 ]
 FIGURE_TARGETS = [result("figures", f"fig{n}.{ext}") for n in FIGURES for ext in ("pdf", "png")]
 ALL_TARGETS = PANEL_TARGETS + FIGURE_TARGETS
+
+
+# ---- cluster runtimes (resources: runtime, minutes; profiles/slurm/) --------------------------
+
+
+def cluster_runtime(orbits, t_final, dt):
+    """Minutes a job of `orbits` orbits to `t_final` at step `dt` may take: steps x the measured
+    cost per step (scan.us_per_step), x3 and + 10 min for sampling, start-up and a busy node."""
+    seconds = orbits * (t_final / dt) * config["scan"].get("us_per_step", 1.0) * 1e-6
+    return int(math.ceil(3 * seconds / 60)) + 10
+
+
+# ---- energy scan and disorder statistics (workflow/rules/scan.smk) -----------------------------
+
+SCAN = config["scan"]
+
+
+def scan_params(kind):
+    """The part of the scan block a kind's jobs depend on: a change elsewhere reruns nothing here."""
+    return {"settings": SCAN.get("settings", {}), kind: SCAN[kind]}
+
+
+def scan_group_files(kind):
+    return [
+        result("scan", "groups", kind, f"{g:04d}.nc") for g in range(_scan.n_groups(kind, SCAN))
+    ]
+
+
+def scan_runtime(kind):
+    """Minutes a group job of a scan may take."""
+    s = _scan.settings_for(kind, SCAN)
+    return cluster_runtime(SCAN[kind]["trajectories_per_job"], s.t_final, s.dt)
+
+
+# ---- the realization search and the ensemble verdicts (workflow/rules/search.smk) --------------
+
+SEARCH_PLAN = SearchPlan.from_config(config["search"])
+
+
+def search_params():
+    return {
+        "search": config["search"],
+        "chain": config["chain"],
+        "claims": config.get("claims", {}),
+        "site": config["simulation"]["excited_site"],
+    }
+
+
+def search_filter_files():
+    return [result("search", "filter", f"{g:03d}.nc") for g in range(SEARCH_PLAN.n_filter_jobs)]
+
+
+def search_score_files():
+    return [result("search", "score", f"{k:03d}.nc") for k in range(SEARCH_PLAN.n_score_jobs)]
+
+
+def search_runtime(orbits_per_job, t_final):
+    """Minutes a search or verdict job may take, at the search's step."""
+    return cluster_runtime(
+        orbits_per_job, float(t_final), float(config["search"]["settings"]["dt"])
+    )
+
+
+# ---- claims and manuscript (workflow/rules/manuscript.smk) -------------------------------------
+
+
+def manuscript_numerics():
+    """The numerics inputs of the manuscript (NUMERICS_FOR_MANUSCRIPT), or {} when the switch
+    config manuscript.numerics is off or workflow/rules/numerics.smk is not part of the workflow."""
+    wanted = config.get("manuscript", {}).get("numerics", True)
+    return dict(NUMERICS_FOR_MANUSCRIPT) if wanted and "NUMERICS_TARGETS" in globals() else {}
+
+
+def claims_inputs(wildcards=None):
+    files = {
+        "code": "src/chainchaos/claims.py",  # a changed criterion in the code reruns the claims
+        "chain": result("chain", "chain.nc"),
+        "ensemble": result("ensemble", "participation_stats.nc"),
+        "energy_scan": result("scan", "energy_scan.nc"),  # the threshold statements
+        "disorder": result("scan", "disorder_statistics.nc"),  # numbers quoted in the text
+        "search": result("search", "search.nc"),
+    }
+    files.update({f"verdict_{name}": path for name, path in VERDICT_FILES.items()})
+    files.update({name: scene_file(name) for name in sorted(SCENES)})
+    return files
+
+
+def manuscript_inputs(wildcards=None):
+    files = {
+        "tex": "manuscript/ms.tex",
+        **CLAIMS_OUTPUTS,
+    }
+    files.update({f"fig{n}": result("figures", f"fig{n}.pdf") for n in FIGURES})
+    files.update(
+        {
+            "figscan": result("figures", "energy_scan.pdf"),
+            "figdisorder": result("figures", "disorder_statistics.pdf"),
+            "thresholds": result("scan", "thresholds.tex"),
+            "figsearch": result("figures", "search.pdf"),
+        }
+    )
+    files.update({f"numerics_{key}": path for key, path in manuscript_numerics().items()})
+    return files

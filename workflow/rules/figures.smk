@@ -11,7 +11,13 @@ rule plot_panel:
         unpack(lambda wildcards: panel_inputs(wildcards.panel)),
     output:
         pdf=result("figures", "fig{panel}.pdf"),
-        png=result("figures", "fig{panel}.png"),
+        png=report(
+            result("figures", "fig{panel}.png"),
+            caption="../report/panel.rst",
+            category=REPORT_CATEGORIES["figures"],
+            subcategory=lambda wildcards: figure_subcategory(int(wildcards.panel[:-1])),
+            labels=lambda wildcards: panel_labels(wildcards.panel),
+        ),
     params:
         dpi=config["figures"]["dpi"],
     log:
@@ -27,7 +33,13 @@ rule plot_figure:
         unpack(lambda wildcards: figure_inputs(int(wildcards.number))),
     output:
         pdf=result("figures", "fig{number}.pdf"),
-        png=result("figures", "fig{number}.png"),
+        png=report(
+            result("figures", "fig{number}.png"),
+            caption="../report/figure.rst",
+            category=REPORT_CATEGORIES["figures"],
+            subcategory=lambda wildcards: figure_subcategory(int(wildcards.number)),
+            labels=lambda wildcards: figure_labels(int(wildcards.number)),
+        ),
     params:
         dpi=config["figures"]["dpi"],
     log:

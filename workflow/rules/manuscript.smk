@@ -27,33 +27,27 @@ NUMERICS_FOR_MANUSCRIPT = {
 }
 
 
-def manuscript_numerics():
-    """The numerics inputs of the manuscript, or {} when the switch is off."""
-    wanted = config.get("manuscript", {}).get("numerics", True)
-    return dict(NUMERICS_FOR_MANUSCRIPT) if wanted and "NUMERICS_TARGETS" in globals() else {}
-
-
-def claims_inputs(wildcards=None):
-    files = {
-        "code": "src/chainchaos/claims.py",  # a changed criterion in the code reruns the claims
-        "chain": result("chain", "chain.nc"),
-        "ensemble": result("ensemble", "participation_stats.nc"),
-        "energy_scan": result("scan", "energy_scan.nc"),  # the threshold statements
-        "disorder": result("scan", "disorder_statistics.nc"),  # numbers quoted in the text
-        "search": result("search", "search.nc"),
-    }
-    files.update({f"verdict_{name}": path for name, path in VERDICT_FILES.items()})
-    files.update({name: scene_file(name) for name in sorted(SCENES)})
-    return files
-
-
 rule evaluate_claims:
     """Measure every quantitative statement of the paper on the scene, chain and ensemble files:
-    claims.csv, the LaTeX table and notes, and macros.tex with every number the manuscript prints."""
+    claims.csv, the LaTeX table and notes, and macros.tex with every number the manuscript prints.
+    """
     input:
         unpack(claims_inputs),
     output:
-        **CLAIMS_OUTPUTS,
+        csv=report(
+            CLAIMS_OUTPUTS["csv"],
+            caption="../report/claims.rst",
+            category=REPORT_CATEGORIES["claims"],
+            labels={
+                "result": "claims table (CSV)",
+                "shows": "the paper's statements and verdicts",
+            },
+        ),
+        table=CLAIMS_OUTPUTS["table"],
+        notes=CLAIMS_OUTPUTS["notes"],
+        scenes=CLAIMS_OUTPUTS["scenes"],
+        macros=CLAIMS_OUTPUTS["macros"],
+        search=CLAIMS_OUTPUTS["search"],
     params:
         claims=config.get("claims", {}),
         simulation=config["simulation"],
@@ -67,22 +61,6 @@ rule evaluate_claims:
         benchmark_file("evaluate_claims")
     script:
         "../scripts/evaluate_claims.py"
-
-
-def manuscript_inputs(wildcards=None):
-    files = {
-        "tex": "manuscript/ms.tex",
-        **CLAIMS_OUTPUTS,
-    }
-    files.update({f"fig{n}": result("figures", f"fig{n}.pdf") for n in FIGURES})
-    files.update({
-        "figscan": result("figures", "energy_scan.pdf"),
-        "figdisorder": result("figures", "disorder_statistics.pdf"),
-        "thresholds": result("scan", "thresholds.tex"),
-        "figsearch": result("figures", "search.pdf"),
-    })
-    files.update({f"numerics_{key}": path for key, path in manuscript_numerics().items()})
-    return files
 
 
 rule build_manuscript:

@@ -4,8 +4,10 @@
 # energy error of the production step per scene. Settings: the `numerics` block of the config.
 
 if "numerics" not in config:
-    raise ValueError("config lacks the `numerics` block that workflow/rules/numerics.smk reads "
-                     "(see config/config.yaml)")
+    raise ValueError(
+        "config lacks the `numerics` block that workflow/rules/numerics.smk reads "
+        "(see config/config.yaml)"
+    )
 
 NUMERICS = config["numerics"]
 # The scheme of the production runs: advice, drift and the Taylor-sign probe measure that one.
@@ -57,9 +59,19 @@ rule numerics_work_precision:
         cases=[result("numerics", "work_precision", f"{c}.nc") for c in WP_CASES],
     output:
         data=result("numerics", "work_precision.nc"),
-        orders_csv=result("tables", "work_precision.csv"),
+        orders_csv=report(
+            result("tables", "work_precision.csv"),
+            caption="../report/work_precision_table.rst",
+            category=REPORT_CATEGORIES["numerics"],
+            labels={"result": "orders (CSV)", "shows": "observed orders of the schemes"},
+        ),
         orders_tex=result("tables", "work_precision.tex"),
-        runs_csv=result("tables", "work_precision_runs.csv"),
+        runs_csv=report(
+            result("tables", "work_precision_runs.csv"),
+            caption="../report/work_precision_runs.rst",
+            category=REPORT_CATEGORIES["numerics"],
+            labels={"result": "work-precision runs (CSV)", "shows": "every run of the study"},
+        ),
     log:
         log_file("numerics_work_precision"),
     benchmark:
@@ -73,7 +85,12 @@ rule numerics_plot_work_precision:
         data=result("numerics", "work_precision.nc"),
     output:
         pdf=result("figures", "work_precision.pdf"),
-        png=result("figures", "work_precision.png"),
+        png=report(
+            result("figures", "work_precision.png"),
+            caption="../report/work_precision.rst",
+            category=REPORT_CATEGORIES["numerics"],
+            labels={"result": "work precision", "shows": "error against run time"},
+        ),
     log:
         log_file("numerics_plot_work_precision"),
     benchmark:
@@ -149,7 +166,12 @@ rule numerics_step_advice:
         kernels=result("kernels_compiled.txt"),
     output:
         data=result("numerics", "step_advice.nc"),
-        csv=result("tables", "step_advice.csv"),
+        csv=report(
+            result("tables", "step_advice.csv"),
+            caption="../report/step_advice.rst",
+            category=REPORT_CATEGORIES["numerics"],
+            labels={"result": "step advice (CSV)", "shows": "energy error per scene against step"},
+        ),
         tex=result("tables", "step_advice.tex"),
     params:
         settings=NUMERICS["advice"],
@@ -172,8 +194,18 @@ rule numerics_plot_stability:
         advice=result("numerics", "step_advice.nc"),
     output:
         pdf=result("figures", "stability.pdf"),
-        png=result("figures", "stability.png"),
-        csv=result("tables", "stability.csv"),
+        png=report(
+            result("figures", "stability.png"),
+            caption="../report/stability.rst",
+            category=REPORT_CATEGORIES["numerics"],
+            labels={"result": "stability", "shows": "largest stable steps, drift, step advice"},
+        ),
+        csv=report(
+            result("tables", "stability.csv"),
+            caption="../report/stability_table.rst",
+            category=REPORT_CATEGORIES["numerics"],
+            labels={"result": "stable steps (CSV)", "shows": "largest stable step per case"},
+        ),
         tex=result("tables", "stability.tex"),
     params:
         integrator=NUMERICS_INTEGRATOR,

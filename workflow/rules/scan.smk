@@ -6,14 +6,6 @@
 # grid. `resources:` (mem_mb, runtime in minutes) feed the SLURM profile (profiles/slurm/);
 # a group's runtime follows from its steps and the measured cost per step, `scan.us_per_step`.
 
-import math
-
-from chainchaos import scan as _scan
-
-SCAN = config["scan"]
-SCAN_KINDS = ("energy_scan", "disorder")
-SCAN_FILES = {"energy_scan": "energy_scan", "disorder": "disorder_statistics"}
-
 
 wildcard_constraints:
     group=r"\d+",
@@ -26,24 +18,6 @@ localrules:
     plot_energy_scan,
     plot_disorder_statistics,
     scan_thresholds,
-
-
-def scan_params(kind):
-    """The part of the scan block a kind's jobs depend on: a change elsewhere reruns nothing here."""
-    return {"settings": SCAN.get("settings", {}), kind: SCAN[kind]}
-
-
-def scan_group_files(kind):
-    return [result("scan", "groups", kind, f"{g:04d}.nc") for g in range(_scan.n_groups(kind, SCAN))]
-
-
-def scan_runtime(kind, per_job=True):
-    """Minutes a group job may take: its trajectories x steps x measured cost, x3 and + 10 min
-    for sampling, start-up and a busy node."""
-    s = _scan.settings_for(kind, SCAN)
-    n = SCAN[kind]["trajectories_per_job"] if per_job else len(_scan.items(kind, SCAN))
-    seconds = n * (s.t_final / s.dt) * SCAN.get("us_per_step", 1.0) * 1e-6
-    return int(math.ceil(3 * seconds / 60)) + 10
 
 
 rule compile_scan_kernels:
@@ -148,7 +122,12 @@ rule plot_energy_scan:
         data=result("scan", "energy_scan.nc"),
     output:
         pdf=result("figures", "energy_scan.pdf"),
-        png=result("figures", "energy_scan.png"),
+        png=report(
+            result("figures", "energy_scan.png"),
+            caption="../report/energy_scan.rst",
+            category=REPORT_CATEGORIES["scan"],
+            labels={"result": "energy scan", "shows": "P, Lambda, eta and gaps against H"},
+        ),
     params:
         kind="energy_scan",
         dpi=config["figures"]["dpi"],
@@ -168,7 +147,15 @@ rule plot_disorder_statistics:
         data=result("scan", "disorder_statistics.nc"),
     output:
         pdf=result("figures", "disorder_statistics.pdf"),
-        png=result("figures", "disorder_statistics.png"),
+        png=report(
+            result("figures", "disorder_statistics.png"),
+            caption="../report/disorder_statistics.rst",
+            category=REPORT_CATEGORIES["scan"],
+            labels={
+                "result": "disorder statistics",
+                "shows": "probabilities and onsets against H",
+            },
+        ),
     params:
         kind="disorder",
         dpi=config["figures"]["dpi"],
@@ -188,7 +175,12 @@ rule scan_thresholds:
     input:
         data=result("scan", "energy_scan.nc"),
     output:
-        csv=result("scan", "thresholds.csv"),
+        csv=report(
+            result("scan", "thresholds.csv"),
+            caption="../report/thresholds.rst",
+            category=REPORT_CATEGORIES["scan"],
+            labels={"result": "thresholds (CSV)", "shows": "threshold energies of the scan"},
+        ),
         tex=result("scan", "thresholds.tex"),
     log:
         log_file("scan_thresholds"),

@@ -4,39 +4,9 @@
 # (chainchaos.verdicts) that the claims table reads. With `search.pinned_seed` set, the search
 # re-scores that chain only.
 
-import math
-
-from chainchaos.search import SearchPlan
-
-SEARCH_PLAN = SearchPlan.from_config(config["search"])
-
 
 wildcard_constraints:
     rank=r"\d+",
-
-
-def search_params():
-    return {
-        "search": config["search"],
-        "chain": config["chain"],
-        "claims": config.get("claims", {}),
-        "site": config["simulation"]["excited_site"],
-    }
-
-
-def search_filter_files():
-    return [result("search", "filter", f"{g:03d}.nc") for g in range(SEARCH_PLAN.n_filter_jobs)]
-
-
-def search_score_files():
-    return [result("search", "score", f"{k:03d}.nc") for k in range(SEARCH_PLAN.n_score_jobs)]
-
-
-def search_runtime(orbits_per_job, t_final):
-    """Minutes a search or verdict job may take on a cluster node (as scan_runtime)."""
-    dt = float(config["search"]["settings"]["dt"])
-    seconds = orbits_per_job * (float(t_final) / dt) * config["scan"].get("us_per_step", 1.0) * 1e-6
-    return int(math.ceil(3 * seconds / 60)) + 10
 
 
 N_STATEMENT_SCENES = len(paper.statement_scenes())
@@ -124,7 +94,12 @@ rule plot_search:
         search=result("search", "search.nc"),
     output:
         pdf=result("figures", "search.pdf"),
-        png=result("figures", "search.png"),
+        png=report(
+            result("figures", "search.png"),
+            caption="../report/search.rst",
+            category=REPORT_CATEGORIES["search"],
+            labels={"result": "search", "shows": "statements kept by each candidate chain"},
+        ),
     params:
         dpi=config["figures"]["dpi"],
     log:

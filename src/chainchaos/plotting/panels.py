@@ -20,6 +20,7 @@ from chainchaos.plotting import style
 
 LOWESS_FRACTION = 0.08  # share of the samples in each local fit (about half a decade at 40 per decade)
 LOWESS_MIN_SAMPLES = 5
+MAP_BAR_SHRINK = 0.92  # colour-bar height / map height
 
 # --------------------------------------------------------------------------- helpers
 
@@ -72,7 +73,10 @@ def _draw_map(ax, values: xr.DataArray, y_dim: str, norm, cmap: str, colour_labe
     _time_axis(ax, t_edges[0], t_edges[-1])
     ax.set_ylabel(y_label)
     ax.yaxis.set_major_locator(_index_locator())
-    bar = ax.figure.colorbar(mesh, ax=ax, pad=0.02, fraction=0.08, aspect=25)
+    # A bar a little shorter than the map, level with its bottom: the label of the top tick stays
+    # below the map's top edge, clear of a panel title that reaches over the bar in a narrow panel.
+    bar = ax.figure.colorbar(mesh, ax=ax, pad=0.02, fraction=0.08, aspect=25, shrink=MAP_BAR_SHRINK,
+                             anchor=(0.0, 0.0))
     bar.set_label(colour_label)
     if isinstance(norm, LogNorm):
         _sparse_log_ticks(bar.ax.yaxis)

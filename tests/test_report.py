@@ -1,0 +1,105 @@
+"""The HTML report (snakemake --report) of the quick run, and its generated caption templates."""
+
+import json
+import re
+import subprocess
+import sys
+from pathlib import Path
+from types import SimpleNamespace
+
+import pytest
+from docutils.core import publish_parts
+from jinja2 import Environment
+
+from chainchaos import paper, report_captions
+
+ROOT = Path(__file__).resolve().parents[1]
+
+# Every figure of the workflow besides the paper's panels and composites, and the tables.
+OTHER_RESULTS = ["energy_scan.png", "disorder_statistics.png", "search.png", "work_precision.png",
+                 "stability.png", "claims.csv", "thresholds.csv", "work_precision.csv",
+                 "work_precision_runs.csv", "stability.csv", "step_advice.csv"]
+
+
+def _render(template: str, **wildcards) -> str:
+    """A caption as Snakemake renders it: Jinja with the job's wildcards, then docutils, here
+    stopping at the first warning (Snakemake would print it into the report)."""
+    env = Environment(trim_blocks=True, lstrip_blocks=True)  # as snakemake.report
+    text = env.from_string(template).render(snakemake=SimpleNamespace(wildcards=SimpleNamespace(**wildcards)))
+    return publish_parts(text, writer="html", settings_overrides={"halt_level": 2, "report_level": 2})["body"]
+
+
+def test_committed_caption_templates_are_the_generated_ones():
+    for path, text in report_captions.templates().items():
+        assert (ROOT / path).read_text() == text, f"{path} is stale: run python -m chainchaos.report_captions"
+
+
+def test_every_panel_and_figure_has_a_caption_that_renders_cleanly():
+    panel = (ROOT / report_captions.PANEL_TEMPLATE).read_text()
+    for p in paper.PANELS:
+        html = _render(panel, panel=p)
+        assert f"Fig. {p[:-1]}({p[-1]})" in html and "Shows" in html and "The paper reports" in html, p
+        for s in paper.statements_of_panel(p):
+            assert s.text.split("$")[0].strip() in html, (p, s.id)
+    figure = (ROOT / report_captions.FIGURE_TEMPLATE).read_text()
+    for n in paper.LAYOUTS:
+        html = _render(figure, number=str(n))
+        kinds = {paper.PANELS[p].kind for p in paper.panels_of_figure(n)}
+        assert f"Fig. {n}</strong>" in html and html.count("<li>") >= len(kinds), n
+        for p in paper.panels_of_figure(n):
+            assert re.search(rf"<em>\([a-z, ]*{p[-1]}[a-z, ]*\)</em>", html), p
+
+
+def test_every_statement_is_about_a_panel_of_the_figure_it_cites():
+    for s in paper.STATEMENTS:
+        panels = paper.statement_panels(s)
+        assert panels and all(s.scene in paper.PANELS[p].scenes for p in panels), s.id
+        assert all(f"(Fig. {p[:-1]}" in s.text for p in panels), s.id
+
+
+def test_labels_tell_the_panels_of_a_figure_apart():
+    for n in paper.LAYOUTS:
+        rows = [report_captions.figure_labels(n)] + [report_captions.panel_labels(p)
+                                                    for p in paper.panels_of_figure(n)]
+        assert len({tuple(r.values()) for r in rows}) == len(rows)
+        assert all(list(r) == list(rows[0]) for r in rows)
+    assert report_captions.panel_labels("4c")["model"] == "Hertz, FPUT"
+    assert report_captions.panel_labels("4c")["energy H"] == "0.5, 1.8"
+
+
+def _embedded(html: str, name: str):
+    """The JSON the report embeds as ``var name = {...};``."""
+    match = re.search(rf"^\s*var {name} = (\{{.*\}});\s*$", html, re.M)
+    assert match, name
+    return json.loads(match.group(1))
+
+
+@pytest.mark.slow
+def test_report_of_the_quick_run_holds_every_figure_with_caption_and_labels(quick, tmp_path):
+    out = tmp_path / "report.html"
+    done = subprocess.run([sys.executable, "-m", "snakemake", "--nolock", "--report", str(out),
+                           "--configfile", "config/quick.yaml", "--config", f"results={quick}"],
+                          cwd=ROOT, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, (done.stdout + done.stderr)[-4000:]
+    assert "Unknown command" not in done.stderr  # LaTeX that docutils' math cannot render
+    html = out.read_text()
+    assert "system-message" not in html  # a docutils warning printed into a caption
+    results = {Path(path).name: entry for path, entry in _embedded(html, "results").items()}
+    categories = _embedded(html, "categories")
+
+    for p in paper.PANELS:
+        entry = results[f"fig{p}.png"]
+        assert entry["labels"] == report_captions.panel_labels(p)
+        assert f"Fig. {p[:-1]}({p[-1]})" in entry["caption"], p
+    for n in paper.LAYOUTS:
+        entry = results[f"fig{n}.png"]
+        assert entry["labels"] == report_captions.figure_labels(n)
+        assert f"Fig. {n}</strong>" in entry["caption"]
+    for name in OTHER_RESULTS:
+        assert results[name]["caption"].strip() and results[name]["labels"], name
+    assert set(categories["Paper figures"]) == {report_captions.figure_subcategory(n) for n in paper.LAYOUTS}
+    expected = len(paper.PANELS) + len(paper.LAYOUTS) + len(OTHER_RESULTS)
+    assert len(results) == expected
+    # the start page (workflow/report/workflow.rst) links every category by its name
+    for category in categories:
+        assert f"showCategory('{category.replace(' ', '%20')}')" in html, category
