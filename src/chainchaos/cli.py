@@ -58,6 +58,16 @@ def _output(text: str) -> str:
     return text
 
 
+def _read(option: str, read, path):
+    """``read(path)`` with a ChainFileError naming the option that gave the file."""
+    from chainchaos.errors import ChainFileError
+
+    try:
+        return read(path)
+    except ChainFileError as err:
+        raise ChainFileError(f"option {option}: {err}") from err
+
+
 def _alpha(args) -> float:
     return DEFAULT_ALPHA if args.alpha is None else args.alpha
 
@@ -71,7 +81,8 @@ def _cmd_chain(args) -> None:
     if args.reference_radius is not None and not args.radii:
         raise ParameterError("reference_radius", args.reference_radius, "only together with --radii")
     if args.radii:
-        chain = chain_from_radii(read_radii(args.radii), args.reference_radius, args.wall_radius, args.alpha)
+        chain = chain_from_radii(_read("--radii", read_radii, args.radii), args.reference_radius,
+                                 args.wall_radius, args.alpha)
     elif args.search:
         chain, extra = select_realization(SelectionCriteria(alpha=_alpha(args), N=args.N, n_seeds=args.n_seeds))
         print(f"selected seed {extra['selection_seed']} among {extra['selection_candidates']} candidates "
@@ -99,7 +110,7 @@ def _cmd_simulate(args) -> None:
                              excited_site=args.site, k4_sign=args.k4_sign, deviation_seed=args.deviation_seed,
                              samples_per_decade=args.samples_per_decade,
                              max_energy_error=args.max_energy_error)
-    chain = read_chain(args.chain)
+    chain = _read("--chain", read_chain, args.chain)
     ds = simulate(chain, params, progress=ProgressReporter(params.name, params.t_final))
     write_netcdf(ds, args.out)
     print(args.out)
