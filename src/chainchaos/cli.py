@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from chainchaos.errors import ParameterError
+from chainchaos.errors import ChainFileError, ParameterError, SimulationError
 
 DEFAULT_ALPHA = 5.0
 
@@ -50,8 +50,8 @@ _positive_float = _number(0.0)
 def _output(text: str) -> str:
     """argparse type: a file path to write (not an existing directory, nor below a file)."""
     path = Path(text)
-    if path.is_dir() or not text:
-        raise argparse.ArgumentTypeError(f"{text!r} is a directory; allowed is a file path")
+    if not text or path.is_dir():
+        raise argparse.ArgumentTypeError(f"{text!r} is {'a directory' if text else 'empty'}; allowed is a file path")
     parent = next((p for p in path.absolute().parents if p.exists()), None)
     if parent is not None and not parent.is_dir():
         raise argparse.ArgumentTypeError(f"{text!r}: {str(parent)!r} is a file, not a directory")
@@ -60,8 +60,6 @@ def _output(text: str) -> str:
 
 def _read(option: str, read, path):
     """``read(path)`` with a ChainFileError naming the option that gave the file."""
-    from chainchaos.errors import ChainFileError
-
     try:
         return read(path)
     except ChainFileError as err:
@@ -208,8 +206,6 @@ OPTION_OF_PARAMETER = {"excited_site": "site", "K4_sign": "k4_sign", "n_realizat
 
 
 def main(argv=None) -> int:
-    from chainchaos.errors import ChainFileError, SimulationError
-
     args = build_parser().parse_args(argv)
     try:
         args.func(args)
