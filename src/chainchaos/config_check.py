@@ -6,7 +6,7 @@ allowed:
 1. config/schema.yaml, read as JSON schema: types, ranges, names, unknown keys;
 2. what a JSON schema cannot say: every number finite (YAML's ``.nan`` and ``.inf`` are numbers);
 3. what holds between keys, checked by the very objects the jobs build from the config
-   (SceneParameters, ScanSettings, OrbitSettings, SearchPlan, SelectionCriteria, Criteria), and
+   (SceneParameters, ScanSettings, OrbitSettings, SearchPlan, SelectionCriteria), and
    sites within the chain, scene names among the paper's scenes.
 
 Every error of the first layer that finds any is reported, so one run names them all.
@@ -104,9 +104,9 @@ def nonfinite_errors(config, path=()) -> list[str]:
 def _labelled(err: ParameterError, blocks: list[tuple[str, dict]]) -> str:
     """The message of ``err`` with the config key it came from: the first block holding the
     parameter, else the first block."""
-    name = err.name.lower()
-    path = next((p for p, block in blocks if name in {k.lower() for k in block}), blocks[0][0])
-    return f"config key {path}.{name} = {err.value!r}: allowed is {err.allowed}"
+    found = ((path, key) for path, block in blocks for key in block if key.lower() == err.name.lower())
+    path, key = next(found, (blocks[0][0], err.name))
+    return f"config key {path}.{key} = {err.value!r}: allowed is {err.allowed}"
 
 
 def _check(messages: list, blocks: list[tuple[str, dict]], build) -> None:
@@ -119,7 +119,6 @@ def _check(messages: list, blocks: list[tuple[str, dict]], build) -> None:
 def consistency_errors(config: dict) -> list[str]:
     """What holds between keys, by the objects the jobs build from the config."""
     from chainchaos import paper
-    from chainchaos.criteria import Criteria
     from chainchaos.orbits import OrbitSettings
     from chainchaos.scan import energy_grid, settings_for
     from chainchaos.search import SearchPlan
@@ -128,9 +127,9 @@ def consistency_errors(config: dict) -> list[str]:
 
     messages = []
     scenes = paper.scenes()
-    for key in ("scenes", "claims.plateau_end"):
-        block = config.get(key) if "." not in key else config.get("claims", {}).get("plateau_end", {})
-        unknown = sorted(set(block or {}) - set(scenes))
+    claims = config.get("claims", {})
+    for key, block in (("scenes", config.get("scenes", {})), ("claims.plateau_end", claims.get("plateau_end", {}))):
+        unknown = sorted(set(block) - set(scenes))
         if unknown:
             messages.append(f"config key {key}: unknown scene name(s) {unknown}; allowed are {sorted(scenes)}")
 
@@ -163,10 +162,6 @@ def consistency_errors(config: dict) -> list[str]:
         settings = config[block]["settings"]
         _check(messages, [(f"{block}.settings", settings)], lambda: OrbitSettings.from_config(settings))
 
-    try:
-        Criteria.from_config(config.get("claims"))
-    except (ParameterError, ValueError, TypeError) as err:
-        messages.append(f"config key claims: {err}")
     return list(dict.fromkeys(messages))  # a key shared by several scenes is named once
 
 
