@@ -7,12 +7,17 @@
 
 from snakemake.utils import min_version, validate
 
+from chainchaos.config_check import check_config, typed_overrides
+
 min_version("9.0")
 
 
 configfile: "config/config.yaml"
 
 
+# Every wrong key named with what is allowed, before any rule runs; then the schema's defaults.
+typed_overrides(config, workflow.config_settings.config)
+check_config(config)
 validate(config, "config/schema.yaml")
 
 

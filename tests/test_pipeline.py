@@ -116,30 +116,6 @@ def test_a_pinned_seed_rescores_that_chain_without_a_search(tmp_path):
     assert jobs["search_candidates"] == 1
 
 
-@pytest.mark.parametrize("yaml_text, key", [
-    ("simulation:\n  dt: -0.1\n", "dt"),
-    ("simulation:\n  integrator: rk4\n", "integrator"),
-    ("simulation:\n  t_final: ten\n", "t_final"),
-    ("chain:\n  N: 1\n", "N"),
-    ("search:\n  pinned_seed: -4\n", "pinned_seed"),
-    ("search:\n  lanes: 0\n", "lanes"),
-    ("verdicts:\n  settings:\n    perturbation: 0.5\n", "perturbation"),
-])
-def test_bad_config_is_refused_naming_the_key(tmp_path, yaml_text, key):
-    bad = tmp_path / "bad.yaml"
-    bad.write_text(yaml_text)
-    code, out = snakemake("-n", "--configfile", "config/config.yaml", str(bad))
-    assert code != 0
-    assert f"['{key}']" in out and "Error validating config" in out
-
-
-def test_unknown_scene_override_is_refused(tmp_path):
-    bad = tmp_path / "bad.yaml"
-    bad.write_text("scenes:\n  hertz_H9.9:\n    dt: 0.001\n")
-    code, out = snakemake("-n", "--configfile", "config/config.yaml", str(bad))
-    assert code != 0 and "hertz_H9.9" in out and "allowed" in out
-
-
 @pytest.mark.slow
 def test_the_search_chooses_the_chain_and_the_verdicts_run_on_it(quick):
     found = xr.load_dataset(quick / "search" / "search.nc")

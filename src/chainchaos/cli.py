@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from chainchaos.errors import ParameterError
+from chainchaos.errors import ChainFileError, ParameterError, SimulationError
 
 DEFAULT_ALPHA = 5.0
 
@@ -50,12 +50,20 @@ _positive_float = _number(0.0)
 def _output(text: str) -> str:
     """argparse type: a file path to write (not an existing directory, nor below a file)."""
     path = Path(text)
-    if path.is_dir() or not text:
-        raise argparse.ArgumentTypeError(f"{text!r} is a directory; allowed is a file path")
+    if not text or path.is_dir():
+        raise argparse.ArgumentTypeError(f"{text!r} is {'a directory' if text else 'empty'}; allowed is a file path")
     parent = next((p for p in path.absolute().parents if p.exists()), None)
     if parent is not None and not parent.is_dir():
         raise argparse.ArgumentTypeError(f"{text!r}: {str(parent)!r} is a file, not a directory")
     return text
+
+
+def _read(option: str, read, path):
+    """``read(path)`` with a ChainFileError naming the option that gave the file."""
+    try:
+        return read(path)
+    except ChainFileError as err:
+        raise ChainFileError(f"option {option}: {err}") from err
 
 
 def _alpha(args) -> float:
@@ -71,7 +79,8 @@ def _cmd_chain(args) -> None:
     if args.reference_radius is not None and not args.radii:
         raise ParameterError("reference_radius", args.reference_radius, "only together with --radii")
     if args.radii:
-        chain = chain_from_radii(read_radii(args.radii), args.reference_radius, args.wall_radius, args.alpha)
+        chain = chain_from_radii(_read("--radii", read_radii, args.radii), args.reference_radius,
+                                 args.wall_radius, args.alpha)
     elif args.search:
         chain, extra = select_realization(SelectionCriteria(alpha=_alpha(args), N=args.N, n_seeds=args.n_seeds))
         print(f"selected seed {extra['selection_seed']} among {extra['selection_candidates']} candidates "
@@ -99,7 +108,7 @@ def _cmd_simulate(args) -> None:
                              excited_site=args.site, k4_sign=args.k4_sign, deviation_seed=args.deviation_seed,
                              samples_per_decade=args.samples_per_decade,
                              max_energy_error=args.max_energy_error)
-    chain = read_chain(args.chain)
+    chain = _read("--chain", read_chain, args.chain)
     ds = simulate(chain, params, progress=ProgressReporter(params.name, params.t_final))
     write_netcdf(ds, args.out)
     print(args.out)
@@ -197,8 +206,6 @@ OPTION_OF_PARAMETER = {"excited_site": "site", "K4_sign": "k4_sign", "n_realizat
 
 
 def main(argv=None) -> int:
-    from chainchaos.errors import ChainFileError, SimulationError
-
     args = build_parser().parse_args(argv)
     try:
         args.func(args)

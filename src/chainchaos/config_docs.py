@@ -109,6 +109,12 @@ def _type(schema: dict) -> str:
     return text + (f" ({', '.join(limits)})" if limits else "")
 
 
+def allowed(schema: dict) -> str:
+    """What a key with this schema allows, in words: its type, values and limits (the config
+    README's column, for error messages)."""
+    return _type(schema).replace("`", "'")
+
+
 def _cell(text: str) -> str:
     return " ".join(str(text).split()).replace("|", "\\|")
 

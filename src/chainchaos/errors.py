@@ -16,6 +16,15 @@ class ChainFileError(ValueError):
     section 7)."""
 
 
+class ConfigError(ValueError):
+    """A wrong pipeline config: one line per wrong key, naming the key, its value and what is
+    allowed (chainchaos.config_check)."""
+
+    def __init__(self, messages: list[str]):
+        self.messages = list(messages)
+        super().__init__("invalid config (config/schema.yaml, config/README.md):\n  " + "\n  ".join(self.messages))
+
+
 class SimulationError(RuntimeError):
     """A run stopped by a guard (non-finite state or energy error above the bound)."""
 

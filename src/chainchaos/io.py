@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from chainchaos import cf
 from chainchaos.chain import GENERATOR, Chain
 from chainchaos.errors import ChainFileError
 from chainchaos.linear import mode_energy_density, normal_modes, participation_number
@@ -37,10 +38,11 @@ def atomic_output(path):
 
 
 def write_netcdf(ds: xr.Dataset, path) -> Path:
-    """Write ``ds`` to ``path`` atomically (zlib-compressed variables)."""
-    encoding = {name: {"zlib": True, "complevel": 4} for name, v in ds.data_vars.items() if v.ndim > 0}
+    """Write ``ds`` to ``path`` atomically, zlib-compressed, in the CF and ACDD conventions of
+    chainchaos.cf (the same values; ``ds`` itself is not changed)."""
+    out, encoding = cf.encoded(ds)
     with atomic_output(path) as tmp:
-        ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
+        out.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
     return Path(path)
 
 

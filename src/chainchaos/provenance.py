@@ -131,11 +131,11 @@ def machine_line() -> str:
 
 
 def provenance_attrs(parameters: dict) -> dict:
+    """Package version, git commit, ``parameters`` as JSON and the machine (the CF and ACDD global
+    attributes are added where the file is written, chainchaos.cf)."""
     from chainchaos import __version__
 
     return {
-        "Conventions": "CF-1.10",
-        "source": f"chainchaos {__version__}",
         "chainchaos_version": __version__,
         "git_commit": git_commit(),
         "parameters": json.dumps(parameters, sort_keys=True),

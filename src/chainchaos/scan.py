@@ -234,6 +234,20 @@ SCALARS = {
 }
 SERIES = {"participation": "participation number P(t)", "log_growth": "ln(|v(t)|/|v(0)|) = Lambda(t) t",
           "eta": "normalised spectral entropy eta(t)"}
+GROUP_TITLES = {"energy_scan": "Energy scan", "disorder": "Disorder statistics"}
+ENERGY_INDEX = {"units": "1", "long_name": "index of the energy on the scan's grid"}
+REALIZATION = {"units": "1", "long_name": "realization r: random_chain(first_seed + r, alpha)"}
+#: the excitation select_excitation picks in each realization: variable -> (its key, dtype)
+EXCITATION_PICKS = {"excited_mode": ("mode", np.int32), "excited_site": ("site", np.int32),
+                    "excited_mode_participation": ("participation", np.float64),
+                    "selection_fallback": ("fallback", np.int8)}
+EXCITATION = {
+    "excited_mode": {"units": "1", "long_name": "excited linear mode k (1-based, by increasing frequency)"},
+    "excited_site": {"units": "1", "long_name": "excited bead n: the maximum of the mode's energy density"},
+    "excited_mode_participation": {"units": "1", "long_name": "participation number of the excited mode"},
+    "selection_fallback": {"units": "1", "long_name": "1 if no candidate mode peaked near the centre and "
+                                                      "the most localized high mode anywhere was taken"},
+}
 
 
 def criteria_attrs(settings: ScanSettings) -> dict:
@@ -259,7 +273,7 @@ def _group_dataset(kind, its, results, settings, extra_vars, attrs, series=False
                      {"units": "1", "long_name": long_name})
     data["model"] = ("trajectory", np.array([i[0] for i in its], dtype=object), {"long_name": "model"})
     data.update(extra_vars)
-    coords = {"trajectory": np.arange(n)}
+    coords = {"trajectory": ("trajectory", np.arange(n), {"units": "1", "long_name": "trajectory index in the group"})}
     if series and results:
         coords["time"] = results[0]["times"]
         for key, long_name in SERIES.items():
@@ -267,11 +281,12 @@ def _group_dataset(kind, its, results, settings, extra_vars, attrs, series=False
                          {"units": "1", "long_name": long_name})
     ds = xr.Dataset(data, coords=coords)
     if "time" in ds.coords:
-        ds.time.attrs.update(units="1", standard_name="time", long_name="time",
+        ds.time.attrs.update(units="1", long_name="time",
                              comment="nondimensional time, unit 1/omega_max of the homogeneous linear chain")
     ds.attrs.update(provenance_attrs({"kind": kind, **asdict(settings)}))
     ds.attrs.update(criteria_attrs(settings))
-    ds.attrs.update(integrator=settings.integrator, dt=float(settings.dt), t_final=float(settings.t_final),
+    ds.attrs.update(title=f"{GROUP_TITLES[kind]}: one job's group of trajectories",
+                    integrator=settings.integrator, dt=float(settings.dt), t_final=float(settings.t_final),
                     K4_sign=float(settings.k4_sign), deviation_seed=int(settings.deviation_seed))
     ds.attrs.update(attrs)
     return ds
@@ -286,7 +301,7 @@ def energy_scan_group(chain, scan_cfg: dict, group: int, progress=None) -> xr.Da
     its = group_items("energy_scan", scan_cfg, group)
     trajs = [Trajectory(m, float(grid[e]), chain, site) for m, e in its]
     results = run_trajectories(trajs, settings, progress)
-    extra = {"energy_index": ("trajectory", np.array([e for _, e in its], dtype=np.int32), {"units": "1"}),
+    extra = {"energy_index": ("trajectory", np.array([e for _, e in its], dtype=np.int32), ENERGY_INDEX),
              "energy": ("trajectory", np.array([grid[e] for _, e in its]), {"units": "1", "long_name": "total energy H"})}
     return _group_dataset("energy_scan", its, results, settings, extra,
                           {"group": int(group), "excited_site": site,
@@ -308,13 +323,11 @@ def disorder_group(scan_cfg: dict, group: int, N: int = 40, progress=None) -> xr
     trajs = [Trajectory(m, float(grid[e]), chains[r], picks[r]["site"]) for m, r, e in its]
     results = run_trajectories(trajs, settings, progress)
     extra = {
-        "energy_index": ("trajectory", np.array([e for *_, e in its], dtype=np.int32), {"units": "1"}),
-        "realization": ("trajectory", np.array([r for _, r, _ in its], dtype=np.int32), {"units": "1"}),
+        "energy_index": ("trajectory", np.array([e for *_, e in its], dtype=np.int32), ENERGY_INDEX),
+        "realization": ("trajectory", np.array([r for _, r, _ in its], dtype=np.int32), REALIZATION),
         "energy": ("trajectory", np.array([grid[e] for *_, e in its]), {"units": "1", "long_name": "total energy H"}),
-        "excited_mode": ("trajectory", np.array([picks[r]["mode"] for _, r, _ in its], dtype=np.int32), {"units": "1"}),
-        "excited_site": ("trajectory", np.array([picks[r]["site"] for _, r, _ in its], dtype=np.int32), {"units": "1"}),
-        "excited_mode_participation": ("trajectory", np.array([picks[r]["participation"] for _, r, _ in its]), {"units": "1"}),
-        "selection_fallback": ("trajectory", np.array([picks[r]["fallback"] for _, r, _ in its], dtype=np.int8), {"units": "1"}),
+        **{key: ("trajectory", np.array([picks[r][pick] for _, r, _ in its], dtype=dtype), EXCITATION[key])
+           for key, (pick, dtype) in EXCITATION_PICKS.items()},
     }
     return _group_dataset("disorder", its, results, settings, extra, {"group": int(group)})
 
@@ -412,7 +425,7 @@ def merge_disorder(groups: list[xr.Dataset], scan_cfg: dict) -> xr.Dataset:
         arr = np.full(R, np.nan if np.issubdtype(dtype, np.floating) else -1, dtype=dtype)
         for g in groups:
             arr[g["realization"].values] = g[key].values
-        data[key] = ("realization", arr, {"units": "1"})
+        data[key] = ("realization", arr, EXCITATION[key])
     valid = data["valid"][1] == 1
     n = valid.sum(axis=-1)
     quantiles = np.array([0.1, 0.25, 0.5, 0.75, 0.9])
@@ -427,7 +440,8 @@ def merge_disorder(groups: list[xr.Dataset], scan_cfg: dict) -> xr.Dataset:
                                               {"units": "1", "long_name": "Wilson 95% interval, lower bound"})
         data[f"probability_{what}_upper"] = (("model", "energy"), hi,
                                               {"units": "1", "long_name": "Wilson 95% interval, upper bound"})
-        data[f"count_{what}"] = (("model", "energy"), k.astype(np.int32), {"units": "1"})
+        data[f"count_{what}"] = (("model", "energy"), k.astype(np.int32),
+                                 {"units": "1", "long_name": f"number of valid realizations {what}"})
     data["count_valid"] = (("model", "energy"), n.astype(np.int32), {"units": "1", "long_name": "valid realizations"})
     for what, key, flag in (("delocalization", "delocalization_onset", "delocalized"),
                             ("chaos", "chaos_onset", "chaotic")):
@@ -444,7 +458,8 @@ def merge_disorder(groups: list[xr.Dataset], scan_cfg: dict) -> xr.Dataset:
     ds = xr.Dataset(data, coords={"model": models, "energy": grid, "realization": np.arange(R),
                                   "quantile": quantiles})
     ds.energy.attrs.update(units="1", long_name="total energy H")
-    ds.realization.attrs.update(units="1", long_name="realization r: random_chain(first_seed + r, alpha)")
+    ds.realization.attrs.update(REALIZATION)
+    ds["quantile"].attrs.update(units="1", long_name="probability of the quantile")
     ds.attrs.update(provenance_attrs({"kind": "disorder", "scan": scan_cfg}))
     ds.attrs.update(criteria_attrs(settings))
     ds.attrs.update(title="Disorder statistics of delocalization and chaos", generator=GENERATOR,

@@ -32,7 +32,7 @@ from chainchaos.criteria import Criteria
 from chainchaos.errors import require
 from chainchaos.orbits import Orbit, OrbitSettings, integrate
 from chainchaos.selection import SelectionCriteria, candidate_row, candidates as linear_candidates
-from chainchaos.verdicts import HOLDS, ensemble_verdict, evaluate
+from chainchaos.verdicts import HOLDS, LANE, STATEMENT, ensemble_verdict, evaluate
 
 
 @dataclass(frozen=True)
@@ -106,8 +106,9 @@ def candidates(selection: SelectionCriteria, plan: SearchPlan) -> xr.Dataset:
     ``n_qualifying`` how many of the scanned seeds pass the rule. Later stages read this."""
     qualifying = linear_candidates(selection)
     rows = [candidate_row(plan.pinned_seed, selection)] if plan.pinned else qualifying[:plan.candidates]
-    ds = xr.Dataset(_seed_dataset(rows), coords={"candidate": np.arange(len(rows))})
-    ds.attrs.update(n_qualifying=len(qualifying), seeds_scanned=int(selection.n_seeds), pinned=int(plan.pinned))
+    ds = xr.Dataset(_seed_dataset(rows), coords={"candidate": _candidates(np.arange(len(rows)))})
+    ds.attrs.update(title="Realization search, stage 0: the candidate chains of the linear rule",
+                    n_qualifying=len(qualifying), seeds_scanned=int(selection.n_seeds), pinned=int(plan.pinned))
     return ds
 
 
@@ -117,6 +118,14 @@ def candidate_rows(ds: xr.Dataset) -> list[dict]:
              "mode_participation": float(ds["mode_participation"].values[i]),
              "overlap_left": float(ds["overlap_left"].values[i]), "overlap_right": float(ds["overlap_right"].values[i])}
             for i in range(ds.sizes["candidate"])]
+
+
+def _candidates(index: np.ndarray) -> tuple:
+    return ("candidate", index, {"units": "1", "long_name": "candidate index, in the linear rule's order"})
+
+
+def _statements(statements) -> tuple:
+    return ("statement", [st.id for st in statements], STATEMENT)
 
 
 def _seed_dataset(rows: list[dict]) -> dict:
@@ -152,10 +161,11 @@ def filter_group(selection: SelectionCriteria, plan: SearchPlan, settings: Orbit
                      {"long_name": "measured value of the statement (one orbit, short run)"}),
         "energy_error_max": ("candidate", err, {"units": "1", "long_name": "largest relative energy error"}),
     })
-    ds = xr.Dataset(data, coords={"candidate": np.arange(group * plan.candidates_per_job,
-                                                         group * plan.candidates_per_job + len(rows)),
-                                  "statement": [st.id for st in paper.STATEMENTS]})
-    ds.attrs.update(stage="filter", t_final=float(plan.filter_t_final), dt=float(settings.dt), group=int(group))
+    ds = xr.Dataset(data, coords={"candidate": _candidates(np.arange(group * plan.candidates_per_job,
+                                                                     group * plan.candidates_per_job + len(rows))),
+                                  "statement": _statements(paper.STATEMENTS)})
+    ds.attrs.update(title="Realization search, stage 1: one orbit per scene of a job's candidates",
+                    stage="filter", t_final=float(plan.filter_t_final), dt=float(settings.dt), group=int(group))
     return ds
 
 
@@ -190,8 +200,10 @@ def score_candidate(selection: SelectionCriteria, plan: SearchPlan, settings: Or
                      "flag_meanings": "not_testable undecided fails holds"}),
         "energy_error_max": ((), float(err[0]), {"units": "1", "long_name": "largest relative energy error"}),
     })
-    ds = xr.Dataset(data, coords={"statement": [st.id for st in paper.STATEMENTS], "lane": np.arange(plan.lanes)})
-    ds.attrs.update(stage="score", candidate=int(candidate), t_final=float(settings.t_final), dt=float(settings.dt),
+    ds = xr.Dataset(data, coords={"statement": _statements(paper.STATEMENTS),
+                                  "lane": ("lane", np.arange(plan.lanes), LANE)})
+    ds.attrs.update(title=f"Realization search, stage 2: the ensemble of candidate {candidate}",
+                    stage="score", candidate=int(candidate), t_final=float(settings.t_final), dt=float(settings.dt),
                     lanes=int(plan.lanes))
     return ds
 
@@ -252,7 +264,7 @@ def merge(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSetting
         "kind": ("statement", np.array([st.kind for st in statements], dtype=object)),
         "text": ("statement", np.array([st.text for st in statements], dtype=object)),
     })
-    ds = xr.Dataset(data, coords={"candidate": np.arange(C), "statement": [st.id for st in statements]})
+    ds = xr.Dataset(data, coords={"candidate": _candidates(np.arange(C)), "statement": _statements(statements)})
     ds.attrs.update(
         title="Realization search: the paper's statements on candidate chains",
         pinned=int(plan.pinned), chosen_candidate=int(best), chosen_seed=int(rows[best]["seed"]),

@@ -273,7 +273,7 @@ def _dataset(chain, params, model, times, steps, Q, Pm, DQ, DP, log_growth, gap_
 
     ds = xr.Dataset(data, coords={"time": times, "site": np.arange(1, N + 1), "bond": np.arange(1, N + 2),
                                   "mode": np.arange(1, N + 1)})
-    ds.time.attrs.update(units="1", long_name="time", standard_name="time",
+    ds.time.attrs.update(units="1", long_name="time",
                          comment="nondimensional time, unit 1/omega_max of the homogeneous linear chain")
     ds.site.attrs.update(units="1", long_name="bead index n")
     ds.bond.attrs.update(units="1", long_name="bond index (bond n joins beads n-1 and n)")

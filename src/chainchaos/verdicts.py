@@ -29,6 +29,10 @@ T_PAPER = 1e5
 HOLDS, FAILS, UNDECIDED, UNTESTABLE = 1, 0, -1, -2
 VERDICT_NAMES = {HOLDS: "holds", FAILS: "fails", UNDECIDED: "undecided", UNTESTABLE: "not testable"}
 
+#: attributes of the coordinates of an ensemble (chainchaos.orbits: lane 0 is the scene's own orbit)
+LANE = {"units": "1", "long_name": "lane j: orbit of the ensemble, 0 the scene's own, j >= 1 perturbed"}
+STATEMENT = {"long_name": "id of the paper's statement (chainchaos.paper.STATEMENTS)"}
+
 
 def _final_p(t, s, st, c):
     return final_average(t, s["participation"], c.final_window_decades)
@@ -186,8 +190,8 @@ def verdict_dataset(scene_name: str, t, runs: list[dict], criteria: Criteria, at
         "kind": ("statement", np.array([st.kind for st in statements], dtype=object)),
         "text": ("statement", np.array([st.text for st in statements], dtype=object)),
     })
-    ds = xr.Dataset(data, coords={"statement": [st.id for st in statements], "lane": np.arange(len(runs)),
-                                  "time": np.asarray(t, dtype=float)})
+    ds = xr.Dataset(data, coords={"statement": ("statement", [st.id for st in statements], STATEMENT),
+                                  "lane": ("lane", np.arange(len(runs)), LANE), "time": np.asarray(t, dtype=float)})
     ds.time.attrs.update(units="1", long_name="time",
                          comment="nondimensional time, unit 1/omega_max of the homogeneous linear chain")
     ds.attrs.update(attrs)
