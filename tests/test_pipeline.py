@@ -82,7 +82,7 @@ def test_changed_scene_parameter_reruns_only_its_batch(quick, tmp_path):
     code, out = snakemake(*QUICK, str(override), "--config", f"results={quick}", "-n")
     assert code == 0, out
     jobs = planned_jobs(out)
-    rerun = set(re.findall(r"scenes/(\w+_H[\d.]+)\.nc", out))
+    rerun = set(re.findall(r"(?:local)?rule simulate_scene:\n(?:[ \t]+\w+:.*\n)*?[ \t]+output: \S*/scenes/(\w+_H[\d.]+)\.nc", out))
     assert "hertz_H1.8" in rerun and all(name.startswith("hertz_") for name in rerun)
     assert jobs["simulate_scene"] == len(rerun) and jobs["simulate_scenes"] == 2
     affected = {p for name in rerun for p in paper.panels_of_scene(name)}
