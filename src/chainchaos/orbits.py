@@ -25,7 +25,7 @@ from chainchaos.errors import ParameterError, require, require_finite_positive
 from chainchaos.initial import initial_deviation, initial_displacement
 from chainchaos.integrators import get_scheme
 from chainchaos.linear import modal_energies, normal_modes, participation_number
-from chainchaos.models import HERTZ, coefficients, energy_density, model_id, open_gaps, total_energy
+from chainchaos.models import HERTZ, energy_density, model_id, open_gaps, total_energy
 from chainchaos.simulate import sample_steps
 
 MODELS = ("hertz", "fput")

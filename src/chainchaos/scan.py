@@ -36,7 +36,7 @@ the most localized high mode anywhere is taken and ``selection_fallback`` is set
 """
 
 import math
-from dataclasses import asdict, dataclass, field, fields
+from dataclasses import asdict, dataclass
 
 import numpy as np
 import xarray as xr

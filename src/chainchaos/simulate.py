@@ -21,7 +21,7 @@ from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.batch import Batch, SerialBatch
 from chainchaos.integrators import get_scheme
 from chainchaos.linear import modal_energies, normal_modes, participation_number
-from chainchaos.models import coefficients, energy_density, model_id, open_gaps, total_energy
+from chainchaos.models import energy_density, model_id, open_gaps, total_energy
 from chainchaos.provenance import provenance_attrs
 
 OBSERVABLES = ("energy_density", "participation", "energy_centre", "mlce", "dvd", "dvd_participation",
