@@ -28,6 +28,9 @@ def project_root() -> Path | None:
     return root if (root / "pyproject.toml").is_file() else None
 
 
+#: The environment variable that overrides the SIMD width fitted to the CPU (chainchaos.simd).
+LANES_VARIABLE = "CHAINCHAOS_SIMD_LANES"
+
 #: Modules whose Numba functions are compiled into functions of other modules.
 SHARED_KERNEL_MODULES = ("models.py", "integrators.py", "simd.py", "exactmath.py")
 
@@ -44,7 +47,7 @@ def kernel_key() -> str:
     digest = hashlib.sha256()
     for path in kernel_sources():
         digest.update(path.relative_to(PACKAGE).as_posix().encode() + b"\0" + path.read_bytes())
-    digest.update(b"lanes\0" + os.environ.get("CHAINCHAOS_SIMD_LANES", "").strip().encode())
+    digest.update(b"lanes\0" + os.environ.get(LANES_VARIABLE, "").strip().encode())
     return digest.hexdigest()[:16]
 
 

@@ -329,17 +329,22 @@ class SerialBatch(Batch):
     """The interface of :class:`Batch` on the single-trajectory engine (``integrators.advance``),
     one lane after the other: the cheaper engine for one lane or a few, with the same numbers."""
 
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        # each lane's parameters as the contiguous arrays the single engine takes, made once
+        self._lane_parameters = [tuple(np.ascontiguousarray(self.params[key][:, j]) for key in _PARAMETERS)
+                                 for j in range(self.size)]
+
     def advance(self, n_steps: int) -> None:
         if n_steps <= 0:
             return
         N, B = self.q.shape
-        P = self.params
         f, k = np.empty(N + 1), np.empty(N + 1)
         for j in range(B):
             q, p, dq, dp = (np.ascontiguousarray(a[:, j]) for a in (self.q, self.p, self.dq, self.dp))
             diagnostics = np.array([self.log_growth[j], float(self.max_gaps[j])])
             gaps = np.ascontiguousarray(self.gap_steps[:, j])
-            bad = advance(self.model, q, p, dq, dp, *(np.ascontiguousarray(P[key][:, j]) for key in _PARAMETERS),
+            bad = advance(self.model, q, p, dq, dp, *self._lane_parameters[j],
                           self.scheme.kicks, self.scheme.drifts, self.dt, int(n_steps), self.tangent,
                           self.check_every, self.track_gaps, gaps, diagnostics, f, k)
             self.q[:, j], self.p[:, j], self.dq[:, j], self.dp[:, j] = q, p, dq, dp

@@ -26,15 +26,14 @@ import os
 import llvmlite.binding as llvm
 import numpy as np
 from llvmlite import ir
-from numba import njit, types
+from numba import types
 from numba.core import cgutils, config
 from numba.core.codegen import get_host_cpu_features
 from numba.extending import intrinsic, models, overload, register_model
 
+from chainchaos._numba_cache import LANES_VARIABLE
 from chainchaos.errors import require
 
-#: The environment variable that overrides the width fitted to the CPU.
-LANES_VARIABLE = "CHAINCHAOS_SIMD_LANES"
 ALLOWED_LANES = (2, 4, 8)
 
 
@@ -222,7 +221,12 @@ vprev = _window_intrinsic(LANES - 1, "vprev(a, b) = (a[LANES-1], b[0], ..., b[LA
 
 
 @intrinsic
-def _below(typingctx, a, b):
+def vbelow(typingctx, a, b):
+    """1.0 in the lanes where a < b, else 0.0 (NaN compares false): a count that adds up in a
+    vector (a or b a vector, the other a vector or a number)."""
+    if not (_operand(a) and _operand(b) and (isinstance(a, VectorType) or isinstance(b, VectorType))):
+        return None
+
     def codegen(context, builder, sig, args):
         x = _broadcast(context, builder, args[0], sig.args[0])
         y = _broadcast(context, builder, args[1], sig.args[1])
@@ -230,10 +234,3 @@ def _below(typingctx, a, b):
         return builder.select(builder.fcmp_ordered("<", x, y), one, zero)
 
     return vector(a, b), codegen
-
-
-@njit(cache=True, inline="always")
-def vbelow(a, b):
-    """1.0 in the lanes where a < b, else 0.0 (NaN compares false): a count that adds up in a
-    vector."""
-    return _below(a, b)
