@@ -27,7 +27,7 @@ from chainchaos import random_chain
 from chainchaos.batch import Batch
 from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.integrators import advance, get_scheme
-from chainchaos.models import coefficients, model_id
+from chainchaos.models import get_model
 from chainchaos.provenance import machine_line
 from chainchaos.simd import LANES
 
@@ -41,9 +41,9 @@ def states(model, chain, B, site=21):
 
 def single_rate(name, chain, B, steps, dt, integrator, tangent, repeats):
     """Trajectories x steps per CPU second of ``integrators.advance`` over the B trajectories."""
-    model = model_id(name)
+    model = get_model(name)
     scheme = get_scheme(integrator)
-    K2, K3, K4 = coefficients(model, chain)
+    bonds = model.bond_parameters(chain)
     Q, P, DQ, DP = states(model, chain, B)
     N = chain.N
     best = np.inf
@@ -55,8 +55,8 @@ def single_rate(name, chain, B, steps, dt, integrator, tangent, repeats):
             diag, gaps = np.zeros(2), np.zeros(N + 1, dtype=np.int64)
             f, k = np.empty(N + 1), np.empty(N + 1)
             t0 = time.process_time()
-            advance(model, q, p, dq, dp, 1.0 / chain.mass, chain.A, chain.delta, K2, K3, K4, scheme.kicks,
-                    scheme.drifts, dt, n, tangent, 1000, name == "hertz", gaps, diag, f, k)
+            advance(model, q, p, dq, dp, 1.0 / chain.mass, bonds, scheme.kicks, scheme.drifts, dt, n, tangent,
+                    1000, model.has_gaps, gaps, diag, f, k)
             elapsed += time.process_time() - t0
         if r > 0:
             best = min(best, elapsed)
@@ -64,11 +64,11 @@ def single_rate(name, chain, B, steps, dt, integrator, tangent, repeats):
 
 
 def batch_rate(name, chain, B, steps, dt, integrator, tangent, repeats):
-    q, p, dq, dp = states(model_id(name), chain, B)
+    q, p, dq, dp = states(name, chain, B)
     best = np.inf
     for r in range(repeats + 1):
         b = Batch(name, [chain] * B, q, p, dq, dp, integrator=integrator, dt=dt, tangent=tangent,
-                  track_gaps=name == "hertz", check_every=1000)
+                  track_gaps=get_model(name).has_gaps, check_every=1000)
         n = 10 if r == 0 else steps
         t0 = time.process_time()
         b.advance(n)

@@ -44,11 +44,12 @@ def compile_c(N: int) -> Path:
 def run_c(exe: Path, problem: dict, n_steps: int, tangent: bool, repeats: int) -> tuple[dict, float, float]:
     """Run the C program on ``problem``; returns (final state, log growth, best ns per step)."""
     N = problem["q"].size
-    lines = [f"model {problem['model']}", f"N {N}", f"steps {n_steps}", f"tangent {int(tangent)}",
+    c_model = 0 if problem["model"].name == "hertz" else 1  # the C loop's codes: 0 Hertz, 1 FPUT
+    lines = [f"model {c_model}", f"N {N}", f"steps {n_steps}", f"tangent {int(tangent)}",
              f"check_every {CHECK_EVERY}", f"repeats {repeats}", f"dt {DT!r}"]
     for key in ("A", "delta", "K2", "K3", "K4", "inv_mass", "q", "p", "dq", "dp"):
         lines.append(key + " " + " ".join(repr(float(v)) for v in problem[key]))
-    path = BUILD / f"input_{problem['model']}_{int(tangent)}.txt"
+    path = BUILD / f"input_{problem['model'].name}_{int(tangent)}.txt"
     path.write_text("\n".join(lines) + "\n")
     out = subprocess.run([str(exe), str(path)], check=True, capture_output=True, text=True).stdout
     fields = {line.split()[0]: line.split()[1:] for line in out.splitlines()}

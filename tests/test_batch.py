@@ -8,25 +8,24 @@ from chainchaos.batch import Batch, lane_parameters
 from chainchaos.simd import LANES
 from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.integrators import SCHEMES, advance, get_scheme
-from chainchaos.models import coefficients, model_id
+from chainchaos.models import get_model
 
 N = 40
 
 
 def single_run(name, chain, q, p, dq, dp, integrator, dt, n_steps, tangent, check_every, gaps, log_growth=0.0):
-    model = model_id(name)
+    model = get_model(name)
     scheme = get_scheme(integrator)
-    K2, K3, K4 = coefficients(model, chain)
     q, p, dq, dp = q.copy(), p.copy(), dq.copy(), dp.copy()
     diag, gap_steps = np.array([log_growth, 0.0]), np.zeros(N + 1, dtype=np.int64)
     f, k = np.empty(N + 1), np.empty(N + 1)
-    bad = advance(model, q, p, dq, dp, 1.0 / chain.mass, chain.A, chain.delta, K2, K3, K4, scheme.kicks,
+    bad = advance(model, q, p, dq, dp, 1.0 / chain.mass, model.bond_parameters(chain), scheme.kicks,
                   scheme.drifts, dt, n_steps, tangent, check_every, gaps, gap_steps, diag, f, k)
     return q, p, dq, dp, diag, gap_steps, bad
 
 
 def lanes(name, chains, energies, sites):
-    model = model_id(name)
+    model = get_model(name)
     states = [initial_state(model, c, E, s)[:2] for c, E, s in zip(chains, energies, sites)]
     q = np.stack([s[0] for s in states], 1)
     p = np.stack([s[1] for s in states], 1)
@@ -120,10 +119,11 @@ def test_a_diverging_lane_is_reported_and_leaves_the_others_alone():
 
 def test_lane_parameters_are_trajectory_innermost():
     chains = [random_chain(s, 5.0) for s in range(3)]
-    P = lane_parameters(model_id("hertz"), chains)
-    assert P["A"].shape == (N + 1, 3) and P["inv_mass"].shape == (N, 3)
-    assert all(a.flags.c_contiguous for a in P.values())
-    np.testing.assert_array_equal(P["delta"][:, 2], chains[2].delta)
+    inv_mass, bonds = lane_parameters("hertz", chains)
+    assert bonds.shape == (3, N + 1, 3) and inv_mass.shape == (N, 3)
+    assert inv_mass.flags.c_contiguous and bonds.flags.c_contiguous
+    np.testing.assert_array_equal(bonds[1, :, 2], chains[2].delta)  # Hertz: (A, delta)
+    np.testing.assert_array_equal(inv_mass[:, 1], 1.0 / chains[1].mass)
 
 
 def test_every_scheme_runs_in_the_batch_engine():

@@ -172,12 +172,11 @@ def test_taylor_sign_barrier_blocks_the_high_fput_energies():
     assert 0.5 < barrier < 8.7381
     from chainchaos.errors import ParameterError
     from chainchaos.initial import initial_displacement
-    from chainchaos.models import model_id
 
     c = cl.chain_from_dataset(chain, -1.0)
-    initial_displacement(model_id("fput"), c, 0.9 * barrier, 21)
+    initial_displacement("fput", c, 0.9 * barrier, 21)
     with pytest.raises(ParameterError):
-        initial_displacement(model_id("fput"), c, 1.1 * barrier, 21)
+        initial_displacement("fput", c, 1.1 * barrier, 21)
 
 
 # ------------------------------------------------------------------ the table on synthetic scenes

@@ -5,8 +5,10 @@ import pytest
 
 from chainchaos.initial import initial_state
 from chainchaos.integrators import SCHEMES, advance, get_scheme
-from chainchaos.models import FPUT, HERTZ, coefficients, open_gaps, total_energy
+from chainchaos.models import get_model, open_bonds, total_energy
 from chainchaos.simulate import SceneParameters, sample_steps, simulate
+
+HERTZ, FPUT = get_model("hertz"), get_model("fput")
 
 
 def integrate(chain, model, q, p, n_steps, dt, scheme="SRKN6b", dq=None, dp=None, track_gaps=False):
@@ -18,8 +20,8 @@ def integrate(chain, model, q, p, n_steps, dt, scheme="SRKN6b", dq=None, dp=None
     dp = np.zeros(N) if dp is None else dp.copy()
     s = get_scheme(scheme)
     diagnostics, gaps = np.zeros(2), np.zeros(N + 1, dtype=np.int64)
-    K2, K3, K4 = coefficients(model, chain)
-    bad = advance(model, q, p, dq, dp, 1 / chain.mass, chain.A, chain.delta, K2, K3, K4, s.kicks, s.drifts,
+    model = get_model(model)
+    bad = advance(model, q, p, dq, dp, 1 / chain.mass, model.bond_parameters(chain), s.kicks, s.drifts,
                   dt, n_steps, tangent, 10**9, track_gaps, gaps, diagnostics, np.empty(N + 1),
                   np.empty(N + 1))
     assert bad == -1
@@ -108,13 +110,14 @@ def test_initial_state_has_requested_energy(chain):
 def test_gap_detection_on_constructed_state(chain):
     u = np.zeros(chain.N)
     u[20] = chain.delta[20] + 0.01  # bead 21 moves right past the static overlap of bond 21
-    gaps = open_gaps(chain, u)
+    gaps = open_bonds(HERTZ, chain, u)
     assert np.flatnonzero(gaps).tolist() == [20]  # bond 21 (joins beads 20 and 21) is open
     u[20] = chain.delta[20] - 0.01
-    assert not open_gaps(chain, u).any()
+    assert not open_bonds(HERTZ, chain, u).any()
     u[:] = 0.0
     u[0] = chain.delta[0] + 0.01  # bead 1 moves away from the left wall
-    assert np.flatnonzero(open_gaps(chain, u)).tolist() == [0]
+    assert np.flatnonzero(open_bonds(HERTZ, chain, u)).tolist() == [0]
+    assert not open_bonds(FPUT, chain, u).any()  # polynomial bonds never open
 
 
 def test_gap_bookkeeping_counts_open_steps(chain):

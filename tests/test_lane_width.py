@@ -25,12 +25,12 @@ import numpy as np
 from chainchaos import random_chain, simd
 from chainchaos.batch import Batch, SerialBatch
 from chainchaos.initial import initial_deviation, initial_state
-from chainchaos.models import model_id
+from chainchaos.models import get_model
 
 chains = [random_chain(s, 5.0) for s in (879, 5346, 11, 12, 13)]
 out = [np.array([simd.LANES], dtype=float)]
 for name in ("hertz", "fput"):
-    model = model_id(name)
+    model = get_model(name)
     states = [initial_state(model, c, E, 21)[:2] for c, E in zip(chains, (0.25, 0.5, 1.8, 4.0, 9.0))]
     q, p = np.stack([s[0] for s in states], 1), np.stack([s[1] for s in states], 1)
     dq, dp = initial_deviation(40, 1)

@@ -30,7 +30,7 @@ from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.integrators import advance, get_scheme
 from chainchaos.io import chain_dataset
 from chainchaos.linear import tridiagonal_eigh
-from chainchaos.models import coefficients, model_id
+from chainchaos.models import get_model
 from chainchaos.provenance import EMULATED_AVX2
 from chainchaos.simulate import GAPS, OBSERVABLES, SceneParameters, sample_steps, simulate
 
@@ -198,12 +198,11 @@ def chaotic_orbit(model_name: str, energy: float, t_final: float = 200.0, dt: fl
     """(q, p, ln|v(t)|) at t_final of the scene's orbit on random_chain(5346, 5, 40), bead 21
     excited, SRKN6b with the tangent map from the deviation vector of seed 0."""
     chain = random_chain(5346, 5.0, 40)
-    model, N = model_id(model_name), chain.N
+    model, N = get_model(model_name), chain.N
     q, p, _ = initial_state(model, chain, energy, 21)
     dq, dp = initial_deviation(N, 0)
-    K2, K3, K4 = coefficients(model, chain)
     scheme, diagnostics = get_scheme("SRKN6b"), np.zeros(2)
-    bad = advance(model, q, p, dq, dp, 1.0 / chain.mass, chain.A, chain.delta, K2, K3, K4, scheme.kicks,
+    bad = advance(model, q, p, dq, dp, 1.0 / chain.mass, model.bond_parameters(chain), scheme.kicks,
                   scheme.drifts, dt, round(t_final / dt), True, 1000, False, np.zeros(N + 1, dtype=np.int64),
                   diagnostics, np.empty(N + 1), np.empty(N + 1))
     assert bad == -1

@@ -10,7 +10,7 @@ from chainchaos.errors import ParameterError, SimulationError
 from chainchaos.initial import initial_state
 from chainchaos.io import write_netcdf
 from chainchaos.linear import normal_modes
-from chainchaos.models import FPUT, HERTZ, bond_forces, total_energy
+from chainchaos.models import bond_forces, get_model, total_energy
 from chainchaos.numerics import (
     RightHandSide,
     energy_drift,
@@ -30,6 +30,8 @@ from chainchaos.numerics import (
 from chainchaos.numerics.stability import chain_at_alpha, excitation_barrier, is_stable
 from chainchaos.simulate import SceneParameters, simulate
 
+HERTZ, FPUT = get_model("hertz"), get_model("fput")
+
 
 def _state(chain, model, energy, seed=1):
     """A generic state: the single-site excitation plus a random perturbation of every bead."""
@@ -44,7 +46,7 @@ def test_rhs_agrees_with_the_force_kernel_and_the_energy_gradient(chain, model):
     N = chain.N
     dydt = RightHandSide(model, chain)(0.0, np.concatenate([u, p]))
     f, k = np.empty(N + 1), np.empty(N + 1)
-    bond_forces(model, u, chain.A, chain.delta, chain.K2, chain.K3, chain.K4, f, k, False)
+    bond_forces(model, u, model.bond_parameters(chain), f, k, False)
     np.testing.assert_allclose(dydt[:N], p / chain.mass, rtol=1e-15, atol=0)
     np.testing.assert_allclose(dydt[N:], f[:-1] - f[1:], rtol=0, atol=1e-15)
     # -dV/du_n by central differences of the package's total energy

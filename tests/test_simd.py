@@ -4,7 +4,9 @@ import numpy as np
 import pytest
 from numba import njit
 
-from chainchaos.models import fput_force, fput_stiffness, hertz_force_stiffness
+from chainchaos.chain import random_chain
+from chainchaos.models import MODELS
+from chainchaos.models.base import bond_force, bond_force_stiffness, bond_opening
 from chainchaos.simd import LANES, vbelow, vload, vnext, vprev, vstore
 
 # normal numbers, signed zeros, subnormals, infinities and NaN in every operand position
@@ -28,6 +30,7 @@ def _vector_ops(x, y, out):
         vstore(out[4], i, max(a, b))
         vstore(out[5], i, max(a, 0.0))
         vstore(out[6], i, np.sqrt(a))
+        vstore(out[7], i, np.expm1(a))
 
 
 @njit
@@ -38,11 +41,12 @@ def _scalar_ops(x, y, out):
         out[3, i] = 2.5 * a - b * 0.5 + 1
         out[4, i], out[5, i] = max(a, b), max(a, 0.0)
         out[6, i] = np.sqrt(a)
+        out[7, i] = np.expm1(a)
 
 
 def test_each_lane_is_its_scalar_operation_bit_for_bit():
     x, y = operands(8, 0)
-    vec, ref = np.full((7, x.size), 99.0), np.full((7, x.size), 99.0)
+    vec, ref = np.full((8, x.size), 99.0), np.full((8, x.size), 99.0)
     with np.errstate(invalid="ignore"):
         _vector_ops(x, y, vec)
         _scalar_ops(x, y, ref)
@@ -51,27 +55,42 @@ def test_each_lane_is_its_scalar_operation_bit_for_bit():
 
 
 @njit
-def _vector_forces(A, overlap, K3, out):
-    for i in range(0, A.size, LANES):
-        a, d, k3 = vload(A, i), vload(overlap, i), vload(K3, i)
-        f, k = hertz_force_stiffness(a, d)
+def _vector_laws(model, P, left, right, out):
+    for i in range(0, left.size, LANES):
+        bond = (vload(P[0], i), vload(P[1], i), vload(P[2], i))
+        u, v = vload(left, i), vload(right, i)
+        f, k = bond_force_stiffness(model, bond, u, v)
         vstore(out[0], i, f)
         vstore(out[1], i, k)
-        vstore(out[2], i, fput_force(a, k3, 0.5 * a, d))
-        vstore(out[3], i, fput_stiffness(a, k3, 0.5 * a, d))
+        vstore(out[2], i, bond_force(model, bond, u, v))
+        vstore(out[3], i, bond_opening(model, bond, u, v))
 
 
-def test_the_force_laws_compile_for_vectors_and_agree_with_the_scalar_ones():
+@njit
+def _scalar_laws(model, P, left, right, out):
+    for i in range(left.size):
+        bond = (P[0, i], P[1, i], P[2, i])
+        out[0, i], out[1, i] = bond_force_stiffness(model, bond, left[i], right[i])
+        out[2, i] = bond_force(model, bond, left[i], right[i])
+        out[3, i] = bond_opening(model, bond, left[i], right[i])
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_every_bond_law_compiles_for_vectors_and_agrees_with_the_scalar_one(name):
+    model = MODELS[name]
+    chain = random_chain(1, 5.0, 4 * LANES - 1)
+    P = model.bond_parameters(chain)
     rng = np.random.default_rng(1)
-    A, K3 = rng.random(4 * LANES) + 0.5, rng.normal(size=4 * LANES)
-    overlap = rng.normal(scale=0.2, size=4 * LANES)  # half the bonds open (overlap < 0)
-    out = np.empty((4, A.size))
-    _vector_forces(A, overlap, K3, out)
-    for i in range(A.size):
-        assert (out[0, i], out[1, i]) == hertz_force_stiffness(A[i], overlap[i])
-        assert out[2, i] == fput_force(A[i], K3[i], 0.5 * A[i], overlap[i])
-        assert out[3, i] == fput_stiffness(A[i], K3[i], 0.5 * A[i], overlap[i])
-    assert (out[0] == 0).any() and (out[0] > 0).any()
+    left, right = rng.normal(scale=0.7, size=(2, 4 * LANES))  # about half the Hertz bonds open
+    vec, ref = np.empty((4, left.size)), np.empty((4, left.size))
+    _vector_laws(model, P, left, right, vec)
+    _scalar_laws(model, P, left, right, ref)
+    np.testing.assert_array_equal(vec.view(np.int64), ref.view(np.int64))
+    np.testing.assert_array_equal(vec[2], vec[0])  # the force alone is the force of the pair
+    if model.has_gaps:
+        assert (vec[0] == 0).any() and (vec[0] > 0).any() and (vec[3] < 0).any()
+    else:
+        assert (vec[3] > 0).all() and (vec[0] != 0).all()
 
 
 @njit

@@ -4,7 +4,7 @@ Numba reads ``NUMBA_CACHE_DIR`` when it is first imported, so this runs before a
 package imports numba. A checkout (editable install) caches in ``<project>/.numba_cache/<key>``,
 so every job of the pipeline reuses the kernels compiled once; an installed wheel falls back to
 the user's cache directory. Numba invalidates a cached function only when its own file changes,
-yet the engines (``integrators``, ``batch``, ``numerics``) compile in the force laws of ``models``,
+yet the engines (``integrators``, ``batch``, ``numerics``) compile in the bond laws of ``models``,
 the helpers of ``integrators`` and the vector operations of ``simd``: the key, a hash of those shared kernel modules, makes an edit
 there start a fresh cache instead of loading a stale one. An explicit ``NUMBA_CACHE_DIR`` always
 wins.
@@ -31,13 +31,14 @@ def project_root() -> Path | None:
 #: The environment variable that overrides the SIMD width fitted to the CPU (chainchaos.simd).
 LANES_VARIABLE = "CHAINCHAOS_SIMD_LANES"
 
-#: Modules whose Numba functions are compiled into functions of other modules.
-SHARED_KERNEL_MODULES = ("models.py", "integrators.py", "simd.py", "exactmath.py")
+#: Modules whose Numba functions are compiled into functions of other modules (patterns).
+SHARED_KERNEL_MODULES = ("models/*.py", "integrators.py", "simd.py", "exactmath.py")
 
 
 def kernel_sources() -> list[Path]:
-    """The shared kernel modules: an edit to one of them invalidates kernels in other files."""
-    return [PACKAGE / name for name in SHARED_KERNEL_MODULES]
+    """The shared kernel modules: an edit to one of them (or a new model) invalidates kernels in
+    other files."""
+    return [path for pattern in SHARED_KERNEL_MODULES for path in sorted(PACKAGE.glob(pattern))]
 
 
 def kernel_key() -> str:

@@ -36,22 +36,23 @@ from numba import literally, njit
 
 from chainchaos.errors import require
 from chainchaos.integrators import _aligned_zeros, _renormalise, advance, get_scheme
-from chainchaos.models import (HERTZ, coefficients, fput_force, fput_stiffness, hertz_force, hertz_force_stiffness,
-                               model_id)
+from chainchaos.models import MAX_BOND_PARAMETERS, get_model
+from chainchaos.models.base import bond_force, bond_force_stiffness, bond_opening
 from chainchaos.simd import LANES, vbelow, vload, vstore
 
 #: The per-row contents of a block's buffer, LANES doubles each. Row r of U and DQ is bead r-1
 #: (the walls are rows 0 and N+1); row n of P, DP and IM is bead n; row b of the bond parameters
-#: A, DL (delta), K2, K3, K4 and of the bond force F and stiffness K is bond b, which joins beads
-#: b-1 and b.
-QUANTITIES = ("U", "DQ", "P", "DP", "IM", "A", "DL", "K2", "K3", "K4", "F", "K")
-_U, _DQ, _P, _DP, _IM, _A, _DL, _K2, _K3, _K4, _F, _K = (i * LANES for i in range(len(QUANTITIES)))
+#: B0, B1, B2 (the model's, ``models.base``) and of the bond force F and stiffness K is bond b,
+#: which joins beads b-1 and b.
+QUANTITIES = ("U", "DQ", "P", "DP", "IM", "B0", "B1", "B2", "F", "K")
+_U, _DQ, _P, _DP, _IM, _B0, _B1, _B2, _F, _K = (i * LANES for i in range(len(QUANTITIES)))
+assert len(QUANTITIES) == 7 + MAX_BOND_PARAMETERS
 #: Doubles per row of a block's buffer.
 ROW = len(QUANTITIES) * LANES
 
 
 @njit(cache=True, error_model="numpy")
-def _sweep(hertz, tangent, drift, kick, keep_forces, N, Z, a, c):
+def _sweep(model, tangent, drift, kick, keep_forces, N, Z, a, c):
     """One pass over the bonds b = 0..N of a block: (if ``drift``) drift(a) of bead b, then (if
     ``kick``) the force and stiffness of bond b at the new positions and kick(c) of bead b-1,
     whose two bonds are then both up to date; with ``keep_forces`` the forces and stiffnesses are
@@ -60,7 +61,6 @@ def _sweep(hertz, tangent, drift, kick, keep_forces, N, Z, a, c):
     kick of the bead on its left to that of the bead on its right: each is computed once. Per lane
     the operations are those of ``integrators.advance``, in the same order. Row N (no bead) has zero momenta and inverse masses, so its drift leaves the right
     wall at zero and the loop needs no branch."""
-    literally(hertz)
     literally(tangent)
     literally(drift)
     literally(kick)
@@ -86,18 +86,12 @@ def _sweep(hertz, tangent, drift, kick, keep_forces, N, Z, a, c):
                 dq_right = dq_right + a * im * dp_right
                 vstore(Z, bead + _DQ, dq_right)
         if kick:
-            if hertz:
-                overlap = vload(Z, bond + _DL) + u_left - u_right
-                if tangent:
-                    f, k = hertz_force_stiffness(vload(Z, bond + _A), overlap)
-                else:
-                    f = hertz_force(vload(Z, bond + _A), overlap)
-                    k = f
+            parameters = (vload(Z, bond + _B0), vload(Z, bond + _B1), vload(Z, bond + _B2))
+            if tangent:
+                f, k = bond_force_stiffness(model, parameters, u_left, u_right)
             else:
-                D = u_left - u_right
-                K2, K3, K4 = vload(Z, bond + _K2), vload(Z, bond + _K3), vload(Z, bond + _K4)
-                f = fput_force(K2, K3, K4, D)
-                k = fput_stiffness(K2, K3, K4, D) if tangent else f
+                f = bond_force(model, parameters, u_left, u_right)
+                k = f
             if keep_forces:
                 vstore(Z, bond + _F, f)
                 if tangent:
@@ -133,25 +127,25 @@ def _kick_only(tangent, N, Z, c):
 
 
 @njit(cache=True, error_model="numpy")
-def _count_gaps(N, Z, gap_steps, max_gaps):
-    """Open Hertz bonds of every lane, delta_b + u_{b-1} - u_b < 0: one step added to
+def _count_gaps(model, N, Z, gap_steps, max_gaps):
+    """Open bonds of every lane (the model's opening < 0): one step added to
     gap_steps[b] (a row of LANES counts per bond, as doubles) and max_gaps (LANES) raised to the
     number open now where that is larger."""
     n_open = vload(max_gaps, 0) * 0.0
     for b in range(N + 1):
         bond = b * ROW
-        is_open = vbelow(vload(Z, bond + _DL) + vload(Z, bond + _U) - vload(Z, bond + ROW + _U), 0.0)
+        parameters = (vload(Z, bond + _B0), vload(Z, bond + _B1), vload(Z, bond + _B2))
+        is_open = vbelow(bond_opening(model, parameters, vload(Z, bond + _U), vload(Z, bond + ROW + _U)), 0.0)
         vstore(gap_steps, b * LANES, vload(gap_steps, b * LANES) + is_open)
         n_open = n_open + is_open
     vstore(max_gaps, 0, max(n_open, vload(max_gaps, 0)))
 
 
 @njit(cache=True, error_model="numpy")
-def _advance_block(hertz, tangent, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, gap_steps,
+def _advance_block(model, tangent, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, gap_steps,
                    log_growth, max_gaps, bad):
     """``advance_batch`` for one block in its buffer Z; gap_steps is (N+1) x LANES, flattened, and
     with max_gaps held as doubles."""
-    literally(hertz)
     literally(tangent)
     n_stages = drifts.shape[0]
     force_valid = False
@@ -161,18 +155,18 @@ def _advance_block(hertz, tangent, N, Z, kicks, drifts, dt, n_steps, check_every
             if force_valid:
                 _kick_only(tangent, N, Z, c)
             else:
-                _sweep(hertz, tangent, False, True, False, N, Z, 0.0, c)
+                _sweep(model, tangent, False, True, False, N, Z, 0.0, c)
         for i in range(n_stages):
             a, c = drifts[i] * dt, kicks[i + 1] * dt
             if c == 0.0:
-                _sweep(hertz, tangent, True, False, False, N, Z, a, c)
+                _sweep(model, tangent, True, False, False, N, Z, a, c)
             elif i == n_stages - 1:  # the next step's first kick reuses these forces
-                _sweep(hertz, tangent, True, True, True, N, Z, a, c)
+                _sweep(model, tangent, True, True, True, N, Z, a, c)
             else:
-                _sweep(hertz, tangent, True, True, False, N, Z, a, c)
+                _sweep(model, tangent, True, True, False, N, Z, a, c)
             force_valid = c != 0.0
         if track_gaps:
-            _count_gaps(N, Z, gap_steps, max_gaps)
+            _count_gaps(model, N, Z, gap_steps, max_gaps)
         if (step + 1) % check_every == 0 or step + 1 == n_steps:
             for j in range(LANES):
                 s = 0.0
@@ -187,21 +181,21 @@ def _advance_block(hertz, tangent, N, Z, kicks, drifts, dt, n_steps, check_every
 
 
 @njit(cache=True, error_model="numpy")
-def advance_batch(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, drifts, dt, n_steps,
-                  tangent, check_every, track_gaps, gap_steps, log_growth, max_gaps, bad):
-    """Advance B trajectories (q, p) of shape (N, B) and, if ``tangent``, their deviation vectors
-    (dq, dp) by n_steps steps of the scheme (kicks, drifts).
+def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, tangent, check_every, track_gaps,
+                  gap_steps, log_growth, max_gaps, bad):
+    """Advance B trajectories (q, p) of ``model`` (a ``chainchaos.models`` Model), shape (N, B),
+    and, if ``tangent``, their deviation vectors (dq, dp) by n_steps steps of the scheme (kicks,
+    drifts).
 
-    inv_mass (N, B); A, delta, K2, K3, K4 (N+1, B), bond b joining beads b-1 and b (walls at
-    b = 0 and b = N). Every ``check_every`` steps and at the end: each lane's state is checked for
-    finiteness (``bad[j]`` set to the step count of the first failed check if it is still < 0)
-    and, with ``tangent``, its deviation vector renormalised, ln|v| added to ``log_growth[j]``.
-    With ``track_gaps`` (Hertz) ``gap_steps[b, j]`` counts the steps bond b of lane j ends open
-    (delta_b + u_{b-1} - u_b < 0) and ``max_gaps[j]`` keeps the largest number of simultaneously
-    open bonds. All arrays are updated in place.
+    inv_mass (N, B); bonds (MAX_BOND_PARAMETERS, N+1, B), the model's bond parameters, bond b
+    joining beads b-1 and b (walls at b = 0 and b = N). Every ``check_every`` steps and at the
+    end: each lane's state is checked for finiteness (``bad[j]`` set to the step count of the
+    first failed check if it is still < 0) and, with ``tangent``, its deviation vector
+    renormalised, ln|v| added to ``log_growth[j]``. With ``track_gaps`` (a model whose bonds open)
+    ``gap_steps[b, j]`` counts the steps bond b of lane j ends open and ``max_gaps[j]`` keeps the
+    largest number of simultaneously open bonds. All arrays are updated in place.
     """
     N, B = q.shape
-    hertz = model == HERTZ
     Z = _aligned_zeros((N + 2) * ROW)
     block_gaps = _aligned_zeros((N + 1) * LANES)  # counts as doubles, exact below 2**53
     block_growth = np.zeros(LANES)
@@ -218,25 +212,18 @@ def advance_batch(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, dr
                 Z[n * ROW + _DP + lane] = dp[n, j]
                 Z[n * ROW + _IM + lane] = inv_mass[n, j]
             for b in range(N + 1):
-                for offset, value in ((_A, A[b, j]), (_DL, delta[b, j]), (_K2, K2[b, j]), (_K3, K3[b, j]),
-                                      (_K4, K4[b, j])):
-                    Z[b * ROW + offset + lane] = value
+                for r in range(MAX_BOND_PARAMETERS):
+                    Z[b * ROW + _B0 + r * LANES + lane] = bonds[r, b, j]
                 block_gaps[b * LANES + lane] = gap_steps[b, j]
             block_growth[lane] = log_growth[j]
             block_max_gaps[lane] = max_gaps[j]
             block_bad[lane] = bad[j]
-        # literal flags: each combination compiles to its own code without these branches
-        if hertz and tangent:
-            _advance_block(True, True, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
-                           block_gaps, block_growth, block_max_gaps, block_bad)
-        elif hertz:
-            _advance_block(True, False, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
-                           block_gaps, block_growth, block_max_gaps, block_bad)
-        elif tangent:
-            _advance_block(False, True, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+        # the tangent flag literal: each case compiles to its own code without these branches
+        if tangent:
+            _advance_block(model, True, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
                            block_gaps, block_growth, block_max_gaps, block_bad)
         else:
-            _advance_block(False, False, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+            _advance_block(model, False, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
                            block_gaps, block_growth, block_max_gaps, block_bad)
         for lane in range(min(LANES, B - first)):
             j = first + lane
@@ -252,26 +239,18 @@ def advance_batch(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, dr
             bad[j] = block_bad[lane]
 
 
-#: The per-lane parameter arrays of ``lane_parameters``, in the engines' argument order.
-_PARAMETERS = ("inv_mass", "A", "delta", "K2", "K3", "K4")
-
-
-def lane_parameters(model: int, chains) -> dict[str, np.ndarray]:
-    """Per-trajectory parameter arrays of the batch engine for a list of chains (one per lane).
-
-    Returns inv_mass (N, B) and A, delta, K2, K3, K4 (N+1, B), C-contiguous, with the chains'
-    own K4 sign; the harmonic model gets K3 = K4 = 0 (``models.coefficients``).
-    """
+def lane_parameters(model, chains) -> tuple[np.ndarray, np.ndarray]:
+    """Per-trajectory parameters of the batch engine for a list of chains (one per lane):
+    inv_mass (N, B) and the model's bond parameters (MAX_BOND_PARAMETERS, N+1, B),
+    C-contiguous, with the chains' own K4 sign."""
+    model = get_model(model)
     chains = list(chains)
     require(len(chains) >= 1, "chains", len(chains), "at least one chain")
     N = chains[0].N
     require(all(c.N == N for c in chains), "N", sorted({c.N for c in chains}), "one N per batch")
-    cols = {k: [] for k in _PARAMETERS}
-    for chain in chains:
-        K2, K3, K4 = coefficients(model, chain)
-        for key, value in zip(cols, (1.0 / chain.mass, chain.A, chain.delta, K2, K3, K4)):
-            cols[key].append(value)
-    return {k: np.ascontiguousarray(np.stack(v, axis=1), dtype=float) for k, v in cols.items()}
+    inv_mass = np.ascontiguousarray(np.stack([1.0 / c.mass for c in chains], axis=1))
+    bonds = np.ascontiguousarray(np.stack([model.bond_parameters(c) for c in chains], axis=2))
+    return inv_mass, bonds
 
 
 class Batch:
@@ -281,20 +260,20 @@ class Batch:
     ln|v| over renormalisations, so Lambda(t) = log_growth / t as in ``integrators.advance``.
     """
 
-    def __init__(self, model: str | int, chains, q, p, dq=None, dp=None, integrator: str = "SRKN6b",
+    def __init__(self, model, chains, q, p, dq=None, dp=None, integrator: str = "SRKN6b",
                  dt: float = 5e-4, tangent: bool = True, track_gaps: bool = False,
                  check_every: int = 1000):
-        self.model = model_id(model) if isinstance(model, str) else int(model)
-        require(not track_gaps or self.model == HERTZ, "track_gaps", track_gaps, "gaps only for Hertz")
+        self.model = get_model(model)
+        require(not track_gaps or self.model.has_gaps, "track_gaps", track_gaps,
+                f"gap counting only for a model whose bonds open, not {self.model.name!r}")
         require(np.isfinite(dt) and dt > 0, "dt", dt, "a finite step > 0")
         require(int(check_every) >= 1, "check_every", check_every, "an integer >= 1")
-        self.params = lane_parameters(self.model, chains)
+        self.inv_mass, self.bonds = lane_parameters(self.model, chains)
         self.scheme = get_scheme(integrator)
         self.q = np.ascontiguousarray(q, dtype=float).copy()
         self.p = np.ascontiguousarray(p, dtype=float).copy()
         shape = self.q.shape
-        require(self.p.shape == shape == self.params["inv_mass"].shape, "state shape", shape,
-                f"(N, B) = {self.params['inv_mass'].shape}")
+        require(self.p.shape == shape == self.inv_mass.shape, "state shape", shape, f"(N, B) = {self.inv_mass.shape}")
         self.dq = np.zeros(shape) if dq is None else np.ascontiguousarray(dq, dtype=float).copy()
         self.dp = np.zeros(shape) if dp is None else np.ascontiguousarray(dp, dtype=float).copy()
         self.dt, self.tangent, self.track_gaps = float(dt), bool(tangent), bool(track_gaps)
@@ -316,10 +295,9 @@ class Batch:
         if n_steps <= 0:
             return
         bad = np.full(self.size, -1, dtype=np.int64)
-        P = self.params
-        advance_batch(self.model, self.q, self.p, self.dq, self.dp, *(P[key] for key in _PARAMETERS),
-                      self.scheme.kicks, self.scheme.drifts, self.dt, int(n_steps), self.tangent, self.check_every, self.track_gaps, self.gap_steps,
-                      self.log_growth, self.max_gaps, bad)
+        advance_batch(self.model, self.q, self.p, self.dq, self.dp, self.inv_mass, self.bonds, self.scheme.kicks,
+                      self.scheme.drifts, self.dt, int(n_steps), self.tangent, self.check_every, self.track_gaps,
+                      self.gap_steps, self.log_growth, self.max_gaps, bad)
         newly = (bad >= 0) & (self.bad < 0)
         self.bad[newly] = self.steps + bad[newly]
         self.steps += int(n_steps)
@@ -332,7 +310,7 @@ class SerialBatch(Batch):
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
         # each lane's parameters as the contiguous arrays the single engine takes, made once
-        self._lane_parameters = [tuple(np.ascontiguousarray(self.params[key][:, j]) for key in _PARAMETERS)
+        self._lane_parameters = [(np.ascontiguousarray(self.inv_mass[:, j]), np.ascontiguousarray(self.bonds[:, :, j]))
                                  for j in range(self.size)]
 
     def advance(self, n_steps: int) -> None:
@@ -344,9 +322,9 @@ class SerialBatch(Batch):
             q, p, dq, dp = (np.ascontiguousarray(a[:, j]) for a in (self.q, self.p, self.dq, self.dp))
             diagnostics = np.array([self.log_growth[j], float(self.max_gaps[j])])
             gaps = np.ascontiguousarray(self.gap_steps[:, j])
-            bad = advance(self.model, q, p, dq, dp, *self._lane_parameters[j],
-                          self.scheme.kicks, self.scheme.drifts, self.dt, int(n_steps), self.tangent,
-                          self.check_every, self.track_gaps, gaps, diagnostics, f, k)
+            bad = advance(self.model, q, p, dq, dp, *self._lane_parameters[j], self.scheme.kicks, self.scheme.drifts,
+                          self.dt, int(n_steps), self.tangent, self.check_every, self.track_gaps, gaps, diagnostics,
+                          f, k)
             self.q[:, j], self.p[:, j], self.dq[:, j], self.dp[:, j] = q, p, dq, dp
             self.gap_steps[:, j] = gaps
             self.log_growth[j], self.max_gaps[j] = diagnostics[0], int(diagnostics[1])
@@ -355,16 +333,19 @@ class SerialBatch(Batch):
         self.steps += int(n_steps)
 
 
-def warm_up() -> None:
-    """Compile (or load from the on-disk cache) the batch kernel for both models, with and
-    without the tangent map and gap counting."""
+def warm_up(models=None) -> None:
+    """Compile (or load from the on-disk cache) both engines for every model (default: all in
+    the registry), with and without the tangent map, and with gap counting where bonds open."""
     from chainchaos.chain import random_chain
+    from chainchaos.models import MODELS
 
     chain = random_chain(0, 2.0, 4)
-    for model, gaps in (("hertz", True), ("hertz", False), ("fput", False)):
-        for tangent in (True, False):
-            q = np.zeros((4, 2))
-            q[1] = 0.1
-            b = Batch(model, [chain, chain], q, np.zeros((4, 2)), dp=np.full((4, 2), 0.5), dt=0.1,
-                      tangent=tangent, track_gaps=gaps, check_every=3)
-            b.advance(4)
+    for model in (MODELS.values() if models is None else map(get_model, models)):
+        for gaps in sorted({False, model.has_gaps}):
+            for tangent in (True, False):
+                for engine in (Batch, SerialBatch):
+                    q = np.zeros((4, 2))
+                    q[1] = 0.1
+                    b = engine(model, [chain, chain], q, np.zeros((4, 2)), dp=np.full((4, 2), 0.5), dt=0.1,
+                               tangent=tangent, track_gaps=gaps, check_every=3)
+                    b.advance(4)

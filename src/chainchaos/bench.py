@@ -15,7 +15,7 @@ from chainchaos.chain import random_chain
 from chainchaos.errors import require
 from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.integrators import advance, get_scheme
-from chainchaos.models import coefficients, model_id
+from chainchaos.models import get_model
 
 CHAIN_SEED = 879
 ALPHA = 5.0
@@ -25,14 +25,14 @@ CHECK_EVERY = 1000
 
 
 def benchmark_problem(model: str, N: int = 40) -> dict:
-    """Arguments of ``advance`` (chain, initial state and deviation) for the benchmark problem."""
-    mid = model_id(model)
+    """Arguments of ``advance`` (chain, initial state and deviation) for the benchmark problem,
+    and the chain's parameters by name (A, delta, K2, K3, K4) for the C loop."""
     chain = random_chain(CHAIN_SEED, ALPHA, N)
-    q, p, _ = initial_state(mid, chain, ENERGY, N // 2 + 1)
+    law = get_model(model)
+    q, p, _ = initial_state(law, chain, ENERGY, N // 2 + 1)
     dq, dp = initial_deviation(N, 0)
-    K2, K3, K4 = coefficients(mid, chain)
-    return dict(model=mid, q=q, p=p, dq=dq, dp=dp, inv_mass=1.0 / chain.mass, A=chain.A,
-                delta=chain.delta, K2=K2, K3=K3, K4=K4)
+    return dict(model=law, q=q, p=p, dq=dq, dp=dp, inv_mass=1.0 / chain.mass, bonds=law.bond_parameters(chain),
+                A=chain.A, delta=chain.delta, K2=chain.K2, K3=chain.K3, K4=chain.K4)
 
 
 def run_kernel(problem: dict, integrator: str, n_steps: int, tangent: bool, dt: float = DT,
@@ -48,9 +48,8 @@ def run_kernel(problem: dict, integrator: str, n_steps: int, tangent: bool, dt: 
     diagnostics = np.zeros(2)
     gap_steps = np.zeros(N + 1, dtype=np.int64)
     start = time.perf_counter()
-    bad = advance(s["model"], s["q"], s["p"], s["dq"], s["dp"], s["inv_mass"], s["A"], s["delta"],
-                  s["K2"], s["K3"], s["K4"], scheme.kicks, scheme.drifts, dt, n_steps, tangent,
-                  check_every, False, gap_steps, diagnostics, f, k)
+    bad = advance(s["model"], s["q"], s["p"], s["dq"], s["dp"], s["inv_mass"], s["bonds"], scheme.kicks,
+                  scheme.drifts, dt, n_steps, tangent, check_every, False, gap_steps, diagnostics, f, k)
     seconds = time.perf_counter() - start
     if bad >= 0:
         raise RuntimeError(f"benchmark state became non-finite after {bad} steps")

@@ -227,9 +227,7 @@ def taylor_sign_barrier(chain: xr.Dataset, site: int = 21) -> float:
     from scipy.optimize import minimize_scalar
 
     from chainchaos.initial import excitation_energy
-    from chainchaos.models import model_id
-
-    fput = model_id("fput")
+    fput = "fput"
     c = chain_from_dataset(chain, -1.0)
     upper = 1.0
     while excitation_energy(fput, c, site, 2 * upper) > excitation_energy(fput, c, site, upper):

@@ -21,7 +21,7 @@ from numba import literally, njit
 
 from chainchaos.errors import require
 from chainchaos.exactmath import ln
-from chainchaos.models import HERTZ, fput_force, fput_stiffness, hertz_force, hertz_force_stiffness
+from chainchaos.models.base import MAX_BOND_PARAMETERS, bond_force, bond_force_stiffness, bond_opening
 from chainchaos.simd import LANES, vload, vnext, vprev, vstore
 
 
@@ -131,9 +131,11 @@ def _renormalise(dq, dp):
 
 #: The rows of the single engine's work buffer, all indexed alike and padded to whole vectors:
 #: displacements U and deviations DQ with the walls (U[0] = U[N+1] = 0, beads at 1..N), momenta
-#: P, DP and inverse masses IM of the beads at 1..N, bond force F and stiffness K and bond
-#: parameters A, DL (delta), K2, K3, K4 of bond b = 0..N, which joins U[b] and U[b+1].
-ROWS = ("U", "DQ", "P", "DP", "IM", "F", "K", "A", "DL", "K2", "K3", "K4")
+#: P, DP and inverse masses IM of the beads at 1..N, bond force F and stiffness K and the bond
+#: parameters B0, B1, B2 (the model's, ``models.base``) of bond b = 0..N, which joins U[b] and
+#: U[b+1].
+ROWS = ("U", "DQ", "P", "DP", "IM", "F", "K", "B0", "B1", "B2")
+assert len(ROWS) == 7 + MAX_BOND_PARAMETERS
 
 
 @njit(cache=True, inline="always")
@@ -141,11 +143,11 @@ def _row_offsets(L):
     """Where each of ``ROWS`` starts in the work buffer: rows of L + LANES doubles, so that every
     row starts on a vector boundary and a sweep may read one vector past L."""
     R = L + LANES
-    return 0, R, 2 * R, 3 * R, 4 * R, 5 * R, 6 * R, 7 * R, 8 * R, 9 * R, 10 * R, 11 * R
+    return 0, R, 2 * R, 3 * R, 4 * R, 5 * R, 6 * R, 7 * R, 8 * R, 9 * R
 
 
 @njit(cache=True, error_model="numpy")
-def _step_loop(hertz, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, gap_steps,
+def _step_loop(model, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, gap_steps,
                diagnostics):
     """The steps of ``advance`` on its work buffer Z (``ROWS``, ``_row_offsets``).
 
@@ -156,9 +158,8 @@ def _step_loop(hertz, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every,
     walls' impulse, unused); padding bonds have zero parameters and carry no force. Per element
     the operations are those of the scalar expressions, in the same order.
     """
-    literally(hertz)
     literally(tangent)
-    U, DQ, P, DP, IM, F, K, A, DL, K2, K3, K4 = _row_offsets(L)
+    U, DQ, P, DP, IM, F, K, B0, B1, B2 = _row_offsets(L)
     zero = vload(Z, L)  # U[L:L+LANES], always zero
     n_stages = drifts.shape[0]
     force_valid = False
@@ -172,19 +173,12 @@ def _step_loop(hertz, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every,
                     for b in range(0, L, LANES):
                         u_after = vload(Z, U + b + LANES)
                         u_right = vnext(u, u_after)
-                        if hertz:
-                            overlap = vload(Z, DL + b) + u - u_right
-                            if tangent:
-                                f, k = hertz_force_stiffness(vload(Z, A + b), overlap)
-                                vstore(Z, K + b, k)
-                            else:
-                                f = hertz_force(vload(Z, A + b), overlap)
+                        bond = (vload(Z, B0 + b), vload(Z, B1 + b), vload(Z, B2 + b))
+                        if tangent:
+                            f, k = bond_force_stiffness(model, bond, u, u_right)
+                            vstore(Z, K + b, k)
                         else:
-                            D = u - u_right
-                            k2, k3, k4 = vload(Z, K2 + b), vload(Z, K3 + b), vload(Z, K4 + b)
-                            f = fput_force(k2, k3, k4, D)
-                            if tangent:
-                                vstore(Z, K + b, fput_stiffness(k2, k3, k4, D))
+                            f = bond_force(model, bond, u, u_right)
                         vstore(Z, F + b, f)
                         u = u_after
                     force_valid = True
@@ -210,10 +204,10 @@ def _step_loop(hertz, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every,
                     if tangent:
                         vstore(Z, DQ + n, vload(Z, DQ + n) + c * im * vload(Z, DP + n))
                 force_valid = False
-        if track_gaps:  # open Hertz bonds: delta_b + D_b < 0
+        if track_gaps:  # open bonds
             n_open = 0
             for b in range(N + 1):
-                is_open = Z[DL + b] + Z[U + b] - Z[U + b + 1] < 0.0
+                is_open = bond_opening(model, (Z[B0 + b], Z[B1 + b], Z[B2 + b]), Z[U + b], Z[U + b + 1]) < 0.0
                 gap_steps[b] += is_open
                 n_open += is_open
             if n_open > diagnostics[1]:
@@ -240,49 +234,42 @@ def _aligned_zeros(n):
 
 
 @njit(cache=True, error_model="numpy")
-def advance(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, drifts, dt, n_steps,
-            tangent, check_every, track_gaps, gap_steps, diagnostics, f, k):
-    """Advance the state (q, p) and, if ``tangent``, the deviation vector (dq, dp) by n_steps.
+def advance(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, tangent, check_every, track_gaps,
+            gap_steps, diagnostics, f, k):
+    """Advance the state (q, p) of ``model`` (a ``chainchaos.models`` Model) and, if ``tangent``,
+    the deviation vector (dq, dp) by n_steps.
 
-    Every ``check_every`` steps and at the end the state is checked for finiteness and the
-    deviation vector is renormalised, its log growth added to diagnostics[0]. With
-    ``track_gaps`` the number of steps each Hertz bond ends open is added to gap_steps and the
-    largest number of simultaneously open bonds is kept in diagnostics[1]. f and k (N+1) are
-    left holding the last bond forces and stiffnesses.
+    inv_mass (N,); bonds (MAX_BOND_PARAMETERS, N+1), the model's bond parameters
+    (``Model.bond_parameters``). Every ``check_every`` steps and at the end the state is checked
+    for finiteness and the deviation vector is renormalised, its log growth added to
+    diagnostics[0]. With ``track_gaps`` (a model whose bonds open) the number of steps each bond
+    ends open is added to gap_steps and the largest number of simultaneously open bonds is kept in
+    diagnostics[1]. f and k (N+1) are left holding the last bond forces and stiffnesses.
     Returns -1, or the number of steps done when a non-finite state stopped the run.
 
     The state and parameters are copied into one aligned work buffer (``ROWS``), padded to whole
     SIMD vectors (``chainchaos.simd``), and the steps run on explicit vectors across the bonds:
     no loop has a scalar remainder or needs a runtime check that two arrays do not overlap. The
-    per-bond force laws come from chainchaos.models and are compiled in; the cache directory is
+    model's bond law is compiled in (each model gets its own machine code); the cache directory is
     keyed by the kernels' source (chainchaos._numba_cache), so an edit there recompiles this.
     """
     N = q.shape[0]
     L = (N + 1 + LANES) // LANES * LANES
     Z = _aligned_zeros(len(ROWS) * (L + LANES))
-    U, DQ, P, DP, IM, F, K, A_, DL, K2_, K3_, K4_ = _row_offsets(L)
+    U, DQ, P, DP, IM, F, K, B0, B1, B2 = _row_offsets(L)
     Z[U + 1:U + N + 1] = q
     Z[DQ + 1:DQ + N + 1] = dq
     Z[P + 1:P + N + 1] = p
     Z[DP + 1:DP + N + 1] = dp
     Z[IM + 1:IM + N + 1] = inv_mass
-    Z[A_:A_ + N + 1] = A
-    Z[DL:DL + N + 1] = delta
-    Z[K2_:K2_ + N + 1] = K2
-    Z[K3_:K3_ + N + 1] = K3
-    Z[K4_:K4_ + N + 1] = K4
-    # literal flags: each combination compiles to its own code without these branches
-    if model == HERTZ and tangent:
-        bad = _step_loop(True, True, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
-                         gap_steps, diagnostics)
-    elif model == HERTZ:
-        bad = _step_loop(True, False, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
-                         gap_steps, diagnostics)
-    elif tangent:
-        bad = _step_loop(False, True, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+    for r, start in enumerate((B0, B1, B2)):
+        Z[start:start + N + 1] = bonds[r]
+    # the tangent flag literal: each case compiles to its own code without these branches
+    if tangent:
+        bad = _step_loop(model, True, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
                          gap_steps, diagnostics)
     else:
-        bad = _step_loop(False, False, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+        bad = _step_loop(model, False, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
                          gap_steps, diagnostics)
     q[:] = Z[U + 1:U + N + 1]
     dq[:] = Z[DQ + 1:DQ + N + 1]

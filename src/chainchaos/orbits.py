@@ -25,10 +25,8 @@ from chainchaos.errors import ParameterError, require, require_finite_positive
 from chainchaos.initial import initial_deviation, initial_displacement
 from chainchaos.integrators import get_scheme
 from chainchaos.linear import modal_energies, normal_modes, participation_number
-from chainchaos.models import HERTZ, energy_density, model_id, open_gaps, total_energy
+from chainchaos.models import MODELS, energy_density, get_model, open_bonds, total_energy
 from chainchaos.simulate import sample_steps
-
-MODELS = ("hertz", "fput")
 
 #: Per-orbit series on the sample times (units: all dimensionless).
 SERIES = {
@@ -110,10 +108,10 @@ def lane_factor(lane: int, settings: OrbitSettings) -> float:
 
 
 def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None) -> tuple[np.ndarray, list[dict]]:
-    """Integrate every orbit with its tangent map (and, for Hertz, gap counting) and sample it.
+    """Integrate every orbit with its tangent map (and gap counting where bonds open) and sample it.
 
     Returns the sample times and, per orbit in input order, a dict with the :data:`SERIES` arrays
-    and ``u0``, ``max_gaps`` (-1 for FPUT) and ``valid`` (the initial state exists, the run
+    and ``u0``, ``max_gaps`` (-1 for a model without gaps) and ``valid`` (the initial state exists, the run
     stayed finite and its energy error stayed <= ``max_energy_error``)."""
     results = [None] * len(orbits)
     times = sample_schedule(settings) * settings.dt
@@ -126,12 +124,12 @@ def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None) -> tu
             if progress is not None:
                 progress(sum(r is not None for r in results), len(orbits))
     unknown = sorted({o.model for o, r in zip(orbits, results) if r is None})
-    require(not unknown, "model", unknown, f"one of {MODELS}")
+    require(not unknown, "model", unknown, f"one of {sorted(MODELS)}")
     return times, results
 
 
 def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings) -> list[dict]:
-    model = model_id(name)
+    model = get_model(name)
     B = len(orbits)
     chains = [o.chain.with_k4_sign(settings.k4_sign) for o in orbits]
     N = chains[0].N
@@ -145,7 +143,7 @@ def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings) ->
         except ParameterError:
             pass
         DQ0[:, j], DP0[:, j] = initial_deviation(N, settings.deviation_seed + o.lane)
-    gaps = model == HERTZ
+    gaps = model.has_gaps
     args = dict(integrator=settings.integrator, dt=settings.dt, tangent=True, track_gaps=gaps,
                 check_every=settings.check_every)
     if settings.engine == "batch":
@@ -176,7 +174,7 @@ def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings) ->
             if i == 0:
                 S0[j] = entropy
                 if gaps:
-                    gaps0[j] = int(open_gaps(c, q).sum())
+                    gaps0[j] = int(open_bonds(model, c, q).sum())
             series["eta"][i, j] = obs.normalised_entropy(entropy, S0[j], N)
             series["energy_error"][i, j] = abs(float(total_energy(model, c, q, p)) - H0[j]) / abs(H0[j])
         series["log_growth"][i] = engine.log_growth

@@ -12,11 +12,10 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from chainchaos.plotting.style import save_figure  # noqa: E402
+from chainchaos.plotting.style import model_colour, save_figure  # noqa: E402
+from chainchaos.models import model_label  # noqa: E402
 from chainchaos.scan import PAPER_THRESHOLDS  # noqa: E402
 
-COLOURS = {"hertz": "#c62828", "fput": "#1565c0"}
-NAMES = {"hertz": "Hertz", "fput": "FPUT"}
 RC = {"font.family": "DejaVu Sans", "mathtext.fontset": "dejavusans", "font.size": 8, "axes.labelsize": 8,
       "legend.fontsize": 6.5, "xtick.labelsize": 7, "ytick.labelsize": 7, "legend.frameon": False,
       "pdf.fonttype": 42, "axes.linewidth": 0.6, "lines.linewidth": 1.0}
@@ -33,7 +32,7 @@ def _paper_lines(ax, models, what):
     for m in models:
         H = PAPER_THRESHOLDS.get((m, what))
         if H is not None:
-            ax.axvline(H, color=COLOURS.get(m, "grey"), ls=":", lw=0.8, alpha=0.8)
+            ax.axvline(H, color=model_colour(m), ls=":", lw=0.8, alpha=0.8)
 
 
 def energy_scan_figure(ds):
@@ -48,16 +47,16 @@ def energy_scan_figure(ds):
         for m in models:
             d = ds.sel(model=m)
             ok = d["valid"].values == 1
-            kw = dict(color=COLOURS.get(m, "k"), marker="o", ms=2.5, lw=0.9, label=NAMES.get(m, m))
+            kw = dict(color=model_colour(m), marker="o", ms=2.5, lw=0.9, label=model_label(m))
             aP.plot(E[ok], d["participation_final"].values[ok], **kw)
             aL.plot(E[ok], d["mlce_final"].values[ok], **{**kw, "mfc": "white"})
             chaotic = ok & (d["chaotic"].values == 1)
-            aL.plot(E[chaotic], d["mlce_final"].values[chaotic], "o", color=COLOURS.get(m, "k"), ms=2.5)
+            aL.plot(E[chaotic], d["mlce_final"].values[chaotic], "o", color=model_colour(m), ms=2.5)
             aE.plot(E[ok], d["eta_final"].values[ok], **kw)
             if (d["max_gaps"].values >= 0).any():
                 aG.plot(E[ok], d["max_gaps"].values[ok], drawstyle="steps-mid", **kw)
             if (~ok).any():
-                aP.plot(E[~ok], np.ones((~ok).sum()), "x", color=COLOURS.get(m, "k"), label=f"{NAMES.get(m, m)}: invalid run")
+                aP.plot(E[~ok], np.ones((~ok).sum()), "x", color=model_colour(m), label=f"{model_label(m)}: invalid run")
         aP.axhline(ds.attrs["p_delocalized"], color="k", ls="--", lw=0.7,
                    label=rf"$\bar P = {ds.attrs['p_delocalized']:g}$ (delocalized above)")
         aL.axhline(np.log(t_f) / t_f, color="k", ls="--", lw=0.7,
@@ -92,10 +91,10 @@ def disorder_figure(ds):
         for ax, what in zip(axes[:2], ("delocalized", "chaotic")):
             for m in models:
                 d = ds.sel(model=m)
-                c = COLOURS.get(m, "k")
+                c = model_colour(m)
                 ax.fill_between(E, d[f"probability_{what}_lower"].values, d[f"probability_{what}_upper"].values,
                                 color=c, alpha=0.2, lw=0)
-                ax.plot(E, d[f"probability_{what}"].values, "o-", color=c, ms=2.5, label=NAMES.get(m, m))
+                ax.plot(E, d[f"probability_{what}"].values, "o-", color=c, ms=2.5, label=model_label(m))
             _paper_lines(ax, models, "delocalization" if what == "delocalized" else "chaos")
             ax.set_ylim(-0.03, 1.03)
             ax.set_xscale("log")
@@ -111,11 +110,11 @@ def disorder_figure(ds):
                 if not ok.any():
                     continue
                 x = E[ok] * shift
-                c = COLOURS.get(m, "k")
+                c = model_colour(m)
                 ax.vlines(x, Q[ok, q.index(0.1)], Q[ok, q.index(0.9)], color=c, lw=0.6)
                 ax.vlines(x, Q[ok, q.index(0.25)], Q[ok, q.index(0.75)], color=c, lw=2.0, alpha=0.6)
                 ax.plot(x, med[ok], marker, color=c, ms=3, ls="none", mfc="white" if what == "chaos" else c,
-                        label=f"{NAMES.get(m, m)}, {what}")
+                        label=f"{model_label(m)}, {what}")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel(ENERGY_LABEL)

@@ -9,6 +9,7 @@ import xarray as xr
 
 from chainchaos import paper
 from chainchaos.claims import fmt, g
+from chainchaos.models import model_label
 from chainchaos.scan import criterion_holds, first_energy, probability_at
 from chainchaos.verdicts import HOLDS, VERDICT_NAMES, verdict_code
 
@@ -118,9 +119,8 @@ def search_macros(search: xr.Dataset, verdicts: dict, energy_scan: xr.Dataset, d
         out.update({"verdicts.lanes": str(int(any_v.attrs["lanes"])), "verdicts.dt": g(any_v.attrs["dt"]),
                     "verdicts.tfinal": g(any_v.attrs["t_final"])})
     names = {"delocalized": "deloc", "chaotic": "chaos"}
-    labels = {"hertz": "Hertz", "fput": "FPUT"}
     for (model, key), (H, frac) in threshold_quantiles(energy_scan, disorder).items():
-        label = labels.get(model, model)
+        label = model_label(model)
         if not np.isfinite(H):
             sentence = f"the chosen {label} chain is never {key} on the scanned grid."
         elif not np.isfinite(frac):

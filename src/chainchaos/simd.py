@@ -5,10 +5,10 @@ bond to the next or a loop of 8 lanes (LLVM unrolls it to scalar code: Numba lea
 vectoriser off). The batch engine therefore writes its lane arithmetic on an explicit vector type:
 ``vload(a, i)`` reads a[i:i+LANES] as one ``<LANES x double>`` register, ``vstore(a, i, v)``
 writes it back, and ``+ - *`` (vector with vector or with a float, which is broadcast),
-``max(v, x)`` and ``np.sqrt(v)`` act lane by lane. Each lane gets exactly the IEEE operation its
-scalar expression would (no fused multiply-add, no reassociation), so the force laws of
-``chainchaos.models``, written for floats, compile unchanged for vectors and give bit-identical
-results.
+``max(v, x)``, ``np.sqrt(v)`` and ``np.expm1(v)`` act lane by lane. Each lane gets exactly the
+IEEE operation (or C library call) its scalar expression would (no fused multiply-add, no
+reassociation), so the bond laws of ``chainchaos.models``, written for floats, compile unchanged
+for vectors and give bit-identical results.
 
 The width is fitted to the CPU the kernels are compiled for (``target_lanes``): 8 doubles where
 LLVM lowers such a vector to one 512-bit register (AVX-512), 4 otherwise (one AVX2 register).
@@ -192,6 +192,26 @@ def _square_root(typingctx, a):
 def _sqrt(a):
     if isinstance(a, VectorType):
         return lambda a: _square_root(a)
+
+
+@intrinsic
+def _expm1(typingctx, a):
+    def codegen(context, builder, sig, args):
+        # lane by lane the C library's expm1, the function Numba's scalar np.expm1 calls
+        expm1 = cgutils.get_or_insert_function(builder.module, ir.FunctionType(_DOUBLE, [_DOUBLE]), "expm1")
+        out = ir.Constant(_VECTOR, ir.Undefined)
+        for lane in range(LANES):
+            index = ir.Constant(ir.IntType(32), lane)
+            out = builder.insert_element(out, builder.call(expm1, [builder.extract_element(args[0], index)]), index)
+        return out
+
+    return vector(a), codegen
+
+
+@overload(np.expm1)
+def _expm1_overload(a):
+    if isinstance(a, VectorType):
+        return lambda a: _expm1(a)
 
 
 def _window_intrinsic(first: int, doc: str):

@@ -21,7 +21,7 @@ from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.batch import Batch, SerialBatch
 from chainchaos.integrators import get_scheme
 from chainchaos.linear import modal_energies, normal_modes, participation_number
-from chainchaos.models import energy_density, model_id, open_gaps, total_energy
+from chainchaos.models import MODELS, energy_density, get_model, open_bonds, total_energy
 from chainchaos.provenance import provenance_attrs
 
 OBSERVABLES = ("energy_density", "participation", "energy_centre", "mlce", "dvd", "dvd_participation",
@@ -33,10 +33,8 @@ MODAL = {"mode_energy", "spectral_entropy", "eta"}
 
 
 def model_observables(model: str) -> tuple:
-    """Every observable ``model`` has: gaps exist only in the Hertz chain (the polynomial bonds of
-    FPUT and the harmonic chain never open)."""
-    model_id(model)
-    return OBSERVABLES if model == "hertz" else tuple(o for o in OBSERVABLES if o not in GAPS)
+    """Every observable ``model`` has: the gap observables only where bonds open (Hertz)."""
+    return OBSERVABLES if get_model(model).has_gaps else tuple(o for o in OBSERVABLES if o not in GAPS)
 
 
 @dataclass
@@ -61,15 +59,15 @@ class SceneParameters:
     def __post_init__(self):
         if self.observables is None:
             self.observables = model_observables(self.model)
-        model_id(self.model)
         get_scheme(self.integrator)
         require_finite_positive(self, "energy", "t_final", "dt", "t_first_sample")
         require(self.dt <= self.t_final, "dt", self.dt, f"dt <= t_final = {self.t_final}")
         unknown = [o for o in self.observables if o not in OBSERVABLES]
         require(not unknown, "observables", unknown, f"names among {list(OBSERVABLES)}")
-        if self.model != "hertz":
+        if not get_model(self.model).has_gaps:
             gaps = sorted(GAPS & set(self.observables))
-            require(not gaps, "observables", gaps, "gap observables only with model 'hertz'")
+            require(not gaps, "observables", gaps,
+                    f"gap observables only with a model whose bonds open: {[m for m in MODELS if MODELS[m].has_gaps]}")
         require(self.k4_sign in (1, -1), "K4_sign", self.k4_sign, "+1 (paper) or -1 (Taylor expansion)")
         require(isinstance(self.samples_per_decade, int) and self.samples_per_decade >= 1,
                 "samples_per_decade", self.samples_per_decade, "an integer >= 1")
@@ -167,7 +165,7 @@ def simulate_scenes(chain, scenes: list[SceneParameters], progress=None) -> list
             f"scenes that share {list(BATCH_KEYS)}")
     first = scenes[0]
     chain = chain.with_k4_sign(first.k4_sign)
-    model = model_id(first.model)
+    model = get_model(first.model)
     wanted = set().union(*(set(s.observables) for s in scenes))
     tangent, track_gaps = bool(wanted & TANGENT), bool(wanted & GAPS)
     N, B = chain.N, len(scenes)
@@ -195,7 +193,7 @@ def simulate_scenes(chain, scenes: list[SceneParameters], progress=None) -> list
     Q[:, 0], Pm[:, 0] = Q0.T, P0.T
     DQ[:, 0], DP[:, 0] = DQ0.T, DP0.T
     if track_gaps:
-        max_gaps[:, 0] = open_gaps(chain, Q0.T).sum(axis=-1)
+        max_gaps[:, 0] = open_bonds(model, chain, Q0.T).sum(axis=-1)
 
     for i in range(1, S):
         engine.gap_steps[:] = 0  # counts and the largest number open are per sample interval
@@ -250,7 +248,7 @@ def _dataset(chain, params, model, times, steps, Q, Pm, DQ, DP, log_growth, gap_
         data["initial_deviation"] = ("component", deviation0, {
             **one, "long_name": "initial deviation vector (du_1..du_N, dp_1..dp_N)"})
     if wanted & GAPS:
-        is_open = open_gaps(chain, Q)
+        is_open = open_bonds(model, chain, Q)
         dsteps = np.diff(steps, prepend=0)
         fraction = np.where(dsteps[:, None] > 0, gap_steps / np.maximum(dsteps, 1)[:, None], is_open)
         put("gap_open", ("time", "bond"), is_open.astype(np.int8), "bond open (delta_n + u_{n-1} - u_n < 0)",
@@ -303,7 +301,7 @@ def warm_up() -> str:
 
     batch.warm_up()
     chain = random_chain(0, 2.0, 4)
-    for model in ("hertz", "fput"):
-        for observables in (("mlce", "n_gaps") if model == "hertz" else ("mlce",), ("participation",)):
-            simulate(chain, SceneParameters(model, 0.01, 1.0, 0.1, observables=observables, excited_site=2))
+    for model in MODELS.values():
+        for observables in (("mlce", "n_gaps") if model.has_gaps else ("mlce",), ("participation",)):
+            simulate(chain, SceneParameters(model.name, 0.01, 1.0, 0.1, observables=observables, excited_site=2))
     return os.environ.get("NUMBA_CACHE_DIR", "")

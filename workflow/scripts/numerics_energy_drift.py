@@ -7,7 +7,6 @@ import json
 import sys
 
 from chainchaos.io import read_chain, write_netcdf
-from chainchaos.models import model_id
 from chainchaos.numerics.runs import warm_up
 from chainchaos.numerics.stability import drift_dataset, energy_drift, progress_printer
 
@@ -16,7 +15,7 @@ def main(chain_file, out, s, integrator):
     chain = read_chain(chain_file)
     warm_up(chain)
     name = f"drift {s['model']} H={s['energy']:g}"
-    r = energy_drift(model_id(s["model"]), chain, float(s["energy"]), integrator, float(s["dt"]), float(s["t_final"]),
+    r = energy_drift(s["model"], chain, float(s["energy"]), integrator, float(s["dt"]), float(s["t_final"]),
                      check_interval=s.get("check_interval", 1.0), samples_per_decade=s.get("samples_per_decade", 10),
                      excited_site=s.get("excited_site", 21), progress=progress_printer(name, 30.0))
     print(f"{name}: {r['n_steps']} steps in {r['seconds']:.1f} s ({1e9 * r['seconds'] / r['n_steps']:.0f} ns/step), "

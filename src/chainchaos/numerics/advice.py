@@ -14,7 +14,6 @@ import xarray as xr
 
 from chainchaos.errors import ParameterError
 from chainchaos.integrators import get_scheme
-from chainchaos.models import model_id
 from chainchaos.numerics.runs import run_scheme, warm_up
 from chainchaos.provenance import provenance_attrs
 
@@ -30,14 +29,14 @@ def step_advice(chain, scenes, scheme: str = "SRKN6b", dts=(5e-4, 1e-3, 2e-3, 5e
     dts = sorted({float(d) for d in dts} | {float(paper_dt)})
     say = progress or (lambda message: None)
     c = chain.with_k4_sign(k4_sign)
-    warm_up(c, sorted({model_id(m) for m, _ in scenes}))
+    warm_up(c, sorted({m for m, _ in scenes}))
     shape = (len(scenes), len(dts))
     err, sec, cpu, t_stop = (np.full(shape, math.nan) for _ in range(4))
     stable = np.zeros(shape, dtype=np.int8)
     for si, (m, H) in enumerate(scenes):
         for di, dt in enumerate(dts):
             try:
-                r = run_scheme(model_id(m), c, H, scheme, dt, t_final, tangent=False, check_interval=check_interval,
+                r = run_scheme(m, c, H, scheme, dt, t_final, tangent=False, check_interval=check_interval,
                                stop_error=stop_error, excited_site=excited_site)
             except ParameterError as exc:
                 say(f"{m}_H{H:g}: {exc}")

@@ -11,11 +11,11 @@ the derived units. The physics is the package's own Numba force kernel
 import numpy as np
 from numba import njit
 
-from chainchaos.models import bond_forces, bond_potentials, coefficients
+from chainchaos.models import bond_forces, bond_potentials, get_model
 
 
 @njit(cache=True)
-def rhs_kernel(y, out, model, inv_mass, A, delta, K2, K3, K4, tangent, f, k):
+def rhs_kernel(y, out, model, inv_mass, bonds, tangent, f, k):
     """Fill ``out`` with dy/dt at state ``y`` (length 2N, or 4N when ``tangent``).
 
     u' = p/m, p' = f_n - f_{n+1}; tangent: du' = dp/m, dp' = g_n - g_{n+1} with
@@ -24,7 +24,7 @@ def rhs_kernel(y, out, model, inv_mass, A, delta, K2, K3, K4, tangent, f, k):
     """
     N = inv_mass.shape[0]
     u = y[:N]
-    bond_forces(model, u, A, delta, K2, K3, K4, f, k, tangent)
+    bond_forces(model, u, bonds, f, k, tangent)
     for n in range(N):
         out[n] = inv_mass[n] * y[N + n]
         out[N + n] = f[n] - f[n + 1]
@@ -42,9 +42,9 @@ def rhs_kernel(y, out, model, inv_mass, A, delta, K2, K3, K4, tangent, f, k):
 
 
 @njit(cache=True)
-def energy_kernel(model, q, p, mass, A, delta, K2, K3, K4, V):
+def energy_kernel(model, q, p, mass, bonds, V):
     """Total energy H = sum p^2/(2m) + sum_b V_b (every bond in full, DESIGN section 2)."""
-    bond_potentials(model, q, A, delta, K2, K3, K4, V)
+    bond_potentials(model, q, bonds, V)
     H = 0.0
     for n in range(q.shape[0]):
         H += 0.5 * p[n] * p[n] / mass[n]
@@ -56,17 +56,17 @@ def energy_kernel(model, q, p, mass, A, delta, K2, K3, K4, V):
 class RightHandSide:
     """Callable ``rhs(t, y) -> dy/dt`` of one model on one chain, for scipy.integrate.
 
-    ``model`` is chainchaos.models.HERTZ or FPUT; ``tangent`` adds the variational equations
+    ``model`` is a chainchaos.models Model or its name; ``tangent`` adds the variational equations
     (state length 4N). The Numba kernel is compiled once and cached on disk; a call costs about
     a microsecond plus Python's call overhead. ``nfev`` counts the calls.
     """
 
-    def __init__(self, model: int, chain, tangent: bool = False):
-        self.model, self.chain, self.tangent = int(model), chain, bool(tangent)
+    def __init__(self, model, chain, tangent: bool = False):
+        self.model, self.chain, self.tangent = get_model(model), chain, bool(tangent)
         self.N = chain.N
-        self.K = coefficients(self.model, chain)
-        self._args = (self.model, 1.0 / chain.mass, chain.A, chain.delta, *self.K,
-                      self.tangent, np.empty(self.N + 1), np.empty(self.N + 1))
+        self.bonds = self.model.bond_parameters(chain)
+        self._args = (self.model, 1.0 / chain.mass, self.bonds, self.tangent, np.empty(self.N + 1),
+                      np.empty(self.N + 1))
         self.size = (4 if tangent else 2) * self.N
         self.nfev = 0
 
@@ -80,9 +80,9 @@ class RightHandSide:
         """Total energy of the state part of ``y``."""
         c, N = self.chain, self.N
         return float(energy_kernel(self.model, np.ascontiguousarray(y[:N]), np.ascontiguousarray(y[N:2 * N]),
-                                   c.mass, c.A, c.delta, *self.K, np.empty(N + 1)))
+                                   c.mass, self.bonds, np.empty(N + 1)))
 
 
-def rhs(model: int, chain, tangent: bool = False) -> RightHandSide:
+def rhs(model, chain, tangent: bool = False) -> RightHandSide:
     """The right-hand side ``rhs(t, y)`` for solve_ivp (see :class:`RightHandSide`)."""
     return RightHandSide(model, chain, tangent)

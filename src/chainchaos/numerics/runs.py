@@ -28,7 +28,7 @@ from scipy import integrate
 from chainchaos.errors import require
 from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.integrators import advance, get_scheme
-from chainchaos.models import coefficients
+from chainchaos.models import get_model
 from chainchaos.numerics.rhs import RightHandSide, energy_kernel
 
 IVP_METHODS = ("RK45", "DOP853")
@@ -58,7 +58,7 @@ class RunResult:
 
 
 @njit(cache=True)
-def run_chunks(model, q, p, dq, dp, inv_mass, mass, A, delta, K2, K3, K4, kicks, drifts, dt, n_chunks,
+def run_chunks(model, q, p, dq, dp, inv_mass, mass, bonds, kicks, drifts, dt, n_chunks,
                chunk_steps, tangent, H0, err, err_offset, stop_error, track_gaps, gap_steps, diagnostics,
                f, k, V):
     """Advance ``n_chunks`` chunks of ``chunk_steps`` steps with :func:`advance`, recording the
@@ -68,9 +68,9 @@ def run_chunks(model, q, p, dq, dp, inv_mass, mass, A, delta, K2, K3, K4, kicks,
     error exceeded ``stop_error`` (the run then stops).
     """
     for i in range(n_chunks):
-        bad = advance(model, q, p, dq, dp, inv_mass, A, delta, K2, K3, K4, kicks, drifts, dt, chunk_steps,
+        bad = advance(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, chunk_steps,
                       tangent, chunk_steps, track_gaps, gap_steps, diagnostics, f, k)
-        e = (energy_kernel(model, q, p, mass, A, delta, K2, K3, K4, V) - H0) / abs(H0)
+        e = (energy_kernel(model, q, p, mass, bonds, V) - H0) / abs(H0)
         err[err_offset + i] = e
         if bad >= 0 or not abs(e) <= stop_error:
             if bad >= 0 or not np.isfinite(e):
@@ -93,7 +93,7 @@ def _check_plan(n_steps: int, chunk: int) -> list[tuple[int, int]]:
     return [(n, c) for n, c in plan if n > 0]
 
 
-def run_scheme(model: int, chain, energy: float, scheme: str, dt: float, t_final: float,
+def run_scheme(model, chain, energy: float, scheme: str, dt: float, t_final: float,
                t_probe: float | None = None, tangent: bool = True, check_interval: float = 0.1,
                repeats: int = 3, repeat_below: float = 0.5, stop_error: float = math.inf,
                excited_site: int = 21, deviation_seed: int = 0, track_gaps: bool = False,
@@ -109,6 +109,7 @@ def run_scheme(model: int, chain, energy: float, scheme: str, dt: float, t_final
     open, number of bonds that opened at least once (at step ends).
     """
     s = get_scheme(scheme)
+    model = get_model(model)
     require(np.isfinite(dt) and dt > 0, "dt", dt, "a finite step > 0")
     n_total = _grid(t_final, dt, "t_final")
     n_probe = _grid(t_probe, dt, "t_probe") if t_probe is not None else n_total
@@ -120,8 +121,8 @@ def run_scheme(model: int, chain, energy: float, scheme: str, dt: float, t_final
     q0, p0, _ = initial_state(model, chain, energy, excited_site)
     dq0, dp0 = initial_deviation(chain.N, deviation_seed) if tangent else (np.zeros(chain.N), np.zeros(chain.N))
     N = chain.N
-    inv_mass, (K2, K3, K4) = 1.0 / chain.mass, coefficients(model, chain)
-    H0 = float(energy_kernel(model, q0, p0, chain.mass, chain.A, chain.delta, K2, K3, K4, np.empty(N + 1)))
+    inv_mass, bonds = 1.0 / chain.mass, model.bond_parameters(chain)
+    H0 = float(energy_kernel(model, q0, p0, chain.mass, bonds, np.empty(N + 1)))
 
     best = math.inf
     for attempt in range(max(1, repeats)):
@@ -134,8 +135,7 @@ def run_scheme(model: int, chain, energy: float, scheme: str, dt: float, t_final
         start, cpu_start = time.perf_counter(), time.process_time()
         for si, seg in enumerate(segments):
             for n_chunks, c in seg:
-                bad = run_chunks(model, q, p, dq, dp, inv_mass, chain.mass, chain.A, chain.delta, K2, K3, K4,
-                                 s.kicks, s.drifts, dt, n_chunks, c, tangent, H0, err, offset, stop_error,
+                bad = run_chunks(model, q, p, dq, dp, inv_mass, chain.mass, bonds, s.kicks, s.drifts, dt, n_chunks, c, tangent, H0, err, offset, stop_error,
                                  track_gaps, gap_steps, diagnostics, *scratch)
                 if bad >= 0:
                     stop_index = offset + bad
@@ -171,7 +171,7 @@ def run_scheme(model: int, chain, energy: float, scheme: str, dt: float, t_final
     return result
 
 
-def run_solve_ivp(model: int, chain, energy: float, method: str, rtol: float, t_final: float,
+def run_solve_ivp(model, chain, energy: float, method: str, rtol: float, t_final: float,
                   t_probe: float | None = None, atol: float | None = None, tangent: bool = True,
                   repeats: int = 3, repeat_below: float = 0.5, excited_site: int = 21,
                   deviation_seed: int = 0) -> RunResult:
@@ -234,12 +234,13 @@ def run_solve_ivp(model: int, chain, energy: float, method: str, rtol: float, t_
     return result
 
 
-def warm_up(chain, models=(0, 1)) -> None:
+def warm_up(chain, models=("hertz", "fput")) -> None:
     """Load (or compile) every Numba kernel the measured runs use, with the argument types of
     ``chain``, so that no timed run pays for compilation."""
-    for model in models:
+    for model in map(get_model, models):
         for tangent in (False, True):
-            run_scheme(model, chain, 0.01, "verlet", 0.1, 0.2, 0.1, tangent=tangent, repeats=1, track_gaps=True)
+            if model.has_gaps:
+                run_scheme(model, chain, 0.01, "verlet", 0.1, 0.2, 0.1, tangent=tangent, repeats=1, track_gaps=True)
             run_scheme(model, chain, 0.01, "verlet", 0.1, 0.2, 0.1, tangent=tangent, repeats=1)
             run_solve_ivp(model, chain, 0.01, "RK45", 1e-3, 0.2, 0.1, tangent=tangent, repeats=1)
 

@@ -17,7 +17,7 @@ from chainchaos.errors import ParameterError, SimulationError, require
 from chainchaos.initial import excitation_energy, initial_state
 from chainchaos.integrators import get_scheme
 from chainchaos.linear import normal_modes
-from chainchaos.models import FPUT, coefficients, model_id
+from chainchaos.models import get_model
 from chainchaos.numerics.rhs import energy_kernel
 from chainchaos.numerics.runs import run_chunks, run_scheme
 
@@ -76,7 +76,7 @@ def linear_omega_max(chain) -> float:
     return float(normal_modes(chain)[0][-1])
 
 
-def is_stable(model: int, chain, energy: float, scheme: str, dt: float, t_final: float = 1e3,
+def is_stable(model, chain, energy: float, scheme: str, dt: float, t_final: float = 1e3,
               bound: float = 1e-2, excited_site: int = 21, check_interval: float = 0.1) -> tuple[bool, float]:
     """(stable, t_stopped): whether the relative energy error stays <= ``bound`` (and the state
     finite) up to t_final (rounded up to the step grid) at step ``dt``; no tangent dynamics."""
@@ -86,7 +86,7 @@ def is_stable(model: int, chain, energy: float, scheme: str, dt: float, t_final:
     return r.stable, r.t_stopped
 
 
-def largest_stable_dt(model: int, chain, energy: float, scheme: str, t_final: float = 1e3,
+def largest_stable_dt(model, chain, energy: float, scheme: str, t_final: float = 1e3,
                       bound: float = 1e-2, dt_start: float | None = None, growth: float = 2 ** 0.5,
                       rel_tol: float = 1e-2, excited_site: int = 21) -> dict:
     """The largest step dt_max (time units) at which ``scheme`` keeps the relative energy error
@@ -184,7 +184,7 @@ def sonic_vacuum_chain(chain, factor: float = 1e-6) -> PrecompressedChain:
                               float(factor) * getattr(chain, "precompression", 1.0))
 
 
-def energy_drift(model: int, chain, energy: float, scheme: str, dt: float, t_final: float,
+def energy_drift(model, chain, energy: float, scheme: str, dt: float, t_final: float,
                  check_interval: float = 1.0, samples_per_decade: int = 10, t_first: float = 1.0,
                  excited_site: int = 21, progress=None) -> dict:
     """Long run without tangent dynamics, recording the relative energy error e(t) = (H(t) -
@@ -198,10 +198,11 @@ def energy_drift(model: int, chain, energy: float, scheme: str, dt: float, t_fin
     ``progress(t, fraction)`` is called after every window.
     """
     s = get_scheme(scheme)
+    model = get_model(model)
     q, p, _ = initial_state(model, chain, energy, excited_site)
     N = chain.N
-    inv_mass, (K2, K3, K4) = 1.0 / chain.mass, coefficients(model, chain)
-    H0 = float(energy_kernel(model, q, p, chain.mass, chain.A, chain.delta, K2, K3, K4, np.empty(N + 1)))
+    inv_mass, bonds = 1.0 / chain.mass, model.bond_parameters(chain)
+    H0 = float(energy_kernel(model, q, p, chain.mass, bonds, np.empty(N + 1)))
     n_total = int(round(t_final / dt))
     chunk = max(1, int(round(check_interval / dt)))
     first = math.log10(t_first)
@@ -219,11 +220,10 @@ def energy_drift(model: int, chain, energy: float, scheme: str, dt: float, t_fin
     start = time.perf_counter()
     for i, end in enumerate(ends):
         err = np.empty(int(end - done))
-        bad = run_chunks(model, q, p, dq, dp, inv_mass, chain.mass, chain.A, chain.delta, K2, K3, K4,
-                         s.kicks, s.drifts, dt, err.size, chunk, False, H0, err, 0, math.inf, False, gaps,
+        bad = run_chunks(model, q, p, dq, dp, inv_mass, chain.mass, bonds, s.kicks, s.drifts, dt, err.size, chunk, False, H0, err, 0, math.inf, False, gaps,
                          diagnostics, *scratch)
         if bad >= 0:
-            raise SimulationError(f"energy drift {model_id_name(model)} H={energy:g}", (done + bad + 1) * chunk * dt,
+            raise SimulationError(f"energy drift {model.name} H={energy:g}", (done + bad + 1) * chunk * dt,
                                   "non-finite state", math.nan)
         max_abs[i], mean[i], last[i] = np.max(np.abs(err)), np.mean(err), err[-1]
         done = int(end)
@@ -239,10 +239,6 @@ def energy_drift(model: int, chain, energy: float, scheme: str, dt: float, t_fin
             "seconds": seconds, "n_steps": int(ends[-1] * chunk), "growth_exponent": slope, "H0": H0}
 
 
-def model_id_name(model: int) -> str:
-    return "fput" if model == FPUT else "hertz"
-
-
 def fput_bond_barrier(chain) -> float:
     """Lowest potential barrier of a single FPUT bond (energy units), or inf if every bond
     potential is bounded (K4 > 0). With K4 < 0 (Taylor sign) V(y) = K2 y^2/2 + K3 y^3/3 + K4 y^4/4
@@ -256,7 +252,7 @@ def fput_bond_barrier(chain) -> float:
     return float(best)
 
 
-def excitation_barrier(model: int, chain, site: int = 21) -> float:
+def excitation_barrier(model, chain, site: int = 21) -> float:
     """The largest energy the single-site excitation u_site = u0 can carry (energy units):
     the maximum of the potential along u0 > 0, or inf when it grows without bound."""
     u = np.linspace(0.0, 100.0, 20001)[1:]
@@ -358,7 +354,7 @@ def stability_scan(chain, alphas, energies, schemes, models=("hertz", "fput"), t
             for ei, H in enumerate(energies):
                 start = time.perf_counter()
                 for si, s in enumerate(schemes):
-                    r = largest_stable_dt(model_id(m), c, H, s, t_final, bound, rel_tol=rel_tol,
+                    r = largest_stable_dt(m, c, H, s, t_final, bound, rel_tol=rel_tol,
                                           excited_site=excited_site)
                     dt_max[mi, ai, ei, si], dt_unst[mi, ai, ei, si] = r["dt_max"], r["dt_unstable"]
                     n_runs[mi, ai, ei, si], t_stop[mi, ai, ei, si] = r["runs"], r["t_stopped"]
@@ -461,6 +457,6 @@ def taylor_dataset(rows: list[dict], chain, t_final: float, dt: float, scheme: s
               "chain_seed": chain.seed, "K4_sign": -1}
     ds.attrs.update(provenance_attrs(params))
     ds.attrs.update(title="FPUT with the Taylor sign of K4: what the guards do", t_final=float(t_final), dt=float(dt),
-                    integrator=scheme, K4_sign=-1.0, excitation_barrier=excitation_barrier(FPUT, taylor),
+                    integrator=scheme, K4_sign=-1.0, excitation_barrier=excitation_barrier("fput", taylor),
                     lowest_bond_barrier=fput_bond_barrier(taylor), seed=-1 if chain.seed is None else int(chain.seed))
     return ds

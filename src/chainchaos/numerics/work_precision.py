@@ -21,7 +21,7 @@ import xarray as xr
 
 from chainchaos.errors import require
 from chainchaos.integrators import SCHEMES, get_scheme
-from chainchaos.models import HERTZ, model_id
+from chainchaos.models import get_model
 from chainchaos.numerics.runs import IVP_METHODS, phase_space_error, run_scheme, run_solve_ivp, warm_up
 from chainchaos.provenance import provenance_attrs
 
@@ -34,13 +34,13 @@ def case_name(model: str, energy: float) -> str:
     return f"{model}_H{energy:g}"
 
 
-def reference_run(model: int, chain, energy: float, scheme: str, dt: float, t_final: float, t_probe: float,
+def reference_run(model, chain, energy: float, scheme: str, dt: float, t_final: float, t_probe: float,
                   **kw) -> dict:
     """The converged reference of one case: ``scheme`` at ``dt`` (with contact statistics for
-    Hertz), and its uncertainty from the same scheme at 2 dt (phase space at t_probe, Lambda at
+    a model whose bonds open), and its uncertainty from the same scheme at 2 dt (phase space at t_probe, Lambda at
     t_final). Returns a dict of the reference RunResult and the uncertainties."""
     ref = run_scheme(model, chain, energy, scheme, dt, t_final, t_probe, repeats=1,
-                     track_gaps=model == HERTZ, **kw)
+                     track_gaps=get_model(model).has_gaps, **kw)
     check = run_scheme(model, chain, energy, scheme, 2 * dt, t_final, t_probe, repeats=1, **kw)
     require(ref.stable and check.stable, "reference", f"{scheme} dt={dt:g}", "a stable reference run")
     return {"run": ref, "phase_uncertainty": phase_space_error(check.state_probe, ref.state_probe),
@@ -90,10 +90,10 @@ def work_precision(chain, cases, schemes=None, dts=None, tolerances=None, t_fina
         "reference_energy_error", "reference_seconds", "reference_max_open_gaps", "reference_open_fraction",
         "reference_bonds_ever_open", "reference_dt")}
     common = dict(check_interval=check_interval, excited_site=excited_site, deviation_seed=deviation_seed)
-    warm_up(chain, sorted({model_id(m) for m, _ in cases}))
+    warm_up(chain, sorted({m for m, _ in cases}))
 
     for ci, (model_name, energy) in enumerate(cases):
-        model = model_id(model_name)
+        model = get_model(model_name)
         ref_dt = float(reference["dt"][model_name] if isinstance(reference["dt"], dict) else reference["dt"])
         ref = reference_run(model, chain, energy, reference["scheme"], ref_dt, t_final, t_probe, **common)
         r = ref["run"]
@@ -102,9 +102,9 @@ def work_precision(chain, cases, schemes=None, dts=None, tolerances=None, t_fina
         per_case["reference_lambda_uncertainty"][ci] = ref["lambda_uncertainty"]
         per_case["reference_energy_error"][ci] = r.max_energy_error
         per_case["reference_seconds"][ci] = r.seconds
-        per_case["reference_max_open_gaps"][ci] = r.max_open_gaps if model == HERTZ else 0
-        per_case["reference_open_fraction"][ci] = r.open_fraction if model == HERTZ else 0.0
-        per_case["reference_bonds_ever_open"][ci] = r.bonds_ever_open if model == HERTZ else 0
+        per_case["reference_max_open_gaps"][ci] = r.max_open_gaps if model.has_gaps else 0
+        per_case["reference_open_fraction"][ci] = r.open_fraction if model.has_gaps else 0.0
+        per_case["reference_bonds_ever_open"][ci] = r.bonds_ever_open if model.has_gaps else 0
         per_case["reference_dt"][ci] = ref_dt
         say(f"{case_name(model_name, energy)}: reference {reference['scheme']} dt={ref_dt:g} in {r.seconds:.1f} s, "
             f"Lambda={r.lambda_final:.6g}, uncertainty phase {ref['phase_uncertainty']:.2e} "
@@ -230,7 +230,7 @@ def order_table(ds: xr.Dataset, floor_factor: float | None = None, upper: float 
             p_ps, n_ps = observed_order(d.dt.values[ok], d.phase_space_error.values[ok], lower_ps, upper, last)
             p_e, n_e = observed_order(d.dt.values[ok], d.energy_error.values[ok], 1e3 * np.finfo(float).eps, upper, last)
             nominal = get_scheme(scheme).order
-            gaps = int(c.reference_max_open_gaps) if str(c.model.values) == "hertz" else 0
+            gaps = int(c.reference_max_open_gaps) if get_model(str(c.model.values)).has_gaps else 0
             rows.append({
                 "case": str(case), "model": str(c.model.values), "energy": float(c.energy), "scheme": scheme,
                 "nominal_order": nominal, "order_phase_space": p_ps, "points_phase_space": n_ps,

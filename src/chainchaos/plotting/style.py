@@ -13,6 +13,7 @@ import matplotlib
 matplotlib.use("Agg")
 
 from chainchaos.io import atomic_output  # noqa: E402
+from chainchaos.models import MODELS, get_model, model_label  # noqa: E402
 
 COLUMN_WIDTH = 3.4  # in, one column: a single panel
 PAGE_WIDTH = 7.0  # in, both columns: composites
@@ -49,10 +50,7 @@ MAP_CMAP = "viridis"
 MAP_FLOOR = 1e-8
 GAP_CMAP = "viridis"  # open bonds light (yellow), as in the paper's Fig. 7
 
-HERTZ_RED = "#c62828"
-FPUT_BLUE = "#1565c0"
-MODEL_COLOURS = {"hertz": HERTZ_RED, "fput": FPUT_BLUE}
-MODEL_NAMES = {"hertz": "Hertz", "fput": "FPUT"}
+HERTZ_RED = MODELS["hertz"].colour  # also of the chain's drawing (Fig. 1b)
 # Several energies of one model in a panel: lower energies solid and lighter, higher ones dashed.
 ENERGY_LINESTYLES = ("-", "--", "-.", ":")
 ENERGY_SHADES = (0.0, 0.35, 0.55, 0.7)  # fraction of white mixed in, by energy rank, highest first
@@ -95,13 +93,13 @@ def composite_size(rows: int, columns: int) -> tuple[float, float]:
 
 
 def model_colour(model: str) -> str:
-    """Hertz red or FPUT blue."""
-    return MODEL_COLOURS[model]
+    """The model's colour (``chainchaos.models``): Hertz red, FPUT blue."""
+    return get_model(model).colour
 
 
 def scene_label(model: str, energy: float) -> str:
     """E.g. ``Hertz, $H = 0.25$``."""
-    return f"{MODEL_NAMES[model]}, $H = {energy:g}$"
+    return f"{model_label(model)}, $H = {energy:g}$"
 
 
 def time_text(t: float) -> str:

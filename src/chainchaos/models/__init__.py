@@ -1,0 +1,110 @@
+"""The bond models: a registry of :class:`~chainchaos.models.base.Model`, one module each.
+
+Adding a model is its module (name, label, colour, bond parameters, Numba kernels of its bond
+law: see ``base``) and one line in :data:`MODELS`; the engines, the initial-state solver, the
+energy, the configuration's allowed values and every label take it from here.
+"""
+
+import numpy as np
+from numba import njit
+
+from chainchaos.errors import require
+from chainchaos.models import fput, harmonic, hertz, toda
+from chainchaos.models.base import (MAX_BOND_PARAMETERS, Model, bond_force, bond_force_stiffness, bond_opening,
+                                    bond_potential)
+
+#: Every model, by name.
+MODELS: dict[str, Model] = {m.name: m for m in (
+    hertz.MODEL,
+    fput.MODEL,
+    harmonic.MODEL,
+    toda.MODEL,
+)}
+
+
+def get_model(name) -> Model:
+    """The model called ``name`` (a Model passes through)."""
+    if isinstance(name, Model):
+        return name
+    require(name in MODELS, "model", name, f"one of {sorted(MODELS)}")
+    return MODELS[name]
+
+
+def model_label(name: str) -> str:
+    """How figures and tables name the model (e.g. 'Hertz', 'FPUT')."""
+    return get_model(name).label
+
+
+@njit(cache=True)
+def bond_forces(model, u, P, f, k, with_stiffness):
+    """Fill f[b] (and k[b] if ``with_stiffness``) for every bond b = 0..N at displacements u (N,),
+    P the bond parameters (MAX_BOND_PARAMETERS, N+1). The engines run the same kernels in their
+    own vector loops; this is the plain version for everything else."""
+    N = u.shape[0]
+    for b in range(N + 1):
+        left = u[b - 1] if b > 0 else 0.0
+        right = u[b] if b < N else 0.0
+        bond = (P[0, b], P[1, b], P[2, b])
+        if with_stiffness:
+            f[b], k[b] = bond_force_stiffness(model, bond, left, right)
+        else:
+            f[b] = bond_force(model, bond, left, right)
+
+
+@njit(cache=True)
+def bond_potentials(model, u, P, V):
+    """Fill V[b], the potential energy of every bond b = 0..N (zero at rest)."""
+    N = u.shape[0]
+    for b in range(N + 1):
+        left = u[b - 1] if b > 0 else 0.0
+        right = u[b] if b < N else 0.0
+        V[b] = bond_potential(model, (P[0, b], P[1, b], P[2, b]), left, right)
+
+
+@njit(cache=True)
+def _bond_openings(model, u, P, out):
+    N = u.shape[0]
+    for b in range(N + 1):
+        left = u[b - 1] if b > 0 else 0.0
+        right = u[b] if b < N else 0.0
+        out[b] = bond_opening(model, (P[0, b], P[1, b], P[2, b]), left, right)
+
+
+def _per_state(kernel, model, chain, u: np.ndarray) -> np.ndarray:
+    """kernel(model, u_i, P, out_i) for one state u (N,) or many (..., N): shape (..., N+1)."""
+    model = get_model(model)
+    u = np.ascontiguousarray(u, dtype=float)
+    flat = u.reshape(-1, u.shape[-1])
+    out = np.empty((flat.shape[0], flat.shape[1] + 1))
+    P = model.bond_parameters(chain)
+    for i in range(flat.shape[0]):
+        kernel(model, flat[i], P, out[i])
+    return out.reshape(u.shape[:-1] + (u.shape[-1] + 1,))
+
+
+def bond_potential_energy(model, chain, u: np.ndarray) -> np.ndarray:
+    """Bond potentials V_b for one state u (N,) or many states u (..., N): shape (..., N+1)."""
+    return _per_state(bond_potentials, model, chain, u)
+
+
+def total_energy(model, chain, u: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """H = sum_n p_n^2 / (2 m_n) + sum_b V_b, every bond counted in full (docs/conventions.md)."""
+    kinetic = np.sum(p**2 / (2.0 * chain.mass), axis=-1)
+    return kinetic + bond_potential_energy(model, chain, u).sum(axis=-1)
+
+
+def energy_density(model, chain, u: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """Normalised energy density h_n = H_n / sum_m H_m with
+    H_n = p_n^2/(2 m_n) + (V_n + V_{n+1})/2 (the paper's Eq. 1 read literally)."""
+    V = bond_potential_energy(model, chain, u)
+    H = p**2 / (2.0 * chain.mass) + 0.5 * (V[..., :-1] + V[..., 1:])
+    return H / H.sum(axis=-1, keepdims=True)
+
+
+def open_bonds(model, chain, u: np.ndarray) -> np.ndarray:
+    """True where a bond is open (shape (..., N+1)); all False for a model whose bonds never open."""
+    return _per_state(_bond_openings, model, chain, u) < 0
+
+
+__all__ = ["MAX_BOND_PARAMETERS", "MODELS", "Model", "bond_forces", "bond_potential_energy", "bond_potentials",
+           "energy_density", "get_model", "model_label", "open_bonds", "total_energy"]
