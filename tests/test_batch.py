@@ -8,7 +8,7 @@ from chainchaos.batch import Batch, lane_parameters
 from chainchaos.simd import LANES
 from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.integrators import SCHEMES, advance, get_scheme
-from chainchaos.models import get_model
+from chainchaos.models import MODELS, get_model
 
 N = 40
 
@@ -56,16 +56,16 @@ def assert_lanes_match_single_runs(name, chains, batch, q, p, dq, dp, integrator
             np.testing.assert_array_equal(batch.gap_steps[:, j], gsum)
 
 
-@pytest.mark.parametrize("name", ["hertz", "fput"])
+@pytest.mark.parametrize("name", sorted(MODELS))
 @pytest.mark.parametrize("integrator", ["SRKN6b", "ABA864", "verlet"])
 def test_every_lane_matches_the_single_engine(name, integrator):
-    """Different chains, energies and excited beads per lane, with the tangent map and (Hertz)
-    gap counting: states, deviation vectors, log growth and gap counts are those of the single
+    """Different chains, energies and excited beads per lane, with the tangent map and (where bonds
+    open) gap counting, for every model of the registry: states, deviation vectors, log growth and gap counts are those of the single
     engine to the last bit (the same IEEE operations in the same order, lane by lane)."""
     chains = [random_chain(s, 5.0) for s in (879, 5346, 11, 12, 13)]
     energies = [0.25, 0.5, 1.8, 4.0, 9.0]
     sites = [21, 21, 15, 30, 20]
-    gaps = name == "hertz"
+    gaps = get_model(name).has_gaps
     q, p, dq, dp = lanes(name, chains, energies, sites)
     batch = Batch(name, chains, q, p, dq, dp, integrator=integrator, dt=0.01, tangent=True, track_gaps=gaps,
                   check_every=37)

@@ -8,7 +8,7 @@ from chainchaos.integrators import SCHEMES, advance, get_scheme
 from chainchaos.models import get_model, open_bonds, total_energy
 from chainchaos.simulate import SceneParameters, sample_steps, simulate
 
-HERTZ, FPUT = get_model("hertz"), get_model("fput")
+HERTZ, FPUT, TODA = get_model("hertz"), get_model("fput"), get_model("toda")
 
 
 def integrate(chain, model, q, p, n_steps, dt, scheme="SRKN6b", dq=None, dp=None, track_gaps=False):
@@ -28,7 +28,7 @@ def integrate(chain, model, q, p, n_steps, dt, scheme="SRKN6b", dq=None, dp=None
     return q, p, dq, dp, diagnostics[0], gaps, diagnostics[1]
 
 
-@pytest.mark.parametrize("model, energy", [(FPUT, 0.25), (HERTZ, 0.05)])
+@pytest.mark.parametrize("model, energy", [(FPUT, 0.25), (HERTZ, 0.05), (TODA, 0.25)])
 def test_measured_order_of_every_scheme(chain, model, energy):
     q0, p0, _ = initial_state(model, chain, energy, 21)
     T = 10.0
@@ -44,7 +44,7 @@ def test_measured_order_of_every_scheme(chain, model, energy):
         assert abs(order - scheme.order) < 0.3, (name, errors, order)
 
 
-@pytest.mark.parametrize("model, energy", [(FPUT, 1.0), (HERTZ, 0.25), (HERTZ, 1.8)])
+@pytest.mark.parametrize("model, energy", [(FPUT, 1.0), (HERTZ, 0.25), (HERTZ, 1.8), (TODA, 1.0)])
 def test_tangent_map_matches_finite_differences(chain, model, energy):
     N = chain.N
     q0, p0, _ = initial_state(model, chain, energy, 21)
@@ -60,7 +60,7 @@ def test_tangent_map_matches_finite_differences(chain, model, energy):
     assert np.abs(difference - tangent).max() < 1e-6 * np.abs(tangent).max()
 
 
-@pytest.mark.parametrize("model", ["hertz", "fput"])
+@pytest.mark.parametrize("model", ["hertz", "fput", "toda"])
 def test_energy_is_conserved_to_scheme_accuracy(chain, model):
     errors = []
     for dt in (0.02, 0.01):

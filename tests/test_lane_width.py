@@ -14,7 +14,8 @@ import pytest
 
 from chainchaos import random_chain, simd
 from chainchaos.errors import ParameterError
-from chainchaos.simulate import SceneParameters, simulate, simulate_scenes
+from chainchaos.models import MODELS
+from chainchaos.simulate import SceneParameters, model_observables, simulate, simulate_scenes
 
 OTHER_WIDTH = 4 if simd.LANES == 8 else 8
 
@@ -25,18 +26,17 @@ import numpy as np
 from chainchaos import random_chain, simd
 from chainchaos.batch import Batch, SerialBatch
 from chainchaos.initial import initial_deviation, initial_state
-from chainchaos.models import get_model
+from chainchaos.models import MODELS
 
 chains = [random_chain(s, 5.0) for s in (879, 5346, 11, 12, 13)]
 out = [np.array([simd.LANES], dtype=float)]
-for name in ("hertz", "fput"):
-    model = get_model(name)
+for name, model in MODELS.items():
     states = [initial_state(model, c, E, 21)[:2] for c, E in zip(chains, (0.25, 0.5, 1.8, 4.0, 9.0))]
     q, p = np.stack([s[0] for s in states], 1), np.stack([s[1] for s in states], 1)
     dq, dp = initial_deviation(40, 1)
     dq, dp = np.tile(dq[:, None], (1, 5)), np.tile(dp[:, None], (1, 5))
     for engine in (Batch, SerialBatch):
-        b = engine(name, chains, q, p, dq, dp, dt=0.01, tangent=True, track_gaps=name == "hertz", check_every=97)
+        b = engine(name, chains, q, p, dq, dp, dt=0.01, tangent=True, track_gaps=model.has_gaps, check_every=97)
         b.advance(700)
         b.advance(300)
         out += [b.q, b.p, b.dq, b.dp, b.log_growth, b.gap_steps.astype(float), b.max_gaps.astype(float)]
@@ -73,15 +73,18 @@ def test_the_fitted_width_matches_the_cpu_numba_compiles_for(monkeypatch):
     assert simd.target_lanes() == (8 if simd.target_has_512_bit_vectors() else 4)
 
 
-def test_scenes_integrated_together_equal_each_scene_alone():
-    """Four Hertz scenes with different energies, beads, deviation seeds and observables in one
-    batch: every variable of every scene file is the one of the scene run alone, to the bit."""
+@pytest.mark.parametrize("model", sorted(MODELS))
+def test_scenes_integrated_together_equal_each_scene_alone(model):
+    """Four scenes of a model with different energies, beads, deviation seeds and observables in
+    one batch (the batch engine): every variable of every scene file is the one of the scene run
+    alone (the single engine), to the bit."""
     chain = random_chain(879, 5.0)
     common = dict(t_final=50.0, dt=0.01, samples_per_decade=8, check_every=300)
-    scenes = [SceneParameters("hertz", 1.8, **common, name="a"),
-              SceneParameters("hertz", 0.25, **common, excited_site=15, observables=("participation",), name="b"),
-              SceneParameters("hertz", 3.0, **common, deviation_seed=4, observables=("mlce", "n_gaps"), name="c"),
-              SceneParameters("hertz", 0.5, **common, observables=("eta", "gap_fraction"), name="d")]
+    gaps = [o for o in ("n_gaps", "gap_fraction") if o in model_observables(model)]
+    scenes = [SceneParameters(model, 1.8, **common, name="a"),
+              SceneParameters(model, 0.25, **common, excited_site=15, observables=("participation",), name="b"),
+              SceneParameters(model, 3.0, **common, deviation_seed=4, observables=("mlce", *gaps[:1]), name="c"),
+              SceneParameters(model, 0.5, **common, observables=("eta", *gaps[1:]), name="d")]
     together = simulate_scenes(chain, scenes)
     for params, ds in zip(scenes, together):
         alone = simulate(chain, params)

@@ -1,0 +1,76 @@
+"""The model registry (chainchaos.models): every bond law against exact properties.
+
+Each registered model is checked the same way, so a new model is tested by its registry line:
+its force is the derivative of its potential (up to the precompression force f(0), the same on
+every bond, so that the chain is at rest at D = 0 and the walls take it), its stiffness the
+derivative of its force, its stiffness at rest is the chain's K2 (the common linear limit), and
+its parameters fit the engines' rows.
+"""
+
+import numpy as np
+import pytest
+
+from chainchaos.chain import random_chain
+from chainchaos.errors import ParameterError
+from chainchaos.models import MAX_BOND_PARAMETERS, MODELS, get_model, model_label, total_energy
+from chainchaos.models.base import bond_force, bond_force_stiffness, bond_potential
+from numba import njit
+
+CHAIN = random_chain(879, 5.0, 40)
+
+
+@njit
+def _law(model, P, D):
+    """(V, f, k, f alone) of every bond b at compression D[b] (left = D, right = 0)."""
+    out = np.empty((4, D.size))
+    for b in range(D.size):
+        bond = (P[0, b], P[1, b], P[2, b])
+        out[0, b] = bond_potential(model, bond, D[b], 0.0)
+        out[1, b], out[2, b] = bond_force_stiffness(model, bond, D[b], 0.0)
+        out[3, b] = bond_force(model, bond, D[b], 0.0)
+    return out
+
+
+def law(model, D):
+    """(V, f, k) of every bond at compressions D; the force alone is the force of the pair."""
+    V, f, k, force = _law(model, model.bond_parameters(CHAIN), np.ascontiguousarray(D, dtype=float))
+    np.testing.assert_array_equal(force, f)
+    return V, f, k
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_force_is_the_derivative_of_the_potential_and_stiffness_that_of_the_force(name):
+    model = MODELS[name]
+    D = np.random.default_rng(0).uniform(-0.3, 0.3, CHAIN.N + 1) * CHAIN.delta
+    h = 1e-5 * CHAIN.delta
+    (V, f, k), (Vp, fp, _), (Vm, fm, _) = law(model, D), law(model, D + h), law(model, D - h)
+    f_rest = law(model, np.zeros(CHAIN.N + 1))[1]
+    np.testing.assert_allclose((Vp - Vm) / (2 * h), f - f_rest, rtol=1e-7, atol=1e-12)
+    np.testing.assert_allclose((fp - fm) / (2 * h), k, rtol=1e-7, atol=1e-12)
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_every_model_is_at_rest_at_zero_compression_with_the_linear_stiffness_K2(name):
+    V, f, k = law(MODELS[name], np.zeros(CHAIN.N + 1))
+    np.testing.assert_allclose(V, 0.0, atol=1e-15)
+    np.testing.assert_allclose(f, f[0], rtol=1e-15)  # no net force on any bead
+    np.testing.assert_allclose(k, CHAIN.K2, rtol=1e-15)
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_every_model_fits_the_engines_and_is_labelled(name):
+    model = MODELS[name]
+    assert model.name == name and get_model(name) is model and model_label(name) == model.label
+    P = model.bond_parameters(CHAIN)
+    assert P.shape == (MAX_BOND_PARAMETERS, CHAIN.N + 1)
+    assert np.all(P[len(model.parameter_names):] == 0.0)
+    assert total_energy(model, CHAIN, np.zeros(CHAIN.N), np.zeros(CHAIN.N)) == 0.0
+
+
+def test_models_have_distinct_labels_and_colours():
+    assert len({m.label for m in MODELS.values()}) == len({m.colour for m in MODELS.values()}) == len(MODELS)
+
+
+def test_an_unknown_model_is_refused_by_name():
+    with pytest.raises(ParameterError, match="'morse'.*one of"):
+        get_model("morse")
