@@ -47,7 +47,8 @@ QUICK_MANUSCRIPT = "manuscript/ms.pdf"
 
 @pytest.fixture(scope="session")
 def chain():
-    """An alpha = 5 chain whose mode 34 is localised at site 21 (a candidate of DESIGN section 4)."""
+    """An alpha = 5 chain whose mode 34 is localised at site 21 (a candidate of the linear rule,
+    docs/conventions.md#realization)."""
     return random_chain(879, 5.0)
 
 

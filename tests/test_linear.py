@@ -55,7 +55,7 @@ def test_participation_conventions_on_homogeneous_chain(homogeneous):
 def test_single_bead_displacement_participation_bounds(chain, homogeneous):
     """A displacement of one bead strains its two bonds; their energies e_l, e_r are split half-half,
     h = (e_l/2, (e_l + e_r)/2, e_r/2) / (e_l + e_r), so 2 <= P <= 8/3, with 8/3 exactly when the two
-    bonds carry equal energy (DESIGN section 3 quotes only the 8/3)."""
+    bonds carry equal energy (docs/conventions.md#mode-energy-density)."""
     for c in (homogeneous, chain):
         u = np.zeros((c.N, 1))
         u[20, 0] = 1.0

@@ -1,5 +1,6 @@
 """Tests of the figures: every panel and composite of the paper, drawn from small synthetic
-Datasets that follow the data contract (DESIGN section 7), and their byte-stable, atomic saving."""
+Datasets that follow the data contract (docs/conventions.md#data-contract), and their
+byte-stable, atomic saving."""
 
 import io
 

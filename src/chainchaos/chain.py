@@ -1,4 +1,5 @@
-"""Disordered chains of spherical beads in the nondimensional units of DESIGN section 1.
+"""Disordered chains of spherical beads (docs/conventions.md#disorder) in the nondimensional units
+of docs/conventions.md#units.
 
 Radii R_n are uniform in [R_min, alpha R_min]; the reference radius is the mean
 R_ref = (alpha + 1) R_min / 2 and r_n = R_n / R_ref. Units: mass = reference bead mass,
@@ -109,7 +110,7 @@ def random_radii(seed: int, alpha: float, N: int) -> np.ndarray:
 
 
 def random_chain(seed: int, alpha: float, N: int = 40, wall_radius: float = 1.0) -> Chain:
-    """The realization of disorder strength ``alpha`` drawn with ``seed`` (DESIGN section 1)."""
+    """The realization of disorder strength ``alpha`` drawn with ``seed`` (docs/conventions.md#disorder)."""
     return Chain(random_radii(seed, alpha, N), float(alpha), int(seed), wall_radius)
 
 

@@ -135,10 +135,10 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("chain", help="write a chain file (NetCDF)",
                        description="Write a chain file from --seed/--alpha, from --radii FILE (one radius "
-                                   "per line, any unit), or by the realization search of DESIGN section 4. "
-                                   "The radii of a chain file are in units of its R_ref: written one per line "
-                                   "and read back with --radii FILE --reference-radius 1 --alpha ALPHA they "
-                                   "give the same chain.")
+                                   "per line, any unit), or by the linear rule of the realization search "
+                                   "(docs/conventions.md#realization). The radii of a chain file are in units "
+                                   "of its R_ref: written one per line and read back with --radii FILE "
+                                   "--reference-radius 1 --alpha ALPHA they give the same chain.")
     source = p.add_mutually_exclusive_group()
     source.add_argument("--radii", metavar="FILE", help="text file with one radius per line")
     source.add_argument("--search", action="store_true", help="scan seeds for the paper-like realization")

@@ -12,8 +12,8 @@ class ParameterError(ValueError):
 
 
 class ChainFileError(ValueError):
-    """A chain or radii file that is missing, unreadable, or not a chain (the data contract of DESIGN
-    section 7)."""
+    """A chain or radii file that is missing, unreadable, or not a chain (the data contract,
+    docs/conventions.md#chain-file)."""
 
 
 class ConfigError(ValueError):

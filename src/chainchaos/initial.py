@@ -1,4 +1,5 @@
-"""Initial conditions (DESIGN section 5): one displaced bead, and a random deviation vector."""
+"""Initial conditions: one displaced bead, and a random deviation vector
+(docs/conventions.md#initial-conditions)."""
 
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
@@ -57,6 +58,6 @@ def initial_state(model: int, chain, energy: float, site: int) -> tuple[np.ndarr
 
 def initial_deviation(N: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
     """Deviation vector (du, dp) with du = 0 and dp uniform in [-1, 1] from default_rng(seed),
-    normalised to |(du, dp)| = 1 (the paper's choice, DESIGN section 5)."""
+    normalised to |(du, dp)| = 1 (the paper's choice, docs/conventions.md#deviation-vector)."""
     dp = np.random.default_rng(seed).uniform(-1.0, 1.0, N)
     return np.zeros(N), dp / norm(dp)

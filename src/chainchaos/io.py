@@ -1,4 +1,4 @@
-"""NetCDF input and output: chain files, atomic writes (DESIGN section 7)."""
+"""NetCDF input and output: chain files, atomic writes (docs/conventions.md#data-contract)."""
 
 import contextlib
 import os

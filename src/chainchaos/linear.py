@@ -1,4 +1,4 @@
-"""Linear normal modes of a chain and their participation numbers (DESIGN section 3).
+"""Linear normal modes of a chain and their participation numbers (docs/conventions.md#linear-modes).
 
 The generalised eigenproblem K U = omega^2 M U, with K tridiagonal from the bond stiffness K2 and
 M = diag(m), is solved as the symmetric tridiagonal problem S V = omega^2 V with
@@ -163,7 +163,7 @@ def mode_energy_density(chain: Chain, omega: np.ndarray, U: np.ndarray, conventi
     """Normalised energy density h[n, k] of each mode (sum over n is 1).
 
     ``potential``: u = mode shape, p = 0; each bond's harmonic energy split half-half to its two
-    beads, the wall bonds' outer halves belonging to the walls (DESIGN section 3).
+    beads, the wall bonds' outer halves belonging to the walls (docs/conventions.md#mode-energy-density).
     ``period_averaged``: the mean over one period of that density and the kinetic one
     m_n omega_k^2 U_nk^2 / 2, i.e. the time-averaged energy density of the oscillating mode.
     """
@@ -194,7 +194,8 @@ def modal_coordinates(chain: Chain, U: np.ndarray, u: np.ndarray, p: np.ndarray)
 
 
 def modal_energies(chain: Chain, omega: np.ndarray, U: np.ndarray, u: np.ndarray, p: np.ndarray) -> np.ndarray:
-    """Harmonic energy E_k = (P_k^2 + omega_k^2 Q_k^2) / 2 of every mode (DESIGN section 3)."""
+    """Harmonic energy E_k = (P_k^2 + omega_k^2 Q_k^2) / 2 of every mode
+    (docs/conventions.md#modal-energies)."""
     Q, P = modal_coordinates(chain, U, u, p)
     return 0.5 * (P**2 + (omega * Q) ** 2)
 
@@ -204,7 +205,7 @@ def ensemble_participation(
 ) -> dict[str, np.ndarray]:
     """Statistics of the mode participation numbers, sorted in descending order per realization.
 
-    Realization i of every alpha is ``random_radii(first_seed + i, alpha, N)`` (DESIGN section 1):
+    Realization i of every alpha is ``random_radii(first_seed + i, alpha, N)`` (docs/conventions.md#disorder):
     the same seeds as the realization search, so any member can be rebuilt from its seed.
     Returns ``mean`` and ``std`` of shape (len(alphas), N), indexed by rank k = 1..N.
     """

@@ -1,6 +1,6 @@
 """The paper's figures as data: every panel, the scenes it draws from, the observables it needs.
 
-This table is the single place that links panels to simulations (DESIGN section 6): the pipeline
+This table is the single place that links panels to simulations (docs/conventions.md#scenes): the pipeline
 derives from it which scenes to run and which observables each scene computes, and the plotting
 code reads from it what to draw.
 """

@@ -1,4 +1,4 @@
-"""The reproducible choice of the paper's unpublished alpha = 5 realization (DESIGN section 4).
+"""The reproducible choice of the paper's unpublished alpha = 5 realization (docs/conventions.md#realization).
 
 Seeds 0, 1, 2, ... of ``numpy.random.default_rng`` are scanned in order. A chain qualifies when
 its mode ``mode`` (34) has a participation number in [p_min, p_max] (2.2..2.8) with its energy

@@ -1,6 +1,6 @@
 """Numerical accuracy and stability of the integrators (the project's issue 5).
 
-Small, orthogonal pieces, all in the nondimensional units of DESIGN section 1 (times in
+Small, orthogonal pieces, all in the nondimensional units of docs/conventions.md#units (times in
 1/omega_max of the homogeneous linear chain, relative energy errors |H(t) - H(0)| / H(0)):
 
 - :mod:`~chainchaos.numerics.rhs`: the equations of motion (and their tangent extension) as a

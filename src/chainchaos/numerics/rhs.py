@@ -1,7 +1,7 @@
 """The equations of motion as a first-order system y' = F(t, y), for scipy's solve_ivp.
 
 The state vector is y = (u_1..u_N, p_1..p_N) and, with the tangent extension used for Lambda,
-y = (u, p, du, dp) of length 4N. Everything is in the nondimensional units of DESIGN section 1:
+y = (u, p, du, dp) of length 4N. Everything is in the nondimensional units of docs/conventions.md#units:
 displacement in units of the reference static overlap delta_ref, mass in units of the reference
 bead mass, time in units of 1/omega_max of the homogeneous linear chain, momentum and energy in
 the derived units. The physics is the package's own Numba force kernel
@@ -43,7 +43,7 @@ def rhs_kernel(y, out, model, inv_mass, bonds, tangent, f, k):
 
 @njit(cache=True)
 def energy_kernel(model, q, p, mass, bonds, V):
-    """Total energy H = sum p^2/(2m) + sum_b V_b (every bond in full, DESIGN section 2)."""
+    """Total energy H = sum p^2/(2m) + sum_b V_b (every bond in full, docs/conventions.md#hamiltonian)."""
     bond_potentials(model, q, bonds, V)
     H = 0.0
     for n in range(q.shape[0]):
@@ -57,8 +57,8 @@ class RightHandSide:
     """Callable ``rhs(t, y) -> dy/dt`` of one model on one chain, for scipy.integrate.
 
     ``model`` is a chainchaos.models Model or its name; ``tangent`` adds the variational equations
-    (state length 4N). The Numba kernel is compiled once and cached on disk; a call costs about
-    a microsecond plus Python's call overhead. ``nfev`` counts the calls.
+    (state length 4N). The Numba kernel is compiled once and cached on disk; a call costs one
+    force evaluation plus Python's call overhead. ``nfev`` counts the calls.
     """
 
     def __init__(self, model, chain, tangent: bool = False):

@@ -1,8 +1,8 @@
 """Every kind of panel of the paper (paper.KIND_OBSERVABLES) as a function drawing into an Axes.
 
-``draw_<kind>(ax, *datasets, **options)`` takes the Datasets of the data contract (DESIGN section 7):
-the ensemble Dataset for ``ensemble_participation``, the chain Dataset for ``chain_spectrum``, and
-scene Datasets for the others (several only for ``participation`` and ``mlce``). The options are
+``draw_<kind>(ax, *datasets, **options)`` takes the Datasets of the data contract
+(docs/conventions.md#data-contract): the ensemble Dataset for ``ensemble_participation``, the chain
+Dataset for ``chain_spectrum``, and scene Datasets for the others (several only for ``participation`` and ``mlce``). The options are
 those of the panel table ``paper.PANELS``. Time axes are logarithmic, so the sample t = 0 is left out.
 """
 

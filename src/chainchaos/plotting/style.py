@@ -1,7 +1,7 @@
 """The figure style of the paper: sizes, fonts, colours, axis labels, and byte-stable saving.
 
 Sizes follow a two-column journal: a single panel is one column (3.4 in) wide, a composite of
-several panels per row spans both columns (7.0 in). The model is nondimensional (DESIGN section 1),
+several panels per row spans both columns (7.0 in). The model is nondimensional (docs/conventions.md#units),
 so the labels give times in units of 1/omega_max and frequencies in units of omega_max.
 """
 
