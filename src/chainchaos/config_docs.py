@@ -35,10 +35,37 @@ class Key:
     same_as: str = ""  # path of an earlier key with the very same schema (a YAML anchor)
 
 
+def registries() -> dict[str, list]:
+    """The names a key marked ``x-registry: <registry>`` in the schema may take: the models of
+    ``chainchaos.models`` and the schemes of ``chainchaos.integrators``, so that a new model or
+    scheme is allowed without an edit to the schema."""
+    from chainchaos.integrators import SCHEMES
+    from chainchaos.models import MODELS
+
+    return {"models": list(MODELS), "schemes": list(SCHEMES)}
+
+
+def _fill_registry_enums(node, names: dict[str, list]) -> None:
+    """Give every schema node marked ``x-registry`` its registry's names as ``enum`` (with null
+    where the node's type allows it), in place: Snakemake's own validation, which reads the file,
+    ignores the marker, and check_config, which reads this, names the allowed values."""
+    if isinstance(node, dict):
+        if "x-registry" in node:
+            nullable = "null" in (node["type"] if isinstance(node.get("type"), list) else [node.get("type")])
+            node["enum"] = names[node["x-registry"]] + ([None] if nullable else [])
+        for value in node.values():
+            _fill_registry_enums(value, names)
+    elif isinstance(node, list):
+        for value in node:
+            _fill_registry_enums(value, names)
+
+
 def load_schema(path: Path = ROOT / SCHEMA) -> dict:
     import yaml
 
-    return yaml.safe_load(path.read_text())
+    schema = yaml.safe_load(path.read_text())
+    _fill_registry_enums(schema, registries())
+    return schema
 
 
 def _children(schema: dict, path: str):

@@ -141,7 +141,7 @@ def scene_batches(scenes: dict[str, SceneParameters], lanes: int) -> dict[str, l
 
 
 def simulate(chain, params: SceneParameters, progress=None) -> xr.Dataset:
-    """Integrate one scene and return its Dataset (data contract of DESIGN section 7).
+    """Integrate one scene and return its Dataset (data contract: docs/conventions.md#scene-file).
 
     Raises SimulationError naming the scene, the time and the value when the state becomes
     non-finite or the relative energy error exceeds ``params.max_energy_error``.

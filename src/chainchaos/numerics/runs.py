@@ -5,7 +5,7 @@ all momenta zero; :func:`chainchaos.initial.initial_state`) and, with ``tangent`
 initial deviation vector (:func:`chainchaos.initial.initial_deviation`). It records
 
 - the largest relative energy error |H(t) - H(0)| / H(0) (dimensionless) seen on the check grid,
-- the phase-space state (u, p) at t_probe (units of DESIGN section 1),
+- the phase-space state (u, p) at t_probe (units: docs/conventions.md#units),
 - the finite-time mLCE Lambda(t_final) (units of omega_max, i.e. 1 / time unit),
 - the wall-clock seconds of the integration (time.perf_counter; the best of ``repeats`` runs when
   one run is shorter than ``repeat_below`` seconds, so that short runs are not timer noise), and
@@ -14,7 +14,7 @@ initial deviation vector (:func:`chainchaos.initial.initial_deviation`). It reco
 Call :func:`warm_up` once per process before timing: the first call of a Numba kernel with new
 argument types loads or compiles it.
 
-Times are in units of 1/omega_max of the homogeneous linear chain (DESIGN section 1).
+Times are in units of 1/omega_max of the homogeneous linear chain (docs/conventions.md#units).
 """
 
 import math
@@ -247,7 +247,7 @@ def warm_up(chain, models=("hertz", "fput")) -> None:
 
 def phase_space_error(state, reference) -> float:
     """Relative phase-space error |x - x_ref| / |x_ref| of x = (u, p) (Euclidean norm over the
-    2N components in the units of DESIGN section 1; dimensionless)."""
+    2N components in the units of docs/conventions.md#units; dimensionless)."""
     if state is None:
         return math.nan
     return float(np.linalg.norm(state - reference) / np.linalg.norm(reference))

@@ -1,7 +1,7 @@
 """Stability of the splitting schemes: linear bounds, largest stable steps, the near-sonic-vacuum
 chain, long-time energy drift, and the escape of FPUT with the Taylor sign of K4.
 
-Units are those of DESIGN section 1 (time in 1/omega_max of the homogeneous linear chain,
+Units are those of docs/conventions.md#units (time in 1/omega_max of the homogeneous linear chain,
 energies in the derived unit); energy errors are relative, |H(t) - H(0)| / H(0).
 """
 
@@ -164,7 +164,7 @@ class PrecompressedChain(Chain):
 def sonic_vacuum_chain(chain, factor: float = 1e-6) -> PrecompressedChain:
     """The same beads with the precompression force reduced to ``factor`` F0 (near sonic vacuum).
 
-    Approach: keep the units of the reference chain (DESIGN section 1: mass = reference bead
+    Approach: keep the units of the reference chain (docs/conventions.md#units: mass = reference bead
     mass, length = the reference static overlap delta_ref *at the original* F0, time =
     1/omega_max of the original homogeneous chain). In those units the Hertz coefficients A_n
     and the masses do not depend on F0; F0 enters only through delta_n = (F0/A_n)^(2/3), so
@@ -319,7 +319,7 @@ def progress_printer(name: str, every: float = 10.0, stream=None):
 def chain_at_alpha(chain, alpha: float) -> Chain:
     """The same disorder draws at another disorder strength ``alpha``: each bead keeps its
     uniform variate U_n = (R_n/R_min - 1)/(alpha_0 - 1), so R_n/R_min = 1 + (alpha - 1) U_n and
-    r_n = R_n / R_ref with R_ref = (alpha + 1) R_min / 2 (DESIGN section 1). ``chain`` itself
+    r_n = R_n / R_ref with R_ref = (alpha + 1) R_min / 2 (docs/conventions.md#disorder). ``chain`` itself
     when alpha equals its own."""
     require(np.isfinite(alpha) and alpha > 1, "alpha", alpha, "alpha > 1")
     if float(alpha) == float(chain.alpha):
