@@ -80,7 +80,7 @@ def test_escape_to_infinity_is_stopped_by_the_guard(chain):
     reachable = []
     for e in energies:
         try:
-            initial_displacement(1, chain.with_k4_sign(-1), e, 21)
+            initial_displacement("fput", chain.with_k4_sign(-1), e, 21)
             reachable.append(e)
         except ParameterError:
             break

@@ -220,8 +220,8 @@ def energy_drift(model, chain, energy: float, scheme: str, dt: float, t_final: f
     start = time.perf_counter()
     for i, end in enumerate(ends):
         err = np.empty(int(end - done))
-        bad = run_chunks(model, q, p, dq, dp, inv_mass, chain.mass, bonds, s.kicks, s.drifts, dt, err.size, chunk, False, H0, err, 0, math.inf, False, gaps,
-                         diagnostics, *scratch)
+        bad = run_chunks(model, q, p, dq, dp, inv_mass, chain.mass, bonds, s.kicks, s.drifts, dt, err.size, chunk,
+                         False, H0, err, 0, math.inf, False, gaps, diagnostics, *scratch)
         if bad >= 0:
             raise SimulationError(f"energy drift {model.name} H={energy:g}", (done + bad + 1) * chunk * dt,
                                   "non-finite state", math.nan)
@@ -388,7 +388,7 @@ def stability_scan(chain, alphas, energies, schemes, models=("hertz", "fput"), t
         sv = np.full((len(sonic_energies), len(schemes)), math.nan)
         for ei, H in enumerate(sonic_energies):
             for si, s in enumerate(schemes):
-                sv[ei, si] = largest_stable_dt(0, sonic, H, s, t_final, bound, rel_tol=rel_tol,
+                sv[ei, si] = largest_stable_dt("hertz", sonic, H, s, t_final, bound, rel_tol=rel_tol,
                                                excited_site=excited_site)["dt_max"]
             say(f"sonic vacuum (F0 x {sonic_factor:g}) H={H:g}: dt_max = "
                 + ", ".join(f"{s} {sv[ei, si]:.3g}" for si, s in enumerate(schemes)))
