@@ -32,7 +32,7 @@ from chainchaos.io import chain_dataset
 from chainchaos.linear import tridiagonal_eigh
 from chainchaos.models import get_model
 from chainchaos.provenance import EMULATED_AVX2
-from chainchaos.simulate import GAPS, OBSERVABLES, SceneParameters, sample_steps, simulate
+from chainchaos.simulate import SceneParameters, model_observables, sample_steps, simulate
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -293,7 +293,7 @@ def test_chaotic_orbit_bit_for_bit(model):
 def scene(model: str):
     """A short scene with every observable of the model on random_chain(5346, 5, 40)."""
     energy = {"hertz": 3.0, "fput": 8.7381}[model]
-    observables = tuple(o for o in OBSERVABLES if model == "hertz" or o not in GAPS)
+    observables = model_observables(model)
     params = SceneParameters(model, energy, 200.0, 0.01, observables=observables, samples_per_decade=10)
     return simulate(random_chain(5346, 5.0, 40), params)
 

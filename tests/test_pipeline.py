@@ -60,7 +60,7 @@ def test_each_scene_holds_what_its_panels_asked_for(quick):
 
 
 def _contract_variables():
-    from chainchaos.simulate import OBSERVABLES
+    from chainchaos.scene_observables import OBSERVABLES
 
     return set(OBSERVABLES)
 

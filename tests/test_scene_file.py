@@ -8,7 +8,8 @@ import numpy as np
 import xarray as xr
 
 from chainchaos.io import write_netcdf
-from chainchaos.simulate import OBSERVABLES, SceneParameters, simulate
+from chainchaos.scene_observables import OBSERVABLES
+from chainchaos.simulate import SceneParameters, simulate
 
 
 def test_only_requested_observables_are_written(tmp_path, chain):

@@ -127,7 +127,7 @@ def build_parser() -> argparse.ArgumentParser:
     from chainchaos.integrators import SCHEMES
     from chainchaos.linear import CONVENTIONS
     from chainchaos.models import MODELS
-    from chainchaos.simulate import OBSERVABLES
+    from chainchaos.scene_observables import OBSERVABLES
 
     parser = argparse.ArgumentParser(prog="chainchaos", description=__import__("chainchaos").__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)

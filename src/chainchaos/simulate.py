@@ -1,9 +1,9 @@
 """Integrate one scene (model, energy) and return its observables as an xarray Dataset.
 
-Only the requested observables are computed: the tangent dynamics runs only for ``mlce``, ``dvd``
-and ``dvd_participation``, gap bookkeeping only for the gap observables, and modal energies only
-for ``mode_energy``, ``spectral_entropy`` and ``eta``. The relative energy error is always
-recorded: it is the guard of every run.
+Only the requested observables are computed (``chainchaos.scene_observables``, the registry of
+what a scene file can hold): the tangent dynamics runs only for those that need it, gap
+bookkeeping only for the gap observables, and modal energies only for the modal ones. The
+relative energy error is always recorded: it is the guard of every run.
 """
 
 import math
@@ -15,26 +15,18 @@ import numpy as np
 import xarray as xr
 
 from chainchaos import exactmath
-from chainchaos import observables as obs
 from chainchaos.errors import SimulationError, require, require_finite_positive
 from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.batch import Batch, SerialBatch
 from chainchaos.integrators import get_scheme
-from chainchaos.linear import modal_energies, normal_modes, participation_number
-from chainchaos.models import MODELS, energy_density, get_model, open_bonds, total_energy
+from chainchaos.models import MODELS, get_model, open_bonds, total_energy
 from chainchaos.provenance import provenance_attrs
-
-OBSERVABLES = ("energy_density", "participation", "energy_centre", "mlce", "dvd", "dvd_participation",
-               "gap_open", "gap_fraction", "n_gaps", "mode_energy", "spectral_entropy", "eta",
-               "energy_error")
-TANGENT = {"mlce", "dvd", "dvd_participation"}
-GAPS = {"gap_open", "gap_fraction", "n_gaps"}
-MODAL = {"mode_energy", "spectral_entropy", "eta"}
+from chainchaos.scene_observables import GAPS, OBSERVABLES, TANGENT, SampledRun, needing, variables
 
 
 def model_observables(model: str) -> tuple:
     """Every observable ``model`` has: the gap observables only where bonds open (Hertz)."""
-    return OBSERVABLES if get_model(model).has_gaps else tuple(o for o in OBSERVABLES if o not in GAPS)
+    return OBSERVABLES if get_model(model).has_gaps else tuple(o for o in OBSERVABLES if o not in needing(GAPS))
 
 
 @dataclass
@@ -65,7 +57,7 @@ class SceneParameters:
         unknown = [o for o in self.observables if o not in OBSERVABLES]
         require(not unknown, "observables", unknown, f"names among {list(OBSERVABLES)}")
         if not get_model(self.model).has_gaps:
-            gaps = sorted(GAPS & set(self.observables))
+            gaps = sorted(needing(GAPS) & set(self.observables))
             require(not gaps, "observables", gaps,
                     f"gap observables only with a model whose bonds open: {[m for m in MODELS if MODELS[m].has_gaps]}")
         require(self.k4_sign in (1, -1), "K4_sign", self.k4_sign, "+1 (paper) or -1 (Taylor expansion)")
@@ -167,7 +159,7 @@ def simulate_scenes(chain, scenes: list[SceneParameters], progress=None) -> list
     chain = chain.with_k4_sign(first.k4_sign)
     model = get_model(first.model)
     wanted = set().union(*(set(s.observables) for s in scenes))
-    tangent, track_gaps = bool(wanted & TANGENT), bool(wanted & GAPS)
+    tangent, track_gaps = bool(wanted & needing(TANGENT)), bool(wanted & needing(GAPS))
     N, B = chain.N, len(scenes)
 
     Q0, P0, DQ0, DP0 = (np.zeros((N, B)) for _ in range(4))
@@ -217,58 +209,15 @@ def simulate_scenes(chain, scenes: list[SceneParameters], progress=None) -> list
         if progress is not None:
             progress(times[i], steps[i] / steps[-1])
 
-    return [_dataset(chain, params, model, times, steps, Q[j], Pm[j], DQ[j], DP[j], log_growth[j], gap_steps[j],
-                     max_gaps[j], energy_error[j], u0[j], H0[j], deviation0[j])
+    return [_dataset(chain, params, SampledRun(model, chain, times, steps, Q[j], Pm[j], DQ[j], DP[j], log_growth[j],
+                                               gap_steps[j], max_gaps[j], energy_error[j], deviation0[j]),
+                     u0[j], H0[j])
             for j, params in enumerate(scenes)]
 
 
-def _dataset(chain, params, model, times, steps, Q, Pm, DQ, DP, log_growth, gap_steps, max_gaps,
-             energy_error, u0, H0, deviation0) -> xr.Dataset:
-    wanted = set(params.observables)
-    N = chain.N
-    data = {}
-    one = {"units": "1"}
-
-    def put(name, dims, values, long_name, always=False, **attrs):
-        if name in wanted or always:
-            data[name] = (dims, values, {**one, "long_name": long_name, **attrs})
-
-    if wanted & {"energy_density", "participation", "energy_centre"}:
-        h = energy_density(model, chain, Q, Pm)
-        put("energy_density", ("time", "site"), h, "normalised energy density h_n")
-        put("participation", "time", participation_number(h, axis=-1), "participation number P = 1/sum h_n^2")
-        put("energy_centre", "time", obs.energy_centre(h), "energy centre X = sum n h_n")
-    if wanted & TANGENT:
-        w = obs.deviation_vector_density(DQ, DP)
-        put("mlce", "time", obs.finite_time_mlce(log_growth, times),
-            "finite-time maximum Lyapunov characteristic exponent Lambda(t)")
-        put("dvd", ("time", "site"), w, "deviation vector density w_n")
-        put("dvd_participation", "time", participation_number(w, axis=-1),
-            "participation number of the deviation vector density P_D")
-        data["initial_deviation"] = ("component", deviation0, {
-            **one, "long_name": "initial deviation vector (du_1..du_N, dp_1..dp_N)"})
-    if wanted & GAPS:
-        is_open = open_bonds(model, chain, Q)
-        dsteps = np.diff(steps, prepend=0)
-        fraction = np.where(dsteps[:, None] > 0, gap_steps / np.maximum(dsteps, 1)[:, None], is_open)
-        put("gap_open", ("time", "bond"), is_open.astype(np.int8), "bond open (delta_n + u_{n-1} - u_n < 0)",
-            flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="closed open")
-        put("gap_fraction", ("time", "bond"), fraction, "fraction of steps the bond was open since the previous sample")
-        put("n_gaps", "time", is_open.sum(axis=-1).astype(np.int32), "number of open gaps")
-        if "n_gaps" in wanted:
-            data["n_gaps_max"] = ("time", max_gaps.astype(np.int32), {
-                **one, "long_name": "largest number of simultaneously open gaps since the previous sample"})
-    if wanted & MODAL:
-        omega, U = normal_modes(chain)
-        E = modal_energies(chain, omega, U, Q, Pm)
-        S_t = obs.spectral_entropy(E)
-        put("mode_energy", ("time", "mode"), E, "harmonic energy E_k of linear mode k")
-        put("spectral_entropy", "time", S_t, "spectral entropy S = -sum v_k ln v_k")
-        put("eta", "time", obs.normalised_entropy(S_t, S_t[0], N), "normalised spectral entropy eta",
-            equipartition_value=obs.equipartition_eta(S_t[0], N))
-        data["frequency"] = ("mode", omega, {**one, "long_name": "linear mode frequency omega_k / omega_max"})
-    put("energy_error", "time", energy_error, "relative energy error |H(t) - H(0)| / H(0)", always=True)
-
+def _dataset(chain, params, run: SampledRun, u0, H0) -> xr.Dataset:
+    N, times, energy_error = chain.N, run.times, run.energy_error
+    data = variables(run, params.observables)
     ds = xr.Dataset(data, coords={"time": times, "site": np.arange(1, N + 1), "bond": np.arange(1, N + 2),
                                   "mode": np.arange(1, N + 1)})
     ds.time.attrs.update(units="1", long_name="time",

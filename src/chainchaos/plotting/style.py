@@ -14,6 +14,7 @@ matplotlib.use("Agg")
 
 from chainchaos.io import atomic_output  # noqa: E402
 from chainchaos.models import MODELS, get_model, model_label  # noqa: E402
+from chainchaos.scene_observables import REGISTRY  # noqa: E402
 
 COLUMN_WIDTH = 3.4  # in, one column: a single panel
 PAGE_WIDTH = 7.0  # in, both columns: composites
@@ -65,16 +66,17 @@ BOND_LABEL = r"$n$ (bond, sites $n-1$ to $n$)"
 MODE_LABEL = r"$k$ (mode)"
 RANK_LABEL = r"$k$ (rank)"
 FREQUENCY_LABEL = r"$\omega_k$ [$\omega_{\max}$]"
-ENERGY_DENSITY_LABEL = r"$h_n$"
-DVD_LABEL = r"$w_n$"
-MODE_ENERGY_LABEL = r"$v_k$"
-P_LABEL = r"$P$"
-PD_LABEL = r"$P_{\rm D}$"
+# the axis labels of scene observables are those of their registry entries
+ENERGY_DENSITY_LABEL = REGISTRY["energy_density"].label
+DVD_LABEL = REGISTRY["dvd"].label
+MODE_ENERGY_LABEL = r"$v_k$"  # the modal energies normalised per sample
+P_LABEL = REGISTRY["participation"].label
+PD_LABEL = REGISTRY["dvd_participation"].label
 MEAN_P_LABEL = r"$\langle P \rangle$"
-MLCE_LABEL = r"$\Lambda$ [$\omega_{\max}$]"
-ETA_LABEL = r"$\eta$"
-GAP_FRACTION_LABEL = "fraction of time open"
-GAP_COUNT_LABEL = "number of gaps"
+MLCE_LABEL = REGISTRY["mlce"].label
+ETA_LABEL = REGISTRY["eta"].label
+GAP_FRACTION_LABEL = REGISTRY["gap_fraction"].label
+GAP_COUNT_LABEL = REGISTRY["n_gaps"].label
 
 PDF_METADATA = {"CreationDate": None, "ModDate": None, "Creator": "chainchaos"}
 PNG_METADATA = {"Software": "chainchaos"}  # matplotlib writes no timestamp into PNG files

@@ -1,0 +1,38 @@
+"""The registry of scene observables (chainchaos.scene_observables) and the panel table that reads it."""
+
+import numpy as np
+
+from chainchaos import paper
+from chainchaos.chain import random_chain
+from chainchaos.scene_observables import GAPS, MODES, OBSERVABLES, REGISTRY, TANGENT, needing
+from chainchaos.simulate import SceneParameters, simulate
+
+
+def test_every_panel_reads_registered_observables():
+    for kind, names in paper.KIND_OBSERVABLES.items():
+        assert set(names) <= set(OBSERVABLES), kind
+
+
+def test_companions_are_registered_and_only_written_along():
+    companions = {c for o in REGISTRY.values() for c in o.companions}
+    assert companions <= set(REGISTRY)
+    assert {n for n, o in REGISTRY.items() if not o.selectable} == companions
+    for name in companions:  # a companion needs what the observables that bring it need
+        bringers = [o for o in REGISTRY.values() if name in o.companions]
+        assert all(REGISTRY[name].needs <= o.needs for o in bringers), name
+
+
+def test_each_observable_is_written_alone_with_its_dims_and_nothing_it_does_not_need():
+    chain = random_chain(879, 5.0)
+    for name in OBSERVABLES:
+        ds = simulate(chain, SceneParameters("hertz", 1.8, 20.0, 0.01, observables=(name,), samples_per_decade=4))
+        o = REGISTRY[name]
+        assert set(ds.data_vars) == {name, "energy_error", *o.companions}, name
+        assert ds[name].dims == o.dims and ds[name].attrs["long_name"] == o.long_name
+        assert np.isfinite(ds[name].values[1:]).all() if ds[name].dtype.kind == "f" else True
+
+
+def test_needs_split_the_observables_as_the_engines_run_them():
+    assert needing(TANGENT) == {"mlce", "dvd", "dvd_participation"}
+    assert needing(GAPS) == {"gap_open", "gap_fraction", "n_gaps"}
+    assert needing(MODES) == {"mode_energy", "spectral_entropy", "eta"}
