@@ -164,7 +164,8 @@ def manuscript_numerics():
 
 def claims_inputs(wildcards=None):
     files = {
-        "code": "src/chainchaos/claims.py",  # a changed criterion in the code reruns the claims
+        # a changed criterion or macro in the code reruns the claims
+        "code": ["src/chainchaos/claims.py", "src/chainchaos/tasks/manuscript.py"],
         "chain": result("chain", "chain.nc"),
         "ensemble": result("ensemble", "participation_stats.nc"),
         "energy_scan": result("scan", "energy_scan.nc"),  # the threshold statements

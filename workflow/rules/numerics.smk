@@ -50,7 +50,7 @@ rule numerics_work_precision_case:
     benchmark:
         benchmark_file("numerics_work_precision_case", "{wp_case}")
     script:
-        "../scripts/numerics_work_precision.py"
+        "../scripts/numerics_work_precision_case.py"
 
 
 rule numerics_work_precision:
@@ -77,7 +77,7 @@ rule numerics_work_precision:
     benchmark:
         benchmark_file("numerics_work_precision")
     script:
-        "../scripts/numerics_merge_work_precision.py"
+        "../scripts/numerics_work_precision.py"
 
 
 rule numerics_plot_work_precision:

@@ -32,7 +32,7 @@ rule compile_scan_kernels:
         mem_mb=2000,
         runtime=15,
     script:
-        "../scripts/scan_compile.py"
+        "../scripts/compile_scan_kernels.py"
 
 
 rule scan_energy_group:
@@ -43,9 +43,7 @@ rule scan_energy_group:
     output:
         group=result("scan", "groups", "energy_scan", "{group}.nc"),
     params:
-        kind="energy_scan",
         scan=scan_params("energy_scan"),
-        N=config["chain"]["N"],
     log:
         log_file("scan_energy_group", "{group}"),
     benchmark:
@@ -54,7 +52,7 @@ rule scan_energy_group:
         mem_mb=1000,
         runtime=scan_runtime("energy_scan"),
     script:
-        "../scripts/scan_group.py"
+        "../scripts/scan_energy_group.py"
 
 
 rule scan_disorder_group:
@@ -64,7 +62,6 @@ rule scan_disorder_group:
     output:
         group=result("scan", "groups", "disorder", "{group}.nc"),
     params:
-        kind="disorder",
         scan=scan_params("disorder"),
         N=config["chain"]["N"],
     log:
@@ -75,7 +72,7 @@ rule scan_disorder_group:
         mem_mb=1000,
         runtime=scan_runtime("disorder"),
     script:
-        "../scripts/scan_group.py"
+        "../scripts/scan_disorder_group.py"
 
 
 rule merge_energy_scan:
@@ -85,7 +82,6 @@ rule merge_energy_scan:
     output:
         merged=result("scan", "energy_scan.nc"),
     params:
-        kind="energy_scan",
         scan=scan_params("energy_scan"),
     log:
         log_file("merge_energy_scan"),
@@ -95,7 +91,7 @@ rule merge_energy_scan:
         mem_mb=2000,
         runtime=15,
     script:
-        "../scripts/scan_merge.py"
+        "../scripts/merge_energy_scan.py"
 
 
 rule merge_disorder:
@@ -104,7 +100,6 @@ rule merge_disorder:
     output:
         merged=result("scan", "disorder_statistics.nc"),
     params:
-        kind="disorder",
         scan=scan_params("disorder"),
     log:
         log_file("merge_disorder"),
@@ -114,7 +109,7 @@ rule merge_disorder:
         mem_mb=2000,
         runtime=15,
     script:
-        "../scripts/scan_merge.py"
+        "../scripts/merge_disorder.py"
 
 
 rule plot_energy_scan:
@@ -129,7 +124,6 @@ rule plot_energy_scan:
             labels={"result": "energy scan", "shows": "P, Lambda, eta and gaps against H"},
         ),
     params:
-        kind="energy_scan",
         dpi=config["figures"]["dpi"],
     log:
         log_file("plot_energy_scan"),
@@ -139,7 +133,7 @@ rule plot_energy_scan:
         mem_mb=2000,
         runtime=10,
     script:
-        "../scripts/scan_figure.py"
+        "../scripts/plot_energy_scan.py"
 
 
 rule plot_disorder_statistics:
@@ -157,7 +151,6 @@ rule plot_disorder_statistics:
             },
         ),
     params:
-        kind="disorder",
         dpi=config["figures"]["dpi"],
     log:
         log_file("plot_disorder_statistics"),
@@ -167,7 +160,7 @@ rule plot_disorder_statistics:
         mem_mb=2000,
         runtime=10,
     script:
-        "../scripts/scan_figure.py"
+        "../scripts/plot_disorder_statistics.py"
 
 
 rule scan_thresholds:

@@ -1,4 +1,4 @@
-"""ensemble_verdicts: see chainchaos.tasks.ensemble_verdicts."""
+"""ensemble_verdicts: see chainchaos.tasks.search.ensemble_verdicts."""
 
 from chainchaos.tasks import run_rule
 

@@ -1,4 +1,4 @@
-"""plot_search: see chainchaos.tasks.plot_search."""
+"""plot_search: see chainchaos.tasks.search.plot_search."""
 
 from chainchaos.tasks import run_rule
 

@@ -1,4 +1,4 @@
-"""search_candidates: see chainchaos.tasks.search_candidates."""
+"""search_candidates: see chainchaos.tasks.search.search_candidates."""
 
 from chainchaos.tasks import run_rule
 

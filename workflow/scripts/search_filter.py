@@ -1,4 +1,4 @@
-"""search_filter: see chainchaos.tasks.search_filter."""
+"""search_filter: see chainchaos.tasks.search.search_filter."""
 
 from chainchaos.tasks import run_rule
 

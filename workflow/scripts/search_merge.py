@@ -1,4 +1,4 @@
-"""search_merge: see chainchaos.tasks.search_merge."""
+"""search_merge: see chainchaos.tasks.search.search_merge."""
 
 from chainchaos.tasks import run_rule
 

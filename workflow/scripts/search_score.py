@@ -1,4 +1,4 @@
-"""search_score: see chainchaos.tasks.search_score."""
+"""search_score: see chainchaos.tasks.search.search_score."""
 
 from chainchaos.tasks import run_rule
 

@@ -1,4 +1,4 @@
-"""select_chain: see chainchaos.tasks.select_chain."""
+"""select_chain: see chainchaos.tasks.chain.select_chain."""
 
 from chainchaos.tasks import run_rule
 

@@ -1,4 +1,4 @@
-"""simulate_scene: see chainchaos.tasks.simulate_scene."""
+"""simulate_scene: see chainchaos.tasks.simulate.simulate_scene."""
 
 from chainchaos.tasks import run_rule
 

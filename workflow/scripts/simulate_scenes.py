@@ -1,4 +1,4 @@
-"""simulate_scenes: see chainchaos.tasks.simulate_scenes."""
+"""simulate_scenes: see chainchaos.tasks.simulate.simulate_scenes."""
 
 from chainchaos.tasks import run_rule
 
