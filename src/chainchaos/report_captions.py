@@ -18,11 +18,12 @@ import sys
 from pathlib import Path
 
 from chainchaos import paper
+from chainchaos.formatting import model_label
 
 ROOT = Path(__file__).resolve().parents[2]
 PANEL_TEMPLATE = Path("workflow/report/panel.rst")
 FIGURE_TEMPLATE = Path("workflow/report/figure.rst")
-MODEL_NAMES = {"hertz": "Hertz", "fput": "FPUT"}
+MODEL_ORDER = ("hertz", "fput")  # the order in which a caption names the models
 CATEGORY = "Paper figures"
 
 _MATH = re.compile(r"\$([^$]+)\$")
@@ -44,7 +45,7 @@ def _models_and_energies(panel_ids) -> tuple[str, str]:
     scenes = [s for p in panel_ids for s in paper.PANELS[p].scenes]
     if not scenes:
         return "linear modes", "-"
-    models = [MODEL_NAMES[m] for m in MODEL_NAMES if any(s.model == m for s in scenes)]
+    models = [model_label(m) for m in MODEL_ORDER if any(s.model == m for s in scenes)]
     energies = sorted({s.energy for s in scenes})
     return ", ".join(models), ", ".join(f"{e:g}" for e in energies)
 
@@ -63,10 +64,10 @@ def figure_labels(number: int) -> dict[str, str]:
 
 def _scenes_text(panel_ids) -> str:
     scenes = sorted({s for p in panel_ids for s in paper.PANELS[p].scenes},
-                    key=lambda s: (list(MODEL_NAMES).index(s.model), s.energy))
+                    key=lambda s: (MODEL_ORDER.index(s.model), s.energy))
     by_model = {}
     for s in scenes:
-        by_model.setdefault(MODEL_NAMES[s.model], []).append(f"{s.energy:g}")
+        by_model.setdefault(model_label(s.model), []).append(f"{s.energy:g}")
     return "; ".join(f"{model} chain, :math:`H = {', '.join(es)}`" for model, es in by_model.items())
 
 

@@ -12,11 +12,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
+from chainchaos.formatting import model_label  # noqa: E402
 from chainchaos.plotting.style import save_figure  # noqa: E402
 from chainchaos.scan import PAPER_THRESHOLDS  # noqa: E402
 
 COLOURS = {"hertz": "#c62828", "fput": "#1565c0"}
-NAMES = {"hertz": "Hertz", "fput": "FPUT"}
 RC = {"font.family": "DejaVu Sans", "mathtext.fontset": "dejavusans", "font.size": 8, "axes.labelsize": 8,
       "legend.fontsize": 6.5, "xtick.labelsize": 7, "ytick.labelsize": 7, "legend.frameon": False,
       "pdf.fonttype": 42, "axes.linewidth": 0.6, "lines.linewidth": 1.0}
@@ -48,7 +48,7 @@ def energy_scan_figure(ds):
         for m in models:
             d = ds.sel(model=m)
             ok = d["valid"].values == 1
-            kw = dict(color=COLOURS.get(m, "k"), marker="o", ms=2.5, lw=0.9, label=NAMES.get(m, m))
+            kw = dict(color=COLOURS.get(m, "k"), marker="o", ms=2.5, lw=0.9, label=model_label(m))
             aP.plot(E[ok], d["participation_final"].values[ok], **kw)
             aL.plot(E[ok], d["mlce_final"].values[ok], **{**kw, "mfc": "white"})
             chaotic = ok & (d["chaotic"].values == 1)
@@ -57,7 +57,7 @@ def energy_scan_figure(ds):
             if (d["max_gaps"].values >= 0).any():
                 aG.plot(E[ok], d["max_gaps"].values[ok], drawstyle="steps-mid", **kw)
             if (~ok).any():
-                aP.plot(E[~ok], np.ones((~ok).sum()), "x", color=COLOURS.get(m, "k"), label=f"{NAMES.get(m, m)}: invalid run")
+                aP.plot(E[~ok], np.ones((~ok).sum()), "x", color=COLOURS.get(m, "k"), label=f"{model_label(m)}: invalid run")
         aP.axhline(ds.attrs["p_delocalized"], color="k", ls="--", lw=0.7,
                    label=rf"$\bar P = {ds.attrs['p_delocalized']:g}$ (delocalized above)")
         aL.axhline(np.log(t_f) / t_f, color="k", ls="--", lw=0.7,
@@ -95,7 +95,7 @@ def disorder_figure(ds):
                 c = COLOURS.get(m, "k")
                 ax.fill_between(E, d[f"probability_{what}_lower"].values, d[f"probability_{what}_upper"].values,
                                 color=c, alpha=0.2, lw=0)
-                ax.plot(E, d[f"probability_{what}"].values, "o-", color=c, ms=2.5, label=NAMES.get(m, m))
+                ax.plot(E, d[f"probability_{what}"].values, "o-", color=c, ms=2.5, label=model_label(m))
             _paper_lines(ax, models, "delocalization" if what == "delocalized" else "chaos")
             ax.set_ylim(-0.03, 1.03)
             ax.set_xscale("log")
@@ -115,7 +115,7 @@ def disorder_figure(ds):
                 ax.vlines(x, Q[ok, q.index(0.1)], Q[ok, q.index(0.9)], color=c, lw=0.6)
                 ax.vlines(x, Q[ok, q.index(0.25)], Q[ok, q.index(0.75)], color=c, lw=2.0, alpha=0.6)
                 ax.plot(x, med[ok], marker, color=c, ms=3, ls="none", mfc="white" if what == "chaos" else c,
-                        label=f"{NAMES.get(m, m)}, {what}")
+                        label=f"{model_label(m)}, {what}")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel(ENERGY_LABEL)

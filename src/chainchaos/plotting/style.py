@@ -12,6 +12,7 @@ import matplotlib
 # Before pyplot can be imported anywhere: figures are only ever written to files.
 matplotlib.use("Agg")
 
+from chainchaos.formatting import model_label  # noqa: E402
 from chainchaos.io import atomic_output  # noqa: E402
 
 COLUMN_WIDTH = 3.4  # in, one column: a single panel
@@ -52,7 +53,6 @@ GAP_CMAP = "viridis"  # open bonds light (yellow), as in the paper's Fig. 7
 HERTZ_RED = "#c62828"
 FPUT_BLUE = "#1565c0"
 MODEL_COLOURS = {"hertz": HERTZ_RED, "fput": FPUT_BLUE}
-MODEL_NAMES = {"hertz": "Hertz", "fput": "FPUT"}
 # Several energies of one model in a panel: lower energies solid and lighter, higher ones dashed.
 ENERGY_LINESTYLES = ("-", "--", "-.", ":")
 ENERGY_SHADES = (0.0, 0.35, 0.55, 0.7)  # fraction of white mixed in, by energy rank, highest first
@@ -101,7 +101,7 @@ def model_colour(model: str) -> str:
 
 def scene_label(model: str, energy: float) -> str:
     """E.g. ``Hertz, $H = 0.25$``."""
-    return f"{MODEL_NAMES[model]}, $H = {energy:g}$"
+    return f"{model_label(model)}, $H = {energy:g}$"
 
 
 def time_text(t: float) -> str:
