@@ -68,7 +68,8 @@ def search_table_tex(search: xr.Dataset, verdicts: dict) -> str:
         r"\endlastfoot",
     ]
     for r in _statement_rows(search, verdicts):
-        verdict_cell = (f"${tex_number(r['fraction'], 2)}$ of {r['lanes']}, {r['verdict']}" if r["lanes"] else r["verdict"])
+        verdict_cell = (f"${tex_number(r['fraction'], 2)}$ of {r['lanes']}, {r['verdict']}" if r["lanes"]
+                        else r["verdict"])
         lines.append(f"\\texttt{{{r['id']}}} & {r['not_broken']}/{n_c} & {r['held']}/{n_s} & "
                      f"${tex_number(r['search_fraction'], 2)}$ & {verdict_cell}\\\\")
     lines += [r"\end{longtable}", r"\endgroup", ""]

@@ -314,7 +314,8 @@ CATALOGUE: tuple[ClaimRow, ...] = (
              "final $P \\le {c.localized_p_max:param}$ and regular at $H = 0.25, 0.5, 1.8$", "{states:states}",
              (Check("P", "<=", "localized_p_max"), Check("chaotic", "==", False)), (FP25, FP05, FP18),
              variables=("participation", "mlce"), t_required=T_PAPER, refutable_early=True,
-             statements=tuple(_statement_id(kind, scene) for scene in (FP25, FP05, FP18) for kind in ("loc", "regular"))),
+             statements=tuple(_statement_id(kind, scene) for scene in (FP25, FP05, FP18)
+                              for kind in ("loc", "regular"))),
     _delocalized_and_chaotic("fput-H2.9", "Fig. 6(a--d), Sec. III B", FP29, " (the first such energy)"),
     _chaos_onset("chaos-H2.9-onset", "Fig. 6(d), Sec. III B", FP29,
                  r"At $H = 2.9$ the FPUT orbit is chaotic for $t \gtrsim 4\times 10^3$",

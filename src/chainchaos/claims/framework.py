@@ -20,7 +20,6 @@ spec names how a number is printed (:data:`FORMATS`); None prints as --.
 from __future__ import annotations
 
 import math
-import operator
 import re
 import string
 from dataclasses import asdict, dataclass, field
@@ -130,11 +129,11 @@ class Measurement:
 
 #: How a check compares a measured number x with its reference (and tolerance).
 COMPARISONS = {
-    "<": lambda x, ref, tol: operator.lt(x, ref),
-    "<=": lambda x, ref, tol: operator.le(x, ref),
-    ">": lambda x, ref, tol: operator.gt(x, ref),
-    ">=": lambda x, ref, tol: operator.ge(x, ref),
-    "==": lambda x, ref, tol: operator.eq(x, ref),
+    "<": lambda x, ref, tol: x < ref,
+    "<=": lambda x, ref, tol: x <= ref,
+    ">": lambda x, ref, tol: x > ref,
+    ">=": lambda x, ref, tol: x >= ref,
+    "==": lambda x, ref, tol: x == ref,
     "near": lambda x, ref, tol: abs(x - ref) <= tol,               # |x - ref| <= tol
     "near_relative": lambda x, ref, tol: abs(x / ref - 1) <= tol,  # |x / ref - 1| <= tol
     "within_factor": lambda x, ref, tol: within_factor(x, ref, tol),  # x / ref in [1/tol, tol]

@@ -236,8 +236,8 @@ def scan_macros(energy_scan: xr.Dataset, disorder: xr.Dataset) -> dict[str, str]
             p = disorder[f"probability_{key}"].sel(model=model).values
             lo = disorder[f"probability_{key}_lower"].sel(model=model).values
             hi = disorder[f"probability_{key}_upper"].sel(model=model).values
-            out[f"disorder.{model}.{key}.top"] = (f"{tex_number(100 * p[-1], 2)}\\,\\% "
-                                                  f"({tex_number(100 * lo[-1], 2)}--{tex_number(100 * hi[-1], 2)}\\,\\%)")
+            share, low, high = (tex_number(100 * x[-1], 2) for x in (p, lo, hi))
+            out[f"disorder.{model}.{key}.top"] = f"{share}\\,\\% ({low}--{high}\\,\\%)"
             half = E[np.nan_to_num(p) >= 0.5]
             out[f"disorder.{model}.{key}.half"] = _half_phrase(str(model), verbs[key],
                                                                float(half[0]) if half.size else np.nan)
