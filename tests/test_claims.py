@@ -1,4 +1,4 @@
-"""The claims table (src/chainchaos/claims.py) and the manuscript build.
+"""The claims table (src/chainchaos/claims/) and the manuscript build.
 
 Unit tests run the measurements on small constructed Datasets, each built so that a wrong
 criterion fails; the slow tests use the quick-scale results of the `quick` fixture (conftest.py),
@@ -17,6 +17,9 @@ import yaml
 
 from chainchaos import claims as cl
 from chainchaos import paper, random_chain
+from chainchaos.claims import quantities as q
+from chainchaos.claims import writers
+from chainchaos.criteria import Criteria
 from chainchaos.io import chain_dataset, ensemble_dataset
 
 from conftest import QUICK_MANUSCRIPT
@@ -38,60 +41,60 @@ def series(t, **variables) -> xr.Dataset:
 def test_final_mean_uses_only_the_last_decade():
     t = times(1e5)
     ds = series(t, participation=np.where(t >= 1e4, 26.0, 2.0))
-    assert cl.final_mean(ds, "participation", 1.0) == pytest.approx(26.0)
-    assert 2.0 < cl.final_mean(ds, "participation", 2.0) < 26.0
+    assert q.final_mean(ds, "participation", 1.0) == pytest.approx(26.0)
+    assert 2.0 < q.final_mean(ds, "participation", 2.0) < 26.0
 
 
 def test_spreading_onset_is_when_the_smoothed_p_doubles_after_the_transient():
     t = times(1e5)
     wiggle = 0.8 * np.sin(7 * np.arange(t.size))  # raw P oscillates between 1.2 and 2.8 before the onset
     step = series(t, participation=np.where(t < 200, 2.0, 20.0))
-    assert cl.spreading_onset(step, factor=2.0, smoothing_decades=0.01, t_ref=10.0) == pytest.approx(t[t >= 200][0])
+    assert q.spreading_onset(step, factor=2.0, smoothing_decades=0.01, t_ref=10.0) == pytest.approx(t[t >= 200][0])
     ds = series(t, participation=np.where(t < 200, 2.0 + wiggle, 20.0))
-    smoothed = cl.spreading_onset(ds, factor=2.0, smoothing_decades=0.5, t_ref=10.0)
+    smoothed = q.spreading_onset(ds, factor=2.0, smoothing_decades=0.5, t_ref=10.0)
     assert 200 / 10**0.25 <= smoothed <= 200
     # an early rise before t_ref is the transient, not the onset
     early = series(t, participation=np.where(t < 5, 1.5, np.where(t < 200, 4.0, 20.0)))
-    assert cl.spreading_onset(early, 2.0, 0.01, 10.0) == pytest.approx(t[t >= 200][0])
-    assert cl.spreading_onset(series(t, participation=np.full(t.size, 2.0)), 2.0, 0.5) is None
+    assert q.spreading_onset(early, 2.0, 0.01, 10.0) == pytest.approx(t[t >= 200][0])
+    assert q.spreading_onset(series(t, participation=np.full(t.size, 2.0)), 2.0, 0.5) is None
 
 
 def test_saturation_time_reaches_the_fraction_of_the_final_value():
     t = times(1e5)
     P = np.clip(2 + 24 * (np.log10(np.maximum(t, 1e-9)) - 2) / 2, 2, 26)  # 2 at 1e2 rising to 26 at 1e4
     ds = series(t, participation=P)
-    tsat = cl.saturation_time(ds, 0.9, smoothing_decades=0.01)
+    tsat = q.saturation_time(ds, 0.9, smoothing_decades=0.01)
     assert 3e3 < tsat < 1e4
 
 
 def test_regular_and_chaotic_orbits_are_told_apart_by_the_paper_reading_of_lambda():
     t = times(1e5)
-    c = cl.Criteria()
+    c = Criteria()
     with np.errstate(divide="ignore", invalid="ignore"):
         regular = series(t, mlce=np.log(1 + t) / t)                  # |v| ~ t
         slow_regular = series(t, mlce=0.3 * np.log(1 + t) / t)       # |v| ~ t^0.3: slope near -0.7
         late_regular = series(t, mlce=np.log(1 + 0.3 * t / (1 + 1e-4 * t)) / t)  # |v| ~ 1 -> linear growth late
         chaotic = series(t, mlce=1e-3 + np.log(1 + t) / t)           # |v| ~ t e^(1e-3 t)
-    assert cl.growth_excess(regular) == pytest.approx(0.0, abs=1e-4)
-    assert not cl.scene_chaotic(regular, c) and not cl.scene_chaotic(slow_regular, c)
-    assert not cl.scene_chaotic(late_regular, c)
-    assert cl.scene_chaotic(chaotic, c)
-    assert cl.growth_excess(chaotic) == pytest.approx(90.0, rel=1e-3)  # 1e-3 over 1e4..1e5
-    assert cl.mlce_slope(regular) < -0.8 and cl.mlce_slope(chaotic) > -0.5
-    assert cl.final_mlce(chaotic) == pytest.approx(1e-3 + np.log(1 + 1e5) / 1e5)
+    assert q.growth_excess(regular) == pytest.approx(0.0, abs=1e-4)
+    assert not q.scene_chaotic(regular, c) and not q.scene_chaotic(slow_regular, c)
+    assert not q.scene_chaotic(late_regular, c)
+    assert q.scene_chaotic(chaotic, c)
+    assert q.growth_excess(chaotic) == pytest.approx(90.0, rel=1e-3)  # 1e-3 over 1e4..1e5
+    assert q.mlce_slope(regular) < -0.8 and q.mlce_slope(chaotic) > -0.5
+    assert q.final_mlce(chaotic) == pytest.approx(1e-3 + np.log(1 + 1e5) / 1e5)
 
 
 def test_chaos_onset_dates_the_departure_from_the_regular_law():
     t = times(1e5)
-    c = cl.Criteria()
+    c = Criteria()
     with np.errstate(divide="ignore", invalid="ignore"):
         # regular ~ 1/t until t_c = 1e3, then ln|v| grows linearly: Lambda -> 1e-2
         log_v = np.where(t < 1e3, np.log(1 + t), np.log(1 + 1e3) + 1e-2 * (t - 1e3))
         ds = series(t, mlce=log_v / t)
-    onset = cl.chaos_onset(ds, c)
+    onset = q.chaos_onset(ds, c)
     assert 1e3 / 3 < onset < 3e3
     with np.errstate(divide="ignore", invalid="ignore"):
-        assert cl.chaos_onset(series(t, mlce=np.log(1 + t) / t), c) is None
+        assert q.chaos_onset(series(t, mlce=np.log(1 + t) / t), c) is None
 
 
 def gap_scene(t, open_bonds_by_time, N=40):
@@ -109,12 +112,12 @@ def gap_scene(t, open_bonds_by_time, N=40):
 def test_gap_measurements():
     t = times(1e4)
     ds = gap_scene(t, {21: 1.0, 22: 5.0, 25: 300.0})
-    assert list(cl.bonds_ever_open(ds)) == [21, 22, 25]
-    assert list(cl.bond_distance(np.array([19, 20, 21, 22, 23, 24]), 21)) == [2, 1, 0, 0, 1, 2]
-    assert cl.gap_spread_time(ds, 21, 2) == pytest.approx(t[t >= 300][0])
-    assert cl.gap_spread_time(gap_scene(t, {21: 1.0, 23: 1.0}), 21, 2) is None
-    assert cl.max_simultaneous_gaps(ds) == 1  # n_gaps_max (checked every step) wins over n_gaps
-    assert cl.max_simultaneous_gaps(ds.drop_vars("n_gaps_max")) == 3
+    assert list(q.bonds_ever_open(ds)) == [21, 22, 25]
+    assert list(q.bond_distance(np.array([19, 20, 21, 22, 23, 24]), 21)) == [2, 1, 0, 0, 1, 2]
+    assert q.gap_spread_time(ds, 21, 2) == pytest.approx(t[t >= 300][0])
+    assert q.gap_spread_time(gap_scene(t, {21: 1.0, 23: 1.0}), 21, 2) is None
+    assert q.max_simultaneous_gaps(ds) == 1  # n_gaps_max (checked every step) wins over n_gaps
+    assert q.max_simultaneous_gaps(ds.drop_vars("n_gaps_max")) == 3
 
 
 def test_dvd_site_fraction_counts_samples_peaked_near_the_site():
@@ -123,7 +126,7 @@ def test_dvd_site_fraction_counts_samples_peaked_near_the_site():
     peaks = np.where(np.arange(t.size) % 4 == 0, 30, 21)  # a quarter of the samples peak at 30
     w[np.arange(t.size), peaks - 1] = 1.0
     ds = xr.Dataset({"dvd": (("time", "site"), w)}, coords={"time": t, "site": np.arange(1, 41)})
-    assert cl.dvd_site_fraction(ds, 21, 1, 1.0) == pytest.approx(0.75, abs=0.06)
+    assert q.dvd_site_fraction(ds, 21, 1, 1.0) == pytest.approx(0.75, abs=0.06)
 
 
 def test_verdicts_follow_the_rules():
@@ -142,15 +145,15 @@ def test_ensemble_and_chain_measurements():
         np.linspace(40, 30, 40), np.r_[np.linspace(28, 4, 30), np.full(10, 2.1)],
         np.r_[np.linspace(27, 4, 30), np.full(10, 2.2)]]))},
         coords={"alpha": [1.0, 4.0, 5.0], "rank": np.arange(1, 41)})
-    assert cl.localized_mode_count(ens, 5.0, 3.0) == 10
-    assert cl.localized_level(ens, 4.0, 10) == pytest.approx(2.1)
-    assert cl.most_extended(ens, 5.0) == pytest.approx(27.0)
-    assert 0 < cl.limiting_curve_deviation(ens, 4.0) < 0.1
+    assert q.localized_mode_count(ens, 5.0, 3.0) == 10
+    assert q.localized_level(ens, 4.0, 10) == pytest.approx(2.1)
+    assert q.most_extended(ens, 5.0) == pytest.approx(27.0)
+    assert 0 < q.limiting_curve_deviation(ens, 4.0) < 0.1
     chain = chain_dataset(random_chain(879, 5.0))
-    h = cl.mode_energy_profile(chain, 34)
+    h = q.mode_energy_profile(chain, 34)
     assert h.sum() == pytest.approx(1.0)
     assert 1.0 / np.sum(h**2) == pytest.approx(float(chain["mode_participation"].values[33]))
-    assert cl.mode_peak_site(chain, 34) == 21
+    assert q.mode_peak_site(chain, 34) == 21
 
 
 def test_interior_mode_participation_is_at_least_two():
@@ -159,22 +162,21 @@ def test_interior_mode_participation_is_at_least_two():
     for seed in range(20):
         chain = chain_dataset(random_chain(seed, 5.0))
         for mode in range(1, 41):
-            h = cl.mode_energy_profile(chain, mode)
+            h = q.mode_energy_profile(chain, mode)
             if np.argmax(h) not in (0, 39):
                 assert h.max() <= 0.5 + 1e-12
 
 
 def test_taylor_sign_barrier_blocks_the_high_fput_energies():
-    chain = chain_dataset(random_chain(879, 5.0))
-    barrier = cl.taylor_sign_barrier(chain, 21)
+    taylor = random_chain(879, 5.0).with_k4_sign(-1.0)
+    barrier = q.taylor_sign_barrier(taylor, 21)
     assert 0.5 < barrier < 8.7381
     from chainchaos.errors import ParameterError
     from chainchaos.initial import initial_displacement
 
-    c = cl.chain_from_dataset(chain, -1.0)
-    initial_displacement("fput", c, 0.9 * barrier, 21)
+    initial_displacement("fput", taylor, 0.9 * barrier, 21)
     with pytest.raises(ParameterError):
-        initial_displacement("fput", c, 1.1 * barrier, 21)
+        initial_displacement("fput", taylor, 1.1 * barrier, 21)
 
 
 # ------------------------------------------------------------------ the table on synthetic scenes
@@ -331,27 +333,25 @@ def test_the_threshold_statements_are_judged_on_the_energy_scan(chain_and_ensemb
 
 def test_criteria_come_from_the_config_and_unknown_keys_are_refused():
     block = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())["claims"]
-    criteria = cl.Criteria.from_config(block)
+    criteria = Criteria.from_config(block)
     assert criteria.tolerance.time_factor == block["tolerance"]["time_factor"]
     assert criteria.plateau_end["fput_H2.9"] == block["plateau_end"]["fput_H2.9"]
     with pytest.raises(ValueError, match="chaos_slop"):
-        cl.Criteria.from_config({"chaos_slop": -0.5})
+        Criteria.from_config({"chaos_slop": -0.5})
     with pytest.raises(ValueError, match="tolerance"):
-        cl.Criteria.from_config({"tolerance": {"timefactor": 2}})
+        Criteria.from_config({"tolerance": {"timefactor": 2}})
 
 
 def test_macros_are_newcommands_read_with_cc():
-    text = cl.macros_tex({"scene.hertz_H0.25.u0": "1.041", "count.total": "48"})
+    text = writers.macros_tex({"scene.hertz_H0.25.u0": "1.041", "count.total": "48"})
     assert r"\expandafter\newcommand\csname cc@scene.hertz_H0.25.u0\endcsname{1.041}" in text
     with pytest.raises(ValueError):
-        cl.tex_macro("bad{key}", "1")
-    assert cl.fmt(1e-3) == r"10^{-3}" and cl.fmt(2.5e-7, 2) == r"2.5\times 10^{-7}" and cl.fmt(2.694) == "2.69"
-    assert cl.g(5e-4) == r"5\times 10^{-4}" and cl.g(8.7381) == "8.7381"
+        writers.tex_macro("bad{key}", "1")
 
 
 @pytest.mark.skipif(shutil.which("pdflatex") is None, reason="needs pdflatex")
 def test_macros_compile_and_an_unknown_key_stops_latex(tmp_path):
-    (tmp_path / "macros.tex").write_text(cl.macros_tex({"a.b_c": "$1.5$"}) + "\\newif\\ifpaperscale\n")
+    (tmp_path / "macros.tex").write_text(writers.macros_tex({"a.b_c": "$1.5$"}) + "\\newif\\ifpaperscale\n")
     doc = "\\documentclass{article}\\begin{document}\\input{macros}%s\\end{document}\n"
     for body, ok in (("\\cc{a.b_c}", True), ("\\cc{a.missing}", False)):
         (tmp_path / "t.tex").write_text(doc % body)
@@ -384,7 +384,7 @@ def test_quick_manuscript_has_every_figure_and_the_claims(quick):
     for n in paper.LAYOUTS:
         assert re.search(rf"FIG\. {n}\.", text), f"caption of figure {n} missing"
     assert "TABLE I" in text.upper() and "??" not in text
-    rows = cl.read_csv(quick / "claims" / "claims.csv")
+    rows = writers.read_csv(quick / "claims" / "claims.csv")
     assert rows and all(r["verdict"] in cl.VERDICTS for r in rows)
     assert sum(r["verdict"] == cl.UNTESTABLE for r in rows) > 0  # quick scale ends at t = 1e3
     scan_rows = [r for r in rows if r["scenes"] == "energy_scan"]
@@ -416,7 +416,7 @@ def test_threshold_sentences_read_correctly_when_no_grid_energy_qualifies():
                           coords={"model": ["hertz", "fput"], "energy": E, "realization": np.arange(4)},
                           attrs={**attrs, "alpha": 5.0})
     disorder["valid"] = (("model", "energy"), np.ones((2, 3), dtype=np.int8))
-    m = cl.scan_macros(scan, disorder)
+    m = writers.scan_macros(scan, disorder)
     assert m["scan.hertz.delocalized.always"] == r"delocalized at every scanned $H \ge 1.87$"
     assert m["scan.fput.delocalized.first"] == m["scan.fput.delocalized.always"] == "delocalized at no scanned energy"
     assert m["scan.fput.chaotic.first"] == "first chaotic at $H = 2.85$"

@@ -43,7 +43,7 @@ def test_force_is_the_derivative_of_the_potential_and_stiffness_that_of_the_forc
     model = MODELS[name]
     D = np.random.default_rng(0).uniform(-0.3, 0.3, CHAIN.N + 1) * CHAIN.delta
     h = 1e-5 * CHAIN.delta
-    (V, f, k), (Vp, fp, _), (Vm, fm, _) = law(model, D), law(model, D + h), law(model, D - h)
+    (_, f, k), (Vp, fp, _), (Vm, fm, _) = law(model, D), law(model, D + h), law(model, D - h)
     f_rest = law(model, np.zeros(CHAIN.N + 1))[1]
     np.testing.assert_allclose((Vp - Vm) / (2 * h), f - f_rest, rtol=1e-7, atol=1e-12)
     np.testing.assert_allclose((fp - fm) / (2 * h), k, rtol=1e-7, atol=1e-12)

@@ -8,6 +8,8 @@ code reads from it what to draw.
 import re
 from dataclasses import dataclass, field
 
+from chainchaos.models import model_label
+
 
 @dataclass(frozen=True)
 class Scene:
@@ -302,7 +304,7 @@ class Statement:
 
 
 def _pair(scene: Scene, localized: bool, chaotic: bool, where: str) -> tuple[Statement, ...]:
-    label = "Hertz" if scene.model == "hertz" else "FPUT"
+    label = model_label(scene.model)
     tag = f"H{scene.energy:g}-{scene.model}"
     return (
         Statement(f"{'loc' if localized else 'deloc'}-{tag}", scene, "localized" if localized else "delocalized",

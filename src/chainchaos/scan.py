@@ -44,6 +44,7 @@ import xarray as xr
 from chainchaos import exactmath
 from chainchaos.chain import GENERATOR, random_chain
 from chainchaos.errors import require, require_finite_positive
+from chainchaos.formatting import plain_number
 from chainchaos.linear import mode_energy_density, normal_modes, participation_number
 from chainchaos.models import model_label
 from chainchaos.orbits import Orbit, OrbitSettings, integrate
@@ -526,14 +527,14 @@ def thresholds_csv(rows: list[dict], ds: xr.Dataset) -> str:
              f"{ds.energy.values[0]:g}..{ds.energy.values[-1]:g}",
              "model,criterion,first_energy,always_above,fraction_of_grid,paper_value"]
     for r in rows:
-        lines.append(f"{r['model']},{r['criterion']},{_g(r['first_energy'])},{_g(r['always_above'])},"
-                     f"{r['fraction']:.3f},{_g(r['paper'])}")
+        first, always, paper = (plain_number(r[k], missing="") for k in ("first_energy", "always_above", "paper"))
+        lines.append(f"{r['model']},{r['criterion']},{first},{always},{r['fraction']:.3f},{paper}")
     return "\n".join(lines) + "\n"
 
 
 def thresholds_tex(rows: list[dict], ds: xr.Dataset) -> str:
     def tex(x):
-        return "--" if not np.isfinite(x) else f"{x:.3g}"
+        return plain_number(x, 3, missing="--")
 
     body = "\n".join(f"{model_label(r['model'])} & {r['criterion']} & {tex(r['first_energy'])} & "
                      f"{tex(r['always_above'])} & {r['fraction']:.2f} & {tex(r['paper'])} \\\\" for r in rows)
@@ -547,7 +548,3 @@ def thresholds_tex(rows: list[dict], ds: xr.Dataset) -> str:
         f"${ds.attrs['chaos_slope']:g}$ and $\\ln\\|v\\|$ grows by more than $\\ln 10 + "
         f"{ds.attrs['chaos_growth_margin']:g}$, $t_f = {ds.attrs['t_final']:g}$\n"
     )
-
-
-def _g(x):
-    return "" if not np.isfinite(x) else f"{x:.6g}"

@@ -8,7 +8,7 @@ import numpy as np
 import xarray as xr
 
 from chainchaos import paper
-from chainchaos.claims import fmt, g
+from chainchaos.formatting import tex_number, tex_parameter
 from chainchaos.models import model_label
 from chainchaos.scan import criterion_holds, first_energy, probability_at
 from chainchaos.verdicts import HOLDS, VERDICT_NAMES, verdict_code
@@ -56,10 +56,10 @@ def search_table_tex(search: xr.Dataset, verdicts: dict) -> str:
         r"\begingroup\footnotesize",
         r"\begin{longtable}{@{}lcccc@{}}",
         (r"\caption{\label{tab:search}The realization search, statement by statement: of the "
-         f"{n_c} candidates, how many short runs (to $t = {g(search.attrs['filter_t_final'])}$) leave the "
+         f"{n_c} candidates, how many short runs (to $t = {tex_parameter(search.attrs['filter_t_final'])}$) leave the "
          f"statement unbroken; of the {n_s} candidates scored on ensembles, on how many it holds; on the "
          r"chosen chain, the fraction of perturbed orbits satisfying it at the search's step "
-         f"($\\Delta t = {g(search.attrs['dt'])}$) and at the verdicts' step, with that verdict.}}\\\\"),
+         f"($\\Delta t = {tex_parameter(search.attrs['dt'])}$) and at the verdicts' step, with that verdict.}}\\\\"),
         r"\hline\hline",
         r"Statement & unbroken & holds & chosen (search) & chosen (verdict)\\ \hline",
         r"\endfirsthead",
@@ -69,9 +69,10 @@ def search_table_tex(search: xr.Dataset, verdicts: dict) -> str:
         r"\endlastfoot",
     ]
     for r in _statement_rows(search, verdicts):
-        verdict_cell = (f"${fmt(r['fraction'], 2)}$ of {r['lanes']}, {r['verdict']}" if r["lanes"] else r["verdict"])
+        verdict_cell = (f"${tex_number(r['fraction'], 2)}$ of {r['lanes']}, {r['verdict']}" if r["lanes"]
+                        else r["verdict"])
         lines.append(f"\\texttt{{{r['id']}}} & {r['not_broken']}/{n_c} & {r['held']}/{n_s} & "
-                     f"${fmt(r['search_fraction'], 2)}$ & {verdict_cell}\\\\")
+                     f"${tex_number(r['search_fraction'], 2)}$ & {verdict_cell}\\\\")
     lines += [r"\end{longtable}", r"\endgroup", ""]
     return "\n".join(lines)
 
@@ -100,34 +101,34 @@ def search_macros(search: xr.Dataset, verdicts: dict, energy_scan: xr.Dataset, d
         "search.scored": str(int(scored.sum())),
         "search.statements": str(int(a["n_statements"])),
         "search.seed": str(int(a["chosen_seed"])),
-        "search.score": fmt(float(a["chosen_score"])),
+        "search.score": tex_number(float(a["chosen_score"])),
         "search.held": str(int(search["statements_held"].values[int(a["chosen_candidate"])])),
         "search.heldmax": str(int(held.max())) if held.size else "0",
         "search.heldmin": str(int(held.min())) if held.size else "0",
-        "search.filtert": g(a["filter_t_final"]),
-        "search.tfinal": g(a["t_final"]),
-        "search.dt": g(a["dt"]),
+        "search.filtert": tex_parameter(a["filter_t_final"]),
+        "search.tfinal": tex_parameter(a["t_final"]),
+        "search.dt": tex_parameter(a["dt"]),
         "search.lanes": str(int(a["lanes"])),
         "search.seedsscanned": str(int(a["seeds_scanned"])),
-        "search.perturbation": g(a["perturbation"]),
+        "search.perturbation": tex_parameter(a["perturbation"]),
         "search.allheld": str(int((held == int(a["n_statements"])).sum())),
     }
     same, total = step_agreement(search, verdicts, agreement)
     out["search.stepsame"], out["search.steptotal"] = str(same), str(total)
     any_v = next(iter(verdicts.values()), None)
     if any_v is not None:
-        out.update({"verdicts.lanes": str(int(any_v.attrs["lanes"])), "verdicts.dt": g(any_v.attrs["dt"]),
-                    "verdicts.tfinal": g(any_v.attrs["t_final"])})
+        out.update({"verdicts.lanes": str(int(any_v.attrs["lanes"])), "verdicts.dt": tex_parameter(any_v.attrs["dt"]),
+                    "verdicts.tfinal": tex_parameter(any_v.attrs["t_final"])})
     names = {"delocalized": "deloc", "chaotic": "chaos"}
     for (model, key), (H, frac) in threshold_quantiles(energy_scan, disorder).items():
         label = model_label(model)
         if not np.isfinite(H):
             sentence = f"the chosen {label} chain is never {key} on the scanned grid."
         elif not np.isfinite(frac):
-            sentence = (f"the chosen {label} chain is first {key} at $H = {fmt(H)}$, outside the grid of the "
+            sentence = (f"the chosen {label} chain is first {key} at $H = {tex_number(H)}$, outside the grid of the "
                         f"disorder statistics.")
         else:
-            sentence = (f"at $H = {fmt(H)}$, where the chosen {label} chain is first {key}, "
-                        f"{fmt(100 * frac, 2)}\\,\\% of the realizations are.")
+            sentence = (f"at $H = {tex_number(H)}$, where the chosen {label} chain is first {key}, "
+                        f"{tex_number(100 * frac, 2)}\\,\\% of the realizations are.")
         out[f"search.{model}.{names[key]}.sentence"] = sentence[0].upper() + sentence[1:]
     return out

@@ -2,6 +2,7 @@
 # inputs, parameters and cluster runtimes of the scan, search and manuscript rules. The functions
 # of the workflow live here and the rules in the other files, as snakemake --lint asks.
 
+import glob
 import math
 import re
 
@@ -162,10 +163,13 @@ def manuscript_numerics():
     return dict(NUMERICS_FOR_MANUSCRIPT) if wanted and "NUMERICS_TARGETS" in globals() else {}
 
 
+# The code that measures and writes the claims (an input of evaluate_claims).
+CLAIMS_CODE = [*sorted(glob.glob("src/chainchaos/claims/*.py")), "src/chainchaos/formatting.py"]
+
+
 def claims_inputs(wildcards=None):
     files = {
-        # a changed criterion or macro in the code reruns the claims
-        "code": ["src/chainchaos/claims.py", "src/chainchaos/tasks/manuscript.py"],
+        "code": CLAIMS_CODE,  # a changed criterion or text in the code reruns the claims
         "chain": result("chain", "chain.nc"),
         "ensemble": result("ensemble", "participation_stats.nc"),
         "energy_scan": result("scan", "energy_scan.nc"),  # the threshold statements

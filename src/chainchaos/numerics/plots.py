@@ -15,6 +15,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker as mticker  # noqa: E402
 import numpy as np  # noqa: E402
 
+from chainchaos.models import model_label  # noqa: E402
 from chainchaos.numerics.work_precision import STATUS  # noqa: E402
 from chainchaos.plotting.style import PAGE_WIDTH, context, save_figure  # noqa: E402
 
@@ -57,7 +58,7 @@ def _scheme_style(name):
 
 def _case_title(case: str, ds) -> str:
     model, energy = case.split("_H")
-    title = f"{'Hertz' if model == 'hertz' else 'FPUT'}, $H = {energy}$"
+    title = f"{model_label(model)}, $H = {energy}$"
     if model == "hertz":
         gaps = int(ds.sel(case=case).reference_max_open_gaps)
         title += ", contacts open" if gaps > 0 else ", no contact opens"
@@ -150,7 +151,7 @@ def plot_stability(stab, drift=None, taylor=None, advice=None, scheme: str = "SR
             ax.set_yscale("log")
             ax.set_xlabel(r"$H$")
             ax.set_ylabel(r"$\Delta t_{\max}\,\omega_{\max}$")
-            ax.set_title(f"({next(letters)}) {'Hertz' if model == 'hertz' else 'FPUT'}, $\\alpha = {alpha0:g}$")
+            ax.set_title(f"({next(letters)}) {model_label(model)}, $\\alpha = {alpha0:g}$")
         axes[0, 0].legend(loc="lower left", ncol=2, fontsize=5.5)
 
         ax = axes[0, 2]
@@ -161,7 +162,7 @@ def plot_stability(stab, drift=None, taylor=None, advice=None, scheme: str = "SR
             cvals = np.broadcast_to(np.log10(H)[None, :, None], d.shape)
             sc = ax.scatter(x.ravel(), d.values.ravel(), c=cvals.ravel(), cmap="viridis", s=5,
                             marker="o" if model == "hertz" else "^", linewidths=0,
-                            label="Hertz" if model == "hertz" else "FPUT")
+                            label=model_label(model))
         lim = [np.nanmin(est.values) * 0.5, np.nanmax(est.values) * 1.5]
         ax.plot(lim, lim, color="0.3", lw=0.6, ls="--")
         ax.set_xscale("log")
@@ -184,7 +185,7 @@ def plot_stability(stab, drift=None, taylor=None, advice=None, scheme: str = "SR
             ax.set_yscale("log")
             ax.set_xlabel(r"$H$")
             ax.set_ylabel(r"$\Delta t_{\max}\,\omega_{\max}$")
-            ax.set_title(f"({next(letters)}) {'Hertz' if model == 'hertz' else 'FPUT'}, {scheme}")
+            ax.set_title(f"({next(letters)}) {model_label(model)}, {scheme}")
         axes[1, 0].legend(loc="lower left", fontsize=5.5)
 
         ax = axes[1, 2]
