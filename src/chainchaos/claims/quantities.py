@@ -197,9 +197,8 @@ def taylor_sign_barrier(chain, site: int = 21) -> float:
     from scipy.optimize import minimize_scalar
 
     from chainchaos.initial import excitation_energy
-    from chainchaos.models import model_id
 
-    fput = model_id("fput")
+    fput = "fput"
     upper = 1.0
     while excitation_energy(fput, chain, site, 2 * upper) > excitation_energy(fput, chain, site, upper):
         upper *= 2
