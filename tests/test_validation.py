@@ -26,7 +26,7 @@ def scene(**overrides):
     (lambda: scene(t_final=0.0), "t_final", 0.0),
     (lambda: scene(energy=-1.0), "energy", -1.0),
     (lambda: scene(energy=float("nan")), "energy", "nan"),
-    (lambda: scene(model="toda"), "model", "toda"),
+    (lambda: scene(model="morse"), "model", "morse"),
     (lambda: scene(integrator="rk4"), "integrator", "rk4"),
     (lambda: scene(observables=("participation", "temperature")), "observables", "temperature"),
     (lambda: scene(model="fput", observables=("n_gaps",)), "observables", "n_gaps"),

@@ -61,30 +61,16 @@ def bond_potentials(model, u, P, V):
         V[b] = bond_potential(model, (P[0, b], P[1, b], P[2, b]), left, right)
 
 
-@njit(cache=True)
-def _bond_openings(model, u, P, out):
-    N = u.shape[0]
-    for b in range(N + 1):
-        left = u[b - 1] if b > 0 else 0.0
-        right = u[b] if b < N else 0.0
-        out[b] = bond_opening(model, (P[0, b], P[1, b], P[2, b]), left, right)
-
-
-def _per_state(kernel, model, chain, u: np.ndarray) -> np.ndarray:
-    """kernel(model, u_i, P, out_i) for one state u (N,) or many (..., N): shape (..., N+1)."""
+def bond_potential_energy(model, chain, u: np.ndarray) -> np.ndarray:
+    """Bond potentials V_b for one state u (N,) or many states u (..., N): shape (..., N+1)."""
     model = get_model(model)
     u = np.ascontiguousarray(u, dtype=float)
     flat = u.reshape(-1, u.shape[-1])
     out = np.empty((flat.shape[0], flat.shape[1] + 1))
     P = model.bond_parameters(chain)
     for i in range(flat.shape[0]):
-        kernel(model, flat[i], P, out[i])
+        bond_potentials(model, flat[i], P, out[i])
     return out.reshape(u.shape[:-1] + (u.shape[-1] + 1,))
-
-
-def bond_potential_energy(model, chain, u: np.ndarray) -> np.ndarray:
-    """Bond potentials V_b for one state u (N,) or many states u (..., N): shape (..., N+1)."""
-    return _per_state(bond_potentials, model, chain, u)
 
 
 def total_energy(model, chain, u: np.ndarray, p: np.ndarray) -> np.ndarray:
@@ -102,8 +88,16 @@ def energy_density(model, chain, u: np.ndarray, p: np.ndarray) -> np.ndarray:
 
 
 def open_bonds(model, chain, u: np.ndarray) -> np.ndarray:
-    """True where a bond is open (shape (..., N+1)); all False for a model whose bonds never open."""
-    return _per_state(_bond_openings, model, chain, u) < 0
+    """True where a bond is open, for one state u (N,) or many (..., N): shape (..., N+1); all
+    False for a model whose bonds never open. The model's opening kernel, on whole arrays."""
+    model = get_model(model)
+    u = np.ascontiguousarray(u, dtype=float)
+    walls = np.zeros(u.shape[:-1] + (1,))
+    padded = np.concatenate([walls, u, walls], axis=-1)
+    if not model.has_gaps:
+        return np.zeros(padded.shape[:-1] + (padded.shape[-1] - 1,), dtype=bool)
+    P = tuple(model.bond_parameters(chain))
+    return model.opening(P, np.ascontiguousarray(padded[..., :-1]), np.ascontiguousarray(padded[..., 1:])) < 0
 
 
 __all__ = ["MAX_BOND_PARAMETERS", "MODELS", "Model", "bond_forces", "bond_potential_energy", "bond_potentials",
