@@ -12,36 +12,31 @@ from chainchaos.errors import ChainFileError, ParameterError, SimulationError
 DEFAULT_ALPHA = 5.0
 
 
-def _number(minimum: float = 0.0, strict: bool = True):
-    """argparse type: a finite number > minimum (>= minimum when not ``strict``)."""
-    allowed = f"a finite number {'>' if strict else '>='} {minimum:g}"
+def _checked(convert, kind: str, ok, allowed: str):
+    """argparse type: ``convert(text)`` (e.g. a ``kind`` "a number") for which ``ok`` holds; an
+    error names the text and what is ``allowed``."""
 
-    def parse(text: str) -> float:
+    def parse(text: str):
         try:
-            value = float(text)
+            value = convert(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"{text!r} is not a number; allowed is {allowed}")
-        if not (np.isfinite(value) and (value > minimum if strict else value >= minimum)):
+            raise argparse.ArgumentTypeError(f"{text!r} is not {kind}; allowed is {allowed}")
+        if not ok(value):
             raise argparse.ArgumentTypeError(f"{text!r}: allowed is {allowed}")
         return value
 
     return parse
+
+
+def _number(minimum: float = 0.0, strict: bool = True):
+    """argparse type: a finite number > minimum (>= minimum when not ``strict``)."""
+    return _checked(float, "a number", lambda v: np.isfinite(v) and (v > minimum if strict else v >= minimum),
+                    f"a finite number {'>' if strict else '>='} {minimum:g}")
 
 
 def _integer(minimum: int):
     """argparse type: an integer >= minimum."""
-    allowed = f"an integer >= {minimum}"
-
-    def parse(text: str) -> int:
-        try:
-            value = int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{text!r} is not an integer; allowed is {allowed}")
-        if value < minimum:
-            raise argparse.ArgumentTypeError(f"{text!r}: allowed is {allowed}")
-        return value
-
-    return parse
+    return _checked(int, "an integer", lambda v: v >= minimum, f"an integer >= {minimum}")
 
 
 _positive_float = _number(0.0)
