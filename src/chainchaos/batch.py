@@ -51,6 +51,12 @@ assert len(QUANTITIES) == 7 + MAX_BOND_PARAMETERS
 ROW = len(QUANTITIES) * LANES
 
 
+@njit(cache=True, inline="always")
+def _bond_parameters(Z, bond):
+    """The bond parameters (B0, B1, B2) of the bond whose row starts at ``bond``, as vectors."""
+    return vload(Z, bond + _B0), vload(Z, bond + _B1), vload(Z, bond + _B2)
+
+
 @njit(cache=True, error_model="numpy")
 def _sweep(model, tangent, drift, kick, keep_forces, N, Z, a, c):
     """One pass over the bonds b = 0..N of a block: (if ``drift``) drift(a) of bead b, then (if
@@ -86,7 +92,7 @@ def _sweep(model, tangent, drift, kick, keep_forces, N, Z, a, c):
                 dq_right = dq_right + a * im * dp_right
                 vstore(Z, bead + _DQ, dq_right)
         if kick:
-            parameters = (vload(Z, bond + _B0), vload(Z, bond + _B1), vload(Z, bond + _B2))
+            parameters = _bond_parameters(Z, bond)
             if tangent:
                 f, k = bond_force_stiffness(model, parameters, u_left, u_right)
             else:
@@ -134,7 +140,7 @@ def _count_gaps(model, N, Z, gap_steps, max_gaps):
     n_open = vload(max_gaps, 0) * 0.0
     for b in range(N + 1):
         bond = b * ROW
-        parameters = (vload(Z, bond + _B0), vload(Z, bond + _B1), vload(Z, bond + _B2))
+        parameters = _bond_parameters(Z, bond)
         is_open = vbelow(bond_opening(model, parameters, vload(Z, bond + _U), vload(Z, bond + ROW + _U)), 0.0)
         vstore(gap_steps, b * LANES, vload(gap_steps, b * LANES) + is_open)
         n_open = n_open + is_open
@@ -333,19 +339,17 @@ class SerialBatch(Batch):
         self.steps += int(n_steps)
 
 
-def warm_up(models=None) -> None:
-    """Compile (or load from the on-disk cache) both engines for every model (default: all in
-    the registry), with and without the tangent map, and with gap counting where bonds open."""
+def warm_up(models) -> None:
+    """Compile (or load from the on-disk cache) the batch kernel for each of ``models``, with
+    and without the tangent map, and with gap counting where bonds open."""
     from chainchaos.chain import random_chain
-    from chainchaos.models import MODELS
 
     chain = random_chain(0, 2.0, 4)
-    for model in (MODELS.values() if models is None else map(get_model, models)):
+    for model in map(get_model, models):
         for gaps in sorted({False, model.has_gaps}):
             for tangent in (True, False):
-                for engine in (Batch, SerialBatch):
-                    q = np.zeros((4, 2))
-                    q[1] = 0.1
-                    b = engine(model, [chain, chain], q, np.zeros((4, 2)), dp=np.full((4, 2), 0.5), dt=0.1,
-                               tangent=tangent, track_gaps=gaps, check_every=3)
-                    b.advance(4)
+                q = np.zeros((4, 2))
+                q[1] = 0.1
+                b = Batch(model, [chain, chain], q, np.zeros((4, 2)), dp=np.full((4, 2), 0.5), dt=0.1,
+                          tangent=tangent, track_gaps=gaps, check_every=3)
+                b.advance(4)

@@ -270,6 +270,11 @@ def scenes() -> dict[str, Scene]:
     return {s.name: s for panel in PANELS.values() for s in panel.scenes}
 
 
+def models() -> tuple[str, ...]:
+    """The models of the paper's scenes, in the order the panels first use them."""
+    return tuple(dict.fromkeys(s.model for s in scenes().values()))
+
+
 def scene_observables(scene_name: str) -> list[str]:
     """The observables a scene must compute: the union over the panels that use it."""
     wanted = {o for panel in PANELS.values() if scene_name in {s.name for s in panel.scenes}

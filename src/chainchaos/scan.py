@@ -41,7 +41,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 import xarray as xr
 
-from chainchaos import exactmath
+from chainchaos import exactmath, paper
 from chainchaos.chain import GENERATOR, random_chain
 from chainchaos.errors import require, require_finite_positive
 from chainchaos.formatting import plain_number
@@ -50,9 +50,6 @@ from chainchaos.models import model_label
 from chainchaos.orbits import Orbit, OrbitSettings, integrate
 from chainchaos.provenance import provenance_attrs
 from chainchaos.reductions import chaos_onset, final_average, is_chaotic, sustained_onset
-
-#: The models a scan covers when its config names none: the paper's two.
-DEFAULT_MODELS = ("hertz", "fput")
 
 SELECTION_RULE = ("among the high_frequency_modes highest linear modes, those whose energy-density maximum "
                   "lies within centre_window sites of the chain centre (N+1)/2; the one with the smallest "
@@ -179,7 +176,7 @@ def items(kind: str, scan_cfg: dict) -> list[tuple]:
     """Every trajectory of a scan kind, in the fixed order the groups cut: (model, energy index)
     for ``energy_scan``, (model, realization index, energy index) for ``disorder``."""
     block = scan_cfg[kind]
-    models = list(block.get("models", DEFAULT_MODELS))
+    models = list(block.get("models", paper.models()))
     n_e = len(energy_grid(block))
     if kind == "energy_scan":
         return [(m, e) for m in models for e in range(n_e)]
@@ -361,7 +358,7 @@ def merge_energy_scan(groups: list[xr.Dataset], scan_cfg: dict, chain=None) -> x
     """The energy scan of all groups on the grid (model, energy), series on (model, energy, time)."""
     block = scan_cfg["energy_scan"]
     grid = energy_grid(block)
-    models = list(block.get("models", DEFAULT_MODELS))
+    models = list(block.get("models", paper.models()))
     settings = settings_for("energy_scan", scan_cfg)
     mi = {m: i for i, m in enumerate(models)}
 
@@ -410,7 +407,7 @@ def merge_disorder(groups: list[xr.Dataset], scan_cfg: dict) -> xr.Dataset:
     chaos per (model, energy), Wilson 95% bands, and onset-time quantiles over the valid runs."""
     block = scan_cfg["disorder"]
     grid = energy_grid(block)
-    models = list(block.get("models", DEFAULT_MODELS))
+    models = list(block.get("models", paper.models()))
     R = int(block["realizations"])
     settings = settings_for("disorder", scan_cfg)
     mi = {m: i for i, m in enumerate(models)}

@@ -10,8 +10,7 @@ from numba import njit
 
 from chainchaos.errors import require
 from chainchaos.models import fput, harmonic, hertz, toda
-from chainchaos.models.base import (MAX_BOND_PARAMETERS, Model, bond_force, bond_force_stiffness, bond_opening,
-                                    bond_potential)
+from chainchaos.models.base import MAX_BOND_PARAMETERS, Model, bond_force, bond_force_stiffness, bond_potential
 
 #: Every model, by name.
 MODELS: dict[str, Model] = {m.name: m for m in (
@@ -35,16 +34,20 @@ def model_label(name: str) -> str:
     return get_model(name).label
 
 
+@njit(cache=True, inline="always")
+def _bond(u, P, b):
+    """(parameters, u_{b-1}, u_b) of bond b, the walls at zero displacement."""
+    N = u.shape[0]
+    return (P[0, b], P[1, b], P[2, b]), u[b - 1] if b > 0 else 0.0, u[b] if b < N else 0.0
+
+
 @njit(cache=True)
 def bond_forces(model, u, P, f, k, with_stiffness):
     """Fill f[b] (and k[b] if ``with_stiffness``) for every bond b = 0..N at displacements u (N,),
     P the bond parameters (MAX_BOND_PARAMETERS, N+1). The engines run the same kernels in their
     own vector loops; this is the plain version for everything else."""
-    N = u.shape[0]
-    for b in range(N + 1):
-        left = u[b - 1] if b > 0 else 0.0
-        right = u[b] if b < N else 0.0
-        bond = (P[0, b], P[1, b], P[2, b])
+    for b in range(u.shape[0] + 1):
+        bond, left, right = _bond(u, P, b)
         if with_stiffness:
             f[b], k[b] = bond_force_stiffness(model, bond, left, right)
         else:
@@ -54,11 +57,9 @@ def bond_forces(model, u, P, f, k, with_stiffness):
 @njit(cache=True)
 def bond_potentials(model, u, P, V):
     """Fill V[b], the potential energy of every bond b = 0..N (zero at rest)."""
-    N = u.shape[0]
-    for b in range(N + 1):
-        left = u[b - 1] if b > 0 else 0.0
-        right = u[b] if b < N else 0.0
-        V[b] = bond_potential(model, (P[0, b], P[1, b], P[2, b]), left, right)
+    for b in range(u.shape[0] + 1):
+        bond, left, right = _bond(u, P, b)
+        V[b] = bond_potential(model, bond, left, right)
 
 
 def bond_potential_energy(model, chain, u: np.ndarray) -> np.ndarray:

@@ -135,8 +135,9 @@ def run_scheme(model, chain, energy: float, scheme: str, dt: float, t_final: flo
         start, cpu_start = time.perf_counter(), time.process_time()
         for si, seg in enumerate(segments):
             for n_chunks, c in seg:
-                bad = run_chunks(model, q, p, dq, dp, inv_mass, chain.mass, bonds, s.kicks, s.drifts, dt, n_chunks, c, tangent, H0, err, offset, stop_error,
-                                 track_gaps, gap_steps, diagnostics, *scratch)
+                bad = run_chunks(model, q, p, dq, dp, inv_mass, chain.mass, bonds, s.kicks, s.drifts, dt, n_chunks,
+                                 c, tangent, H0, err, offset, stop_error, track_gaps, gap_steps, diagnostics,
+                                 *scratch)
                 if bad >= 0:
                     stop_index = offset + bad
                     steps_done += (bad + 1) * c
@@ -234,10 +235,13 @@ def run_solve_ivp(model, chain, energy: float, method: str, rtol: float, t_final
     return result
 
 
-def warm_up(chain, models=("hertz", "fput")) -> None:
-    """Load (or compile) every Numba kernel the measured runs use, with the argument types of
-    ``chain``, so that no timed run pays for compilation."""
-    for model in map(get_model, models):
+def warm_up(chain, models=None) -> None:
+    """Load (or compile) every Numba kernel the measured runs of ``models`` (default: those of
+    the paper's scenes) use, with the argument types of ``chain``, so that no timed run pays for
+    compilation."""
+    from chainchaos import paper
+
+    for model in map(get_model, paper.models() if models is None else models):
         for tangent in (False, True):
             if model.has_gaps:
                 run_scheme(model, chain, 0.01, "verlet", 0.1, 0.2, 0.1, tangent=tangent, repeats=1, track_gaps=True)

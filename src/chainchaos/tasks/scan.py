@@ -7,16 +7,15 @@ from pathlib import Path
 
 import xarray as xr
 
-from chainchaos import batch, scan
+from chainchaos import scan
 from chainchaos.io import read_chain, write_netcdf, write_text
-from chainchaos.simulate import warm_up as warm_up_single
+from chainchaos.simulate import warm_up
 
 
 def compile_scan_kernels(inputs, outputs, params, wildcards) -> None:
-    """Compile the batch engine once into Numba's on-disk cache before the scan jobs fan out."""
+    """Compile both engines once into Numba's on-disk cache before the scan jobs fan out."""
     start = time.perf_counter()
-    batch.warm_up()
-    cache = warm_up_single()
+    cache = warm_up()
     text = f"batch and single-trajectory kernels compiled in {time.perf_counter() - start:.1f} s; cache {cache}\n"
     print(text, file=sys.stderr, end="")
     write_text(text, outputs["flag"])
