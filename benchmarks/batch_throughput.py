@@ -25,6 +25,7 @@ import numpy as np
 
 from chainchaos import random_chain
 from chainchaos.batch import Batch
+from chainchaos.problem import Problem
 from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.integrators import advance, get_scheme
 from chainchaos.models import get_model
@@ -67,8 +68,8 @@ def batch_rate(name, chain, B, steps, dt, integrator, tangent, repeats):
     q, p, dq, dp = states(name, chain, B)
     best = np.inf
     for r in range(repeats + 1):
-        b = Batch(name, [chain] * B, q, p, dq, dp, integrator=integrator, dt=dt, tangent=tangent,
-                  track_gaps=get_model(name).has_gaps, check_every=1000)
+        problem = Problem(name, [chain] * B, integrator, dt, tangent, get_model(name).has_gaps, check_every=1000)
+        b = Batch(problem, q, p, dq, dp)
         n = 10 if r == 0 else steps
         t0 = time.process_time()
         b.advance(n)

@@ -4,11 +4,12 @@ import numpy as np
 import pytest
 
 from chainchaos import random_chain
-from chainchaos.batch import Batch, lane_parameters
+from chainchaos.batch import Batch
 from chainchaos.simd import LANES
 from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.integrators import SCHEMES, advance, get_scheme
 from chainchaos.models import MODELS, get_model
+from chainchaos.problem import Problem
 
 N = 40
 
@@ -67,8 +68,8 @@ def test_every_lane_matches_the_single_engine(name, integrator):
     sites = [21, 21, 15, 30, 20]
     gaps = get_model(name).has_gaps
     q, p, dq, dp = lanes(name, chains, energies, sites)
-    batch = Batch(name, chains, q, p, dq, dp, integrator=integrator, dt=0.01, tangent=True, track_gaps=gaps,
-                  check_every=37)
+    batch = Batch(Problem(name, chains, integrator, dt=0.01, tangent=True, track_gaps=gaps, check_every=37),
+                  q, p, dq, dp)
     batch.advance(600)
     batch.advance(400)
     assert_lanes_match_single_runs(name, chains, batch, q, p, dq, dp, integrator, (600, 400), 37, gaps)
@@ -83,7 +84,7 @@ def test_a_batch_of_several_blocks_matches_lane_by_lane():
     chains = [random_chain(s, 5.0) for s in range(100, 100 + B)]
     energies = np.geomspace(0.2, 10.0, B)
     q, p, dq, dp = lanes("hertz", chains, energies, [21] * B)
-    batch = Batch("hertz", chains, q, p, dq, dp, dt=0.01, track_gaps=True, check_every=50)
+    batch = Batch(Problem("hertz", chains, dt=0.01, track_gaps=True, check_every=50), q, p, dq, dp)
     batch.advance(300)
     assert_lanes_match_single_runs("hertz", chains, batch, q, p, dq, dp, "SRKN6b", (300,), 50, True)
 
@@ -91,7 +92,7 @@ def test_a_batch_of_several_blocks_matches_lane_by_lane():
 def test_without_tangent_the_deviation_stays_zero_and_states_match():
     chains = [random_chain(879, 5.0)] * 3
     q, p, _, _ = lanes("fput", chains, [0.5, 2.9, 8.7381], [21, 21, 21])
-    batch = Batch("fput", chains, q, p, tangent=False, dt=0.02)
+    batch = Batch(Problem("fput", chains, tangent=False, dt=0.02), q, p)
     batch.advance(500)
     assert not batch.dq.any() and not batch.dp.any() and not batch.log_growth.any()
     for j in range(3):
@@ -106,7 +107,7 @@ def test_a_diverging_lane_is_reported_and_leaves_the_others_alone():
     q = np.zeros((N, 2))
     q[20, 0] = 0.3
     q[20, 1] = 40.0  # far beyond the barrier of the quartic: escapes to infinity
-    batch = Batch("fput", [chain, chain], q, np.zeros((N, 2)), dp=np.full((N, 2), 0.1), dt=0.01, check_every=10)
+    batch = Batch(Problem("fput", [chain, chain], dt=0.01, check_every=10), q, np.zeros((N, 2)), dp=np.full((N, 2), 0.1))
     with np.errstate(all="ignore"):
         batch.advance(2000)
     assert batch.bad[0] == -1 and batch.bad[1] > 0
@@ -119,7 +120,7 @@ def test_a_diverging_lane_is_reported_and_leaves_the_others_alone():
 
 def test_lane_parameters_are_trajectory_innermost():
     chains = [random_chain(s, 5.0) for s in range(3)]
-    inv_mass, bonds = lane_parameters("hertz", chains)
+    inv_mass, bonds = Problem("hertz", chains).lane_parameters
     assert bonds.shape == (3, N + 1, 3) and inv_mass.shape == (N, 3)
     assert inv_mass.flags.c_contiguous and bonds.flags.c_contiguous
     np.testing.assert_array_equal(bonds[1, :, 2], chains[2].delta)  # Hertz: (A, delta)
@@ -130,6 +131,6 @@ def test_every_scheme_runs_in_the_batch_engine():
     chain = random_chain(879, 5.0)
     q, p, dq, dp = lanes("hertz", [chain], [1.0], [21])
     for name in SCHEMES:
-        b = Batch("hertz", [chain], q, p, dq, dp, integrator=name, dt=0.01)
+        b = Batch(Problem("hertz", [chain], name, dt=0.01), q, p, dq, dp)
         b.advance(50)
         assert np.isfinite(b.q).all() and b.bad[0] == -1

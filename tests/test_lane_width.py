@@ -27,6 +27,7 @@ from chainchaos import random_chain, simd
 from chainchaos.batch import Batch, SerialBatch
 from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.models import MODELS
+from chainchaos.problem import Problem
 
 chains = [random_chain(s, 5.0) for s in (879, 5346, 11, 12, 13)]
 out = [np.array([simd.LANES], dtype=float)]
@@ -36,7 +37,7 @@ for name, model in MODELS.items():
     dq, dp = initial_deviation(40, 1)
     dq, dp = np.tile(dq[:, None], (1, 5)), np.tile(dp[:, None], (1, 5))
     for engine in (Batch, SerialBatch):
-        b = engine(name, chains, q, p, dq, dp, dt=0.01, tangent=True, track_gaps=model.has_gaps, check_every=97)
+        b = engine(Problem(name, chains, dt=0.01, tangent=True, track_gaps=model.has_gaps, check_every=97), q, p, dq, dp)
         b.advance(700)
         b.advance(300)
         out += [b.q, b.p, b.dq, b.dp, b.log_growth, b.gap_steps.astype(float), b.max_gaps.astype(float)]

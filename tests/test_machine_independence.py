@@ -217,8 +217,8 @@ def hex_block(values) -> str:
 CHAIN_5346_DIGEST = "50326c3319669c885819c00ec9927668eee2dbb8cd659668513bc163f5878129"
 CHAIN_FILE_DIGEST = "6c4cd055a21f3e04e17cb71ddc0a7026eee8b15b3e8ce5744cacead80a270887"
 SCENE_DIGESTS = {
-    "hertz": "fb68858fefd5b29b88db6302a2c5b71115190743fbc1b4e7107a6917dda81fdf",
-    "fput": "f58e6e52cb538a65acb3771857cdd74e452cfa712d4bd8378aafd6e5123a1ae1",
+    "hertz": "a1c14ac44c7fe60a18532109014f5b855b9589ac30022f062d74bb6458e383cb",
+    "fput": "f9d5a357b0b1c23811951ba1834402cd5d08738e93832f83117649d71ae5cbb3",
 }
 #: model: (energy, ln|v(t)| at t = 200, q, p as float.hex strings)
 ORBITS = {

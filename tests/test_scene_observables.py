@@ -33,6 +33,6 @@ def test_each_observable_is_written_alone_with_its_dims_and_nothing_it_does_not_
 
 
 def test_needs_split_the_observables_as_the_engines_run_them():
-    assert needing(TANGENT) == {"mlce", "dvd", "dvd_participation"}
+    assert needing(TANGENT) == {"mlce", "log_growth", "dvd", "dvd_participation"}
     assert needing(GAPS) == {"gap_open", "gap_fraction", "n_gaps"}
     assert needing(MODES) == {"mode_energy", "spectral_entropy", "eta"}

@@ -11,10 +11,10 @@
 import numpy as np
 import pytest
 
-from chainchaos.batch import Batch, SerialBatch
 from chainchaos.chain import chain_from_radii, random_chain
 from chainchaos.initial import initial_state
 from chainchaos.models import fput, get_model, toda
+from chainchaos.problem import Problem
 
 TODA = get_model("toda")
 
@@ -47,14 +47,14 @@ def flaschka_traces(chain, q, p) -> tuple[float, float]:
     return float(np.trace(L2)), float(np.trace(L2 @ L2))
 
 
-@pytest.mark.parametrize("engine", [Batch, SerialBatch])
+@pytest.mark.parametrize("engine", ["batch", "single"])
 def test_the_equal_bead_toda_chain_keeps_its_lax_traces_and_fput_does_not(engine):
     chain = chain_from_radii(np.ones(8))
     drift = {}
     for name in ("toda", "fput"):
         q0, p0, _ = initial_state(name, chain, 1.0, 3)  # strongly nonlinear: beta u0 ~ 1
-        run = engine(name, [chain, chain], np.stack([q0, q0], 1), np.stack([p0, p0], 1), dt=0.01,
-                     tangent=False)
+        problem = Problem(name, [chain, chain], dt=0.01, tangent=False)
+        run = problem.engine(np.stack([q0, q0], 1), np.stack([p0, p0], 1), kind=engine)
         start = np.array(flaschka_traces(chain, q0, p0))
         worst = np.zeros(2)
         for _ in range(50):

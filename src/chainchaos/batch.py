@@ -35,8 +35,9 @@ import numpy as np
 from numba import literally, njit
 
 from chainchaos.errors import require
-from chainchaos.integrators import _aligned_zeros, _renormalise, advance, get_scheme
+from chainchaos.integrators import _aligned_zeros, _renormalise, advance
 from chainchaos.models import MAX_BOND_PARAMETERS, get_model
+from chainchaos.problem import Problem
 from chainchaos.models.base import bond_force, bond_force_stiffness, bond_opening
 from chainchaos.simd import LANES, vbelow, vload, vstore
 
@@ -245,45 +246,23 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
             bad[j] = block_bad[lane]
 
 
-def lane_parameters(model, chains) -> tuple[np.ndarray, np.ndarray]:
-    """Per-trajectory parameters of the batch engine for a list of chains (one per lane):
-    inv_mass (N, B) and the model's bond parameters (MAX_BOND_PARAMETERS, N+1, B),
-    C-contiguous, with the chains' own K4 sign."""
-    model = get_model(model)
-    chains = list(chains)
-    require(len(chains) >= 1, "chains", len(chains), "at least one chain")
-    N = chains[0].N
-    require(all(c.N == N for c in chains), "N", sorted({c.N for c in chains}), "one N per batch")
-    inv_mass = np.ascontiguousarray(np.stack([1.0 / c.mass for c in chains], axis=1))
-    bonds = np.ascontiguousarray(np.stack([model.bond_parameters(c) for c in chains], axis=2))
-    return inv_mass, bonds
-
-
 class Batch:
-    """B trajectories of one model under one scheme, advanced together by ``advance_batch``.
+    """The lanes of a :class:`~chainchaos.problem.Problem` advanced together by ``advance_batch``.
 
     ``q, p, dq, dp`` are (N, B) arrays (trajectory index last); ``log_growth`` (B,) accumulates
-    ln|v| over renormalisations, so Lambda(t) = log_growth / t as in ``integrators.advance``.
+    ln|v| over renormalisations, so Lambda(t) = log_growth / t as in ``integrators.advance``;
+    ``gap_steps`` (N+1, B) and ``max_gaps`` (B,) accumulate the gap counts (the caller resets them).
     """
 
-    def __init__(self, model, chains, q, p, dq=None, dp=None, integrator: str = "SRKN6b",
-                 dt: float = 5e-4, tangent: bool = True, track_gaps: bool = False,
-                 check_every: int = 1000):
-        self.model = get_model(model)
-        require(not track_gaps or self.model.has_gaps, "track_gaps", track_gaps,
-                f"gap counting only for a model whose bonds open, not {self.model.name!r}")
-        require(np.isfinite(dt) and dt > 0, "dt", dt, "a finite step > 0")
-        require(int(check_every) >= 1, "check_every", check_every, "an integer >= 1")
-        self.inv_mass, self.bonds = lane_parameters(self.model, chains)
-        self.scheme = get_scheme(integrator)
+    def __init__(self, problem, q, p, dq=None, dp=None):
+        self.problem, self.model, self.scheme = problem, problem.model, problem.scheme
+        self.inv_mass, self.bonds = problem.lane_parameters
         self.q = np.ascontiguousarray(q, dtype=float).copy()
         self.p = np.ascontiguousarray(p, dtype=float).copy()
         shape = self.q.shape
         require(self.p.shape == shape == self.inv_mass.shape, "state shape", shape, f"(N, B) = {self.inv_mass.shape}")
         self.dq = np.zeros(shape) if dq is None else np.ascontiguousarray(dq, dtype=float).copy()
         self.dp = np.zeros(shape) if dp is None else np.ascontiguousarray(dp, dtype=float).copy()
-        self.dt, self.tangent, self.track_gaps = float(dt), bool(tangent), bool(track_gaps)
-        self.check_every = int(check_every)
         N, B = shape
         self.gap_steps = np.zeros((N + 1, B), dtype=np.int64)
         self.max_gaps = np.zeros(B, dtype=np.int64)
@@ -300,9 +279,10 @@ class Batch:
         absolute step count), the others are unaffected."""
         if n_steps <= 0:
             return
+        pr = self.problem
         bad = np.full(self.size, -1, dtype=np.int64)
         advance_batch(self.model, self.q, self.p, self.dq, self.dp, self.inv_mass, self.bonds, self.scheme.kicks,
-                      self.scheme.drifts, self.dt, int(n_steps), self.tangent, self.check_every, self.track_gaps,
+                      self.scheme.drifts, pr.dt, int(n_steps), pr.tangent, pr.check_every, pr.track_gaps,
                       self.gap_steps, self.log_growth, self.max_gaps, bad)
         newly = (bad >= 0) & (self.bad < 0)
         self.bad[newly] = self.steps + bad[newly]
@@ -315,22 +295,20 @@ class SerialBatch(Batch):
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
-        # each lane's parameters as the contiguous arrays the single engine takes, made once
-        self._lane_parameters = [(np.ascontiguousarray(self.inv_mass[:, j]), np.ascontiguousarray(self.bonds[:, :, j]))
-                                 for j in range(self.size)]
+        self._lanes = [self.problem.lane(j) for j in range(self.size)]
 
     def advance(self, n_steps: int) -> None:
         if n_steps <= 0:
             return
+        pr = self.problem
         N, B = self.q.shape
         f, k = np.empty(N + 1), np.empty(N + 1)
         for j in range(B):
             q, p, dq, dp = (np.ascontiguousarray(a[:, j]) for a in (self.q, self.p, self.dq, self.dp))
             diagnostics = np.array([self.log_growth[j], float(self.max_gaps[j])])
             gaps = np.ascontiguousarray(self.gap_steps[:, j])
-            bad = advance(self.model, q, p, dq, dp, *self._lane_parameters[j], self.scheme.kicks, self.scheme.drifts,
-                          self.dt, int(n_steps), self.tangent, self.check_every, self.track_gaps, gaps, diagnostics,
-                          f, k)
+            bad = advance(self.model, q, p, dq, dp, *self._lanes[j], self.scheme.kicks, self.scheme.drifts, pr.dt,
+                          int(n_steps), pr.tangent, pr.check_every, pr.track_gaps, gaps, diagnostics, f, k)
             self.q[:, j], self.p[:, j], self.dq[:, j], self.dp[:, j] = q, p, dq, dp
             self.gap_steps[:, j] = gaps
             self.log_growth[j], self.max_gaps[j] = diagnostics[0], int(diagnostics[1])
@@ -350,6 +328,6 @@ def warm_up(models) -> None:
             for tangent in (True, False):
                 q = np.zeros((4, 2))
                 q[1] = 0.1
-                b = Batch(model, [chain, chain], q, np.zeros((4, 2)), dp=np.full((4, 2), 0.5), dt=0.1,
-                          tangent=tangent, track_gaps=gaps, check_every=3)
+                problem = Problem(model, [chain, chain], dt=0.1, tangent=tangent, track_gaps=gaps, check_every=3)
+                b = Batch(problem, q, np.zeros((4, 2)), dp=np.full((4, 2), 0.5))
                 b.advance(4)

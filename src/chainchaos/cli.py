@@ -95,7 +95,8 @@ def _cmd_ensemble(args) -> None:
 
 def _cmd_simulate(args) -> None:
     from chainchaos.io import read_chain, write_netcdf
-    from chainchaos.simulate import ProgressReporter, SceneParameters, simulate
+    from chainchaos.progress import ProgressReporter
+    from chainchaos.simulate import SceneParameters, simulate
 
     observables = None if "all" in args.observables else tuple(args.observables)
     params = SceneParameters(model=args.model, energy=args.energy, t_final=args.t_final, dt=args.dt,

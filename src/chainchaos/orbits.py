@@ -19,22 +19,19 @@ from dataclasses import dataclass, field, fields
 
 import numpy as np
 
-from chainchaos import observables as obs
-from chainchaos.batch import Batch, SerialBatch
+from chainchaos import driver
 from chainchaos.errors import ParameterError, require, require_finite_positive
 from chainchaos.initial import initial_deviation, initial_displacement
 from chainchaos.integrators import get_scheme
-from chainchaos.linear import modal_energies, normal_modes, participation_number
-from chainchaos.models import MODELS, energy_density, get_model, open_bonds, total_energy
+from chainchaos.models import MODELS, get_model
+from chainchaos.problem import Problem
+from chainchaos.scene_observables import REGISTRY
 from chainchaos.simulate import sample_steps
 
-#: Per-orbit series on the sample times (units: all dimensionless).
-SERIES = {
-    "participation": "participation number P(t) of the energy density",
-    "log_growth": "ln(|v(t)|/|v(0)|) = Lambda(t) t",
-    "eta": "normalised spectral entropy eta(t)",
-    "energy_error": "relative energy error |H(t) - H(0)|/H(0)",
-}
+#: Per-orbit series on the sample times, observables of the registry (``scene_observables``), with
+#: their value at samples where the state is not measured (no initial state, or non-finite);
+#: None: kept as the engine recorded it.
+SERIES = {"participation": np.nan, "log_growth": None, "eta": np.nan, "energy_error": np.inf}
 
 
 @dataclass(frozen=True)
@@ -130,12 +127,12 @@ def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None) -> tu
 
 def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings) -> list[dict]:
     model = get_model(name)
-    B = len(orbits)
-    chains = [o.chain.with_k4_sign(settings.k4_sign) for o in orbits]
-    N = chains[0].N
+    problem = Problem(model, [o.chain.with_k4_sign(settings.k4_sign) for o in orbits], settings.integrator,
+                      settings.dt, tangent=True, track_gaps=model.has_gaps, check_every=settings.check_every)
+    N, B = problem.N, problem.lanes
     Q0, P0, DQ0, DP0 = (np.zeros((N, B)) for _ in range(4))
     u0s, ok0 = np.full(B, np.nan), np.zeros(B, dtype=bool)
-    for j, (o, c) in enumerate(zip(orbits, chains)):
+    for j, (o, c) in enumerate(zip(orbits, problem.chains)):
         try:
             u0s[j] = initial_displacement(model, c, float(o.energy), int(o.site)) * lane_factor(o.lane, settings)
             Q0[o.site - 1, j] = u0s[j]
@@ -143,54 +140,29 @@ def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings) ->
         except ParameterError:
             pass
         DQ0[:, j], DP0[:, j] = initial_deviation(N, settings.deviation_seed + o.lane)
-    gaps = model.has_gaps
-    args = dict(integrator=settings.integrator, dt=settings.dt, tangent=True, track_gaps=gaps,
-                check_every=settings.check_every)
-    if settings.engine == "batch":
-        engine = Batch(model, chains, Q0, P0, DQ0, DP0, **args)
-    else:
-        engine = SerialBatch(model, chains, Q0, P0, DQ0, DP0, **args)
-
-    steps = sample_schedule(settings)
-    S = steps.size
-    modes = {}
-    for c in chains:
-        if id(c) not in modes:
-            modes[id(c)] = normal_modes(c)
-    H0 = np.array([float(total_energy(model, c, Q0[:, j], P0[:, j])) for j, c in enumerate(chains)])
-    series = {key: np.full((S, B), np.nan) for key in SERIES}
-    S0 = np.full(B, np.nan)
-    gaps0 = np.zeros(B, dtype=np.int64)
-
-    def sample(i):
-        for j, c in enumerate(chains):
-            q, p = engine.q[:, j], engine.p[:, j]
-            if not (ok0[j] and np.all(np.isfinite(q)) and np.all(np.isfinite(p))):
-                series["energy_error"][i, j] = np.inf
-                continue
-            series["participation"][i, j] = participation_number(energy_density(model, c, q, p))
-            omega, U = modes[id(c)]
-            entropy = obs.spectral_entropy(modal_energies(c, omega, U, q, p))
-            if i == 0:
-                S0[j] = entropy
-                if gaps:
-                    gaps0[j] = int(open_bonds(model, c, q).sum())
-            series["eta"][i, j] = obs.normalised_entropy(entropy, S0[j], N)
-            series["energy_error"][i, j] = abs(float(total_energy(model, c, q, p)) - H0[j]) / abs(H0[j])
-        series["log_growth"][i] = engine.log_growth
-
-    sample(0)
-    for i in range(1, S):
-        engine.advance(int(steps[i] - steps[i - 1]))
-        sample(i)
+    samples = driver.sample(problem, Q0, P0, DQ0, DP0, sample_schedule(settings), engine=settings.engine)
 
     out = []
     for j in range(B):
-        err = series["energy_error"][:, j]
+        run = samples.run(j)
+        # a sample is measured where the initial state existed and the state is still finite
+        measured = ok0[j] & np.all(np.isfinite(run.Q), axis=-1) & np.all(np.isfinite(run.P), axis=-1)
+        series = _series(run, measured)
         out.append({
-            **{key: series[key][:, j].copy() for key in SERIES},
+            **series,
             "u0": float(u0s[j]),
-            "max_gaps": int(max(engine.max_gaps[j], gaps0[j])) if gaps else -1,
-            "valid": bool(ok0[j] and engine.bad[j] < 0 and np.all(err <= settings.max_energy_error)),
+            "max_gaps": int(run.max_gaps.max()) if model.has_gaps else -1,
+            "valid": bool(ok0[j] and samples.bad[j] < 0
+                          and np.all(series["energy_error"] <= settings.max_energy_error)),
         })
+    return out
+
+
+def _series(run, measured: np.ndarray) -> dict:
+    """The :data:`SERIES` of one lane's run, each with its fill value where ``measured`` is False."""
+    out = {}
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        for key, fill in SERIES.items():
+            values = REGISTRY[key].compute(run)
+            out[key] = values if fill is None else np.where(measured, values, fill)
     return out

@@ -50,6 +50,7 @@ from chainchaos.models import model_label
 from chainchaos.orbits import Orbit, OrbitSettings, integrate
 from chainchaos.provenance import provenance_attrs
 from chainchaos.reductions import chaos_onset, final_average, is_chaotic, sustained_onset
+from chainchaos.scene_observables import REGISTRY
 
 SELECTION_RULE = ("among the high_frequency_modes highest linear modes, those whose energy-density maximum "
                   "lies within centre_window sites of the chain centre (N+1)/2; the one with the smallest "
@@ -234,8 +235,8 @@ SCALARS = {
     "u0": ("initial displacement of the excited bead", "f8"),
     "valid": ("1 if the run stayed finite with energy error <= max_energy_error", "i1"),
 }
-SERIES = {"participation": "participation number P(t)", "log_growth": "ln(|v(t)|/|v(0)|) = Lambda(t) t",
-          "eta": "normalised spectral entropy eta(t)"}
+#: The per-trajectory series a group file keeps (``orbits.SERIES``; long names from the registry).
+SERIES = ("participation", "log_growth", "eta")
 GROUP_TITLES = {"energy_scan": "Energy scan", "disorder": "Disorder statistics"}
 ENERGY_INDEX = {"units": "1", "long_name": "index of the energy on the scan's grid"}
 REALIZATION = {"units": "1", "long_name": "realization r: random_chain(first_seed + r, alpha)"}
@@ -278,9 +279,9 @@ def _group_dataset(kind, its, results, settings, extra_vars, attrs, series=False
     coords = {"trajectory": ("trajectory", np.arange(n), {"units": "1", "long_name": "trajectory index in the group"})}
     if series and results:
         coords["time"] = results[0]["times"]
-        for key, long_name in SERIES.items():
+        for key in SERIES:
             data[key] = (("trajectory", "time"), np.stack([r[key] for r in results]),
-                         {"units": "1", "long_name": long_name})
+                         {"units": "1", "long_name": REGISTRY[key].long_name})
     ds = xr.Dataset(data, coords=coords)
     if "time" in ds.coords:
         ds.time.attrs.update(units="1", long_name="time",

@@ -7,7 +7,8 @@ attributes and its axis label. ``simulate`` runs only what the requested observa
 writes each one's variable from here; ``paper.KIND_OBSERVABLES`` (the panel table) says which
 panels read which. Adding an observable is an entry here (and a panel kind that reads it).
 Entries with ``selectable=False`` are written along with another (``companions``), never asked
-for by name. Quantities are dimensionless (docs/conventions.md#observables).
+for by name. The orbit sets of the scans, the search and the verdicts (``chainchaos.orbits``)
+record their per-orbit series from here too. Quantities are dimensionless (docs/conventions.md#observables).
 """
 
 from collections.abc import Callable
@@ -96,6 +97,9 @@ REGISTRY: dict[str, Observable] = _registry(
     Observable("mlce", ("time",), "finite-time maximum Lyapunov characteristic exponent Lambda(t)",
                r"$\Lambda$ [$\omega_{\max}$]", lambda run: obs.finite_time_mlce(run.log_growth, run.times),
                frozenset({TANGENT}), companions=("initial_deviation",)),
+    Observable("log_growth", ("time",), "logarithmic growth ln(|v(t)|/|v(0)|) = Lambda(t) t of the deviation vector",
+               r"$\ln(|v|/|v_0|)$", lambda run: run.log_growth, frozenset({TANGENT}),
+               companions=("initial_deviation",)),
     Observable("dvd", ("time", "site"), "deviation vector density w_n", r"$w_n$", lambda run: run.dvd,
                frozenset({TANGENT}), companions=("initial_deviation",)),
     Observable("dvd_participation", ("time",), "participation number of the deviation vector density P_D",

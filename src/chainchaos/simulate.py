@@ -7,19 +7,17 @@ relative energy error is always recorded: it is the guard of every run.
 """
 
 import math
-import sys
-import time as wallclock
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
 import xarray as xr
 
-from chainchaos import exactmath
-from chainchaos.errors import SimulationError, require, require_finite_positive
+from chainchaos import driver, exactmath
+from chainchaos.errors import require, require_finite_positive
 from chainchaos.initial import initial_deviation, initial_state
-from chainchaos.batch import Batch, SerialBatch
 from chainchaos.integrators import get_scheme
-from chainchaos.models import MODELS, get_model, open_bonds, total_energy
+from chainchaos.models import MODELS, get_model
+from chainchaos.problem import Problem
 from chainchaos.provenance import provenance_attrs
 from chainchaos.scene_observables import GAPS, OBSERVABLES, TANGENT, SampledRun, needing, variables
 
@@ -87,25 +85,6 @@ def sample_steps(t_final: float, dt: float, per_decade: int, t_first: float) -> 
     return steps
 
 
-class ProgressReporter:
-    """Prints simulated time, percent done and estimated time left to stderr, every few seconds."""
-
-    def __init__(self, name: str, t_final: float, every: float = 5.0, stream=None):
-        # sys.stderr is looked up when printing, so a redirected stderr (the job's log) is honoured
-        self.name, self.t_final, self.every, self.stream = name, t_final, every, stream
-        self.start = self.last = wallclock.perf_counter()
-
-    def __call__(self, t: float, fraction: float) -> None:
-        now = wallclock.perf_counter()
-        if now - self.last < self.every and fraction < 1.0:
-            return
-        self.last = now
-        elapsed = now - self.start
-        left = elapsed * (1.0 - fraction) / fraction if fraction > 0 else float("nan")
-        print(f"[{self.name}] t = {t:.6g} / {self.t_final:g} ({100 * fraction:5.1f}%), "
-              f"elapsed {elapsed:.1f} s, left ~{left:.1f} s", file=self.stream or sys.stderr, flush=True)
-
-
 #: The settings that scenes integrated together in one batch must share: one step, one sampling
 #: schedule, one force law. Energies, excited beads, deviation vectors and observables may differ.
 BATCH_KEYS = ("model", "integrator", "dt", "t_final", "samples_per_decade", "t_first_sample", "check_every",
@@ -159,59 +138,23 @@ def simulate_scenes(chain, scenes: list[SceneParameters], progress=None) -> list
     chain = chain.with_k4_sign(first.k4_sign)
     model = get_model(first.model)
     wanted = set().union(*(set(s.observables) for s in scenes))
-    tangent, track_gaps = bool(wanted & needing(TANGENT)), bool(wanted & needing(GAPS))
+    problem = Problem(model, [chain] * len(scenes), first.integrator, first.dt, tangent=bool(wanted & needing(TANGENT)),
+                      track_gaps=bool(wanted & needing(GAPS)), check_every=first.check_every)
     N, B = chain.N, len(scenes)
-
     Q0, P0, DQ0, DP0 = (np.zeros((N, B)) for _ in range(4))
     u0, deviation0 = np.zeros(B), np.zeros((B, 2 * N))
     for j, params in enumerate(scenes):
         Q0[:, j], P0[:, j], u0[j] = initial_state(model, chain, params.energy, params.excited_site)
         DQ0[:, j], DP0[:, j] = initial_deviation(N, params.deviation_seed)
         deviation0[j] = np.concatenate([DQ0[:, j], DP0[:, j]])
-    if not tangent:
+    if not problem.tangent:
         DQ0[:], DP0[:] = 0.0, 0.0
-    H0 = np.array([float(total_energy(model, chain, Q0[:, j], P0[:, j])) for j in range(B)])
-    engine_type = Batch if B > 1 else SerialBatch
-    engine = engine_type(model, [chain] * B, Q0, P0, DQ0, DP0, integrator=first.integrator, dt=first.dt,
-                         tangent=tangent, track_gaps=track_gaps, check_every=first.check_every)
-
+    monitors = [driver.EnergyGuard([s.name for s in scenes], [s.max_energy_error for s in scenes])]
+    if progress is not None:
+        monitors.append(driver.progress(progress))
     steps = sample_steps(first.t_final, first.dt, first.samples_per_decade, first.t_first_sample)
-    times = steps * first.dt
-    S = steps.size
-    Q, Pm, DQ, DP = (np.empty((B, S, N)) for _ in range(4))
-    log_growth, energy_error = np.zeros((B, S)), np.zeros((B, S))
-    gap_steps = np.zeros((B, S, N + 1), dtype=np.int64)
-    max_gaps = np.zeros((B, S), dtype=np.int64)
-    Q[:, 0], Pm[:, 0] = Q0.T, P0.T
-    DQ[:, 0], DP[:, 0] = DQ0.T, DP0.T
-    if track_gaps:
-        max_gaps[:, 0] = open_bonds(model, chain, Q0.T).sum(axis=-1)
-
-    for i in range(1, S):
-        engine.gap_steps[:] = 0  # counts and the largest number open are per sample interval
-        engine.max_gaps[:] = 0
-        engine.advance(int(steps[i] - steps[i - 1]))
-        for j, params in enumerate(scenes):
-            if engine.bad[j] >= 0:
-                raise SimulationError(params.name, engine.bad[j] * params.dt,
-                                      "non-finite state (the orbit escaped to infinity or the step is unstable)",
-                                      float("nan"))
-        Q[:, i], Pm[:, i] = engine.q.T, engine.p.T
-        DQ[:, i], DP[:, i] = engine.dq.T, engine.dp.T
-        log_growth[:, i] = engine.log_growth
-        gap_steps[:, i] = engine.gap_steps.T
-        max_gaps[:, i] = engine.max_gaps
-        for j, params in enumerate(scenes):
-            energy_error[j, i] = abs(total_energy(model, chain, Q[j, i], Pm[j, i]) - H0[j]) / abs(H0[j])
-            if not energy_error[j, i] <= params.max_energy_error:
-                raise SimulationError(params.name, times[i], "relative energy error", energy_error[j, i],
-                                      f"{params.max_energy_error:g}")
-        if progress is not None:
-            progress(times[i], steps[i] / steps[-1])
-
-    return [_dataset(chain, params, SampledRun(model, chain, times, steps, Q[j], Pm[j], DQ[j], DP[j], log_growth[j],
-                                               gap_steps[j], max_gaps[j], energy_error[j], deviation0[j]),
-                     u0[j], H0[j])
+    samples = driver.sample(problem, Q0, P0, DQ0, DP0, steps, monitors)
+    return [_dataset(chain, params, samples.run(j, deviation0[j]), u0[j], samples.H0[j])
             for j, params in enumerate(scenes)]
 
 

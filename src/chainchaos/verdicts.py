@@ -162,14 +162,15 @@ def verdict_dataset(scene_name: str, t, runs: list[dict], criteria: Criteria, at
     """One scene's ensemble: the series of every lane and, per statement, every lane's outcome,
     the fraction satisfied and the verdict."""
     from chainchaos.orbits import SERIES
+    from chainchaos.scene_observables import REGISTRY
 
     statements = paper.statements_of_scene(scene_name)
     ev = evaluate(statements, t, runs, criteria)
     verdicts = [ensemble_verdict(row, criteria.agreement) for row in ev["outcome"]]
     one = {"units": "1"}
     data = {
-        key: (("lane", "time"), np.stack([r[key] for r in runs]), {**one, "long_name": long_name})
-        for key, long_name in SERIES.items()
+        key: (("lane", "time"), np.stack([r[key] for r in runs]), {**one, "long_name": REGISTRY[key].long_name})
+        for key in SERIES
     }
     data.update({
         "u0": ("lane", np.array([r["u0"] for r in runs]), {**one, "long_name": "initial displacement of the excited bead"}),

@@ -27,9 +27,10 @@ from scipy import integrate
 
 from chainchaos.errors import require
 from chainchaos.initial import initial_deviation, initial_state
-from chainchaos.integrators import advance, get_scheme
+from chainchaos.integrators import advance
 from chainchaos.models import get_model
 from chainchaos.numerics.rhs import RightHandSide, energy_kernel
+from chainchaos.problem import Problem
 
 IVP_METHODS = ("RK45", "DOP853")
 
@@ -79,7 +80,8 @@ def run_chunks(model, q, p, dq, dp, inv_mass, mass, bonds, kicks, drifts, dt, n_
     return -1
 
 
-def _grid(t: float, dt: float, name: str) -> int:
+def grid_steps(t: float, dt: float, name: str) -> int:
+    """The number of steps dt in the time t (the value of ``name``), which must be a multiple of dt."""
     n = int(round(t / dt))
     require(n >= 1 and abs(n * dt - t) <= 1e-9 * t, name, t, f"a multiple of dt = {dt:g}")
     return n
@@ -108,20 +110,22 @@ def run_scheme(model, chain, energy: float, scheme: str, dt: float, t_final: flo
     of the run are recorded: largest number of simultaneously open bonds, fraction of bond-steps
     open, number of bonds that opened at least once (at step ends).
     """
-    s = get_scheme(scheme)
-    model = get_model(model)
     require(np.isfinite(dt) and dt > 0, "dt", dt, "a finite step > 0")
-    n_total = _grid(t_final, dt, "t_final")
-    n_probe = _grid(t_probe, dt, "t_probe") if t_probe is not None else n_total
+    n_total = grid_steps(t_final, dt, "t_final")
+    n_probe = grid_steps(t_probe, dt, "t_probe") if t_probe is not None else n_total
     require(n_probe <= n_total, "t_probe", t_probe, f"<= t_final = {t_final}")
     chunk = max(1, int(round(check_interval / dt)))
+    model = get_model(model)
+    # a model whose bonds never open has no gaps to count: its statistics stay zero
+    problem = Problem(model, [chain], scheme, dt, tangent, track_gaps and model.has_gaps, check_every=chunk)
+    s = problem.scheme
     segments = [_check_plan(n_probe, chunk), _check_plan(n_total - n_probe, chunk)]
     n_checks = sum(n for seg in segments for n, _ in seg)
 
     q0, p0, _ = initial_state(model, chain, energy, excited_site)
     dq0, dp0 = initial_deviation(chain.N, deviation_seed) if tangent else (np.zeros(chain.N), np.zeros(chain.N))
     N = chain.N
-    inv_mass, bonds = 1.0 / chain.mass, model.bond_parameters(chain)
+    inv_mass, bonds = problem.lane(0)
     H0 = float(energy_kernel(model, q0, p0, chain.mass, bonds, np.empty(N + 1)))
 
     best = math.inf
@@ -136,7 +140,7 @@ def run_scheme(model, chain, energy: float, scheme: str, dt: float, t_final: flo
         for si, seg in enumerate(segments):
             for n_chunks, c in seg:
                 bad = run_chunks(model, q, p, dq, dp, inv_mass, chain.mass, bonds, s.kicks, s.drifts, dt, n_chunks,
-                                 c, tangent, H0, err, offset, stop_error, track_gaps, gap_steps, diagnostics,
+                                 c, tangent, H0, err, offset, stop_error, problem.track_gaps, gap_steps, diagnostics,
                                  *scratch)
                 if bad >= 0:
                     stop_index = offset + bad

@@ -6,7 +6,6 @@ energies in the derived unit); energy errors are relative, |H(t) - H(0)| / H(0).
 """
 
 import math
-import sys
 import time
 
 import numpy as np
@@ -17,9 +16,10 @@ from chainchaos.errors import ParameterError, SimulationError, require
 from chainchaos.initial import excitation_energy, initial_state
 from chainchaos.integrators import get_scheme
 from chainchaos.linear import normal_modes
-from chainchaos.models import get_model
 from chainchaos.numerics.rhs import energy_kernel
-from chainchaos.numerics.runs import run_chunks, run_scheme
+from chainchaos.numerics.runs import grid_steps, run_chunks, run_scheme
+from chainchaos.problem import Problem
+from chainchaos.simulate import sample_steps
 
 
 def harmonic_half_trace(scheme: str, x) -> np.ndarray:
@@ -190,28 +190,22 @@ def energy_drift(model, chain, energy: float, scheme: str, dt: float, t_final: f
     """Long run without tangent dynamics, recording the relative energy error e(t) = (H(t) -
     H(0)) / H(0) every ``check_interval`` time units, reduced to log-spaced windows.
 
-    Returns a dict with the window ends ``time`` (from t_first to t_final, ``samples_per_decade``
-    per decade), ``max_abs_error`` (largest |e| in the window), ``mean_error`` (mean signed e in
+    Returns a dict with the window ends ``time`` (the samples of ``simulate.sample_steps`` from
+    t_first to t_final, ``samples_per_decade`` per decade, on the grid of checks), ``max_abs_error`` (largest |e| in the window), ``mean_error`` (mean signed e in
     the window), ``error`` (e at the window end), the wall ``seconds``, ``n_steps``, and
     ``growth_exponent``: the least-squares slope of log(max |e| over [t/10, t]) against log t over
     the windows with t >= 100 (0 for a bounded error, 1/2 for a random walk, 1 for a linear drift).
     ``progress(t, fraction)`` is called after every window.
     """
-    s = get_scheme(scheme)
-    model = get_model(model)
+    chunk = max(1, int(round(check_interval / dt)))
+    problem = Problem(model, [chain], scheme, dt, tangent=False, check_every=chunk)
+    model, s = problem.model, problem.scheme
     q, p, _ = initial_state(model, chain, energy, excited_site)
     N = chain.N
-    inv_mass, bonds = 1.0 / chain.mass, model.bond_parameters(chain)
+    inv_mass, bonds = problem.lane(0)
     H0 = float(energy_kernel(model, q, p, chain.mass, bonds, np.empty(N + 1)))
-    n_total = int(round(t_final / dt))
-    chunk = max(1, int(round(check_interval / dt)))
-    first = math.log10(t_first)
-    n_win = int(round((math.log10(t_final) - first) * samples_per_decade))
-    window_ends = exactmath.exp10(first + np.arange(n_win + 1) / samples_per_decade)
-    ends = np.unique(np.rint(window_ends / (chunk * dt)).astype(np.int64))
-    ends = ends[(ends >= 1) & (ends * chunk <= n_total)]
-    if ends[-1] * chunk < n_total // chunk * chunk:
-        ends = np.append(ends, n_total // chunk)
+    grid_steps(t_final, chunk * dt, "t_final")
+    ends = sample_steps(t_final, chunk * dt, samples_per_decade, t_first)[1:]  # in checks of chunk steps
     dq, dp = np.zeros(N), np.zeros(N)
     diagnostics, gaps = np.zeros(2), np.zeros(N + 1, dtype=np.int64)
     scratch = [np.empty(N + 1) for _ in range(3)]
@@ -296,24 +290,6 @@ def taylor_sign_probe(chain, energies, t_final: float, dt: float, scheme: str, s
         row["seconds"] = time.perf_counter() - start
         rows.append(row)
     return rows
-
-
-def progress_printer(name: str, every: float = 10.0, stream=None):
-    """A ``progress(t, fraction)`` callable printing to ``stream`` (default: sys.stderr at the
-    time of the call, so that a redirection of stderr is honoured) at most every ``every`` seconds."""
-    state = {"start": time.perf_counter(), "last": -math.inf}
-
-    def report(t, fraction):
-        now = time.perf_counter()
-        if now - state["last"] < every and fraction < 1.0:
-            return
-        state["last"] = now
-        elapsed = now - state["start"]
-        left = elapsed * (1 - fraction) / fraction if fraction > 0 else math.nan
-        print(f"[{name}] t = {t:.6g} ({100 * fraction:5.1f}%), elapsed {elapsed:.0f} s, left ~{left:.0f} s",
-              file=stream or sys.stderr, flush=True)
-
-    return report
 
 
 def chain_at_alpha(chain, alpha: float) -> Chain:

@@ -10,7 +10,8 @@ import xarray as xr
 from chainchaos.io import read_chain, write_netcdf
 from chainchaos.numerics.advice import step_advice
 from chainchaos.numerics.runs import warm_up
-from chainchaos.numerics.stability import (drift_dataset, energy_drift, progress_printer, stability_scan,
+from chainchaos.progress import ProgressReporter
+from chainchaos.numerics.stability import (drift_dataset, energy_drift, stability_scan,
                                            taylor_dataset, taylor_sign_probe)
 from chainchaos.numerics.tables import advice_tables, stability_tables, work_precision_tables
 from chainchaos.numerics.work_precision import work_precision
@@ -79,7 +80,7 @@ def numerics_energy_drift(inputs, outputs, params, wildcards) -> None:
     name = f"drift {s['model']} H={s['energy']:g}"
     r = energy_drift(s["model"], chain, float(s["energy"]), integrator, float(s["dt"]), float(s["t_final"]),
                      check_interval=s.get("check_interval", 1.0), samples_per_decade=s.get("samples_per_decade", 10),
-                     excited_site=s.get("excited_site", 21), progress=progress_printer(name, 30.0))
+                     excited_site=s.get("excited_site", 21), progress=ProgressReporter(name, float(s["t_final"]), 30.0))
     _say(f"{name}: {r['n_steps']} steps in {r['seconds']:.1f} s ({1e9 * r['seconds'] / r['n_steps']:.0f} ns/step), "
          f"max |dH/H| = {r['max_abs_error'].max():.3e}, growth exponent {r['growth_exponent']:.3f}")
     write_netcdf(drift_dataset(r, s["model"], float(s["energy"]), integrator, float(s["dt"]), chain), outputs["data"])

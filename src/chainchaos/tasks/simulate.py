@@ -6,7 +6,8 @@ import time
 import xarray as xr
 
 from chainchaos.io import atomic_output, read_chain, write_netcdf, write_text
-from chainchaos.simulate import ProgressReporter, SceneParameters, warm_up
+from chainchaos.progress import ProgressReporter
+from chainchaos.simulate import SceneParameters, warm_up
 from chainchaos.simulate import simulate_scenes as integrate_scenes
 
 
