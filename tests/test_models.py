@@ -12,7 +12,7 @@ import pytest
 
 from chainchaos.chain import random_chain
 from chainchaos.errors import ParameterError
-from chainchaos.models import MAX_BOND_PARAMETERS, MODELS, get_model, model_label, total_energy
+from chainchaos.models import MAX_BOND_PARAMETERS, MODELS, energy_kernel, get_model, model_label, total_energy
 from chainchaos.models.base import bond_force, bond_force_stiffness, bond_potential
 from numba import njit
 
@@ -65,6 +65,16 @@ def test_every_model_fits_the_engines_and_is_labelled(name):
     assert P.shape == (MAX_BOND_PARAMETERS, CHAIN.N + 1)
     assert np.all(P[len(model.parameter_names):] == 0.0)
     assert total_energy(model, CHAIN, np.zeros(CHAIN.N), np.zeros(CHAIN.N)) == 0.0
+
+
+@pytest.mark.parametrize("name", sorted(MODELS))
+def test_the_compiled_energy_is_the_energy(name):
+    """energy_kernel (sums in order) and total_energy (NumPy's sums) differ only in rounding."""
+    model = MODELS[name]
+    rng = np.random.default_rng(3)
+    u, p = 0.1 * rng.standard_normal(CHAIN.N), 0.1 * rng.standard_normal(CHAIN.N)
+    H = energy_kernel(model, u, p, CHAIN.mass, model.bond_parameters(CHAIN), np.empty(CHAIN.N + 1))
+    assert H > 0 and H == pytest.approx(total_energy(model, CHAIN, u, p), rel=1e-14)
 
 
 def test_models_have_distinct_labels_and_colours():

@@ -74,8 +74,22 @@ def bond_potential_energy(model, chain, u: np.ndarray) -> np.ndarray:
     return out.reshape(u.shape[:-1] + (u.shape[-1] + 1,))
 
 
+@njit(cache=True)
+def energy_kernel(model, q, p, mass, bonds, V):
+    """H of one state, summed in order (``V`` scratch of length N+1): :func:`total_energy` for
+    compiled loops (the energy checks of ``numerics.runs``); the two agree to rounding."""
+    bond_potentials(model, q, bonds, V)
+    H = 0.0
+    for n in range(q.shape[0]):
+        H += 0.5 * p[n] * p[n] / mass[n]
+    for b in range(V.shape[0]):
+        H += V[b]
+    return H
+
+
 def total_energy(model, chain, u: np.ndarray, p: np.ndarray) -> np.ndarray:
-    """H = sum_n p_n^2 / (2 m_n) + sum_b V_b, every bond counted in full (docs/conventions.md)."""
+    """H = sum_n p_n^2 / (2 m_n) + sum_b V_b, every bond counted in full, for one state or many
+    (docs/conventions.md#hamiltonian); NumPy's sums (the initial state is solved on it)."""
     kinetic = np.sum(p**2 / (2.0 * chain.mass), axis=-1)
     return kinetic + bond_potential_energy(model, chain, u).sum(axis=-1)
 
@@ -102,4 +116,4 @@ def open_bonds(model, chain, u: np.ndarray) -> np.ndarray:
 
 
 __all__ = ["MAX_BOND_PARAMETERS", "MODELS", "Model", "bond_forces", "bond_potential_energy", "bond_potentials",
-           "energy_density", "get_model", "model_label", "open_bonds", "total_energy"]
+           "energy_density", "energy_kernel", "get_model", "model_label", "open_bonds", "total_energy"]

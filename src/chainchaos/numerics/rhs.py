@@ -11,7 +11,7 @@ the derived units. The physics is the package's own Numba force kernel
 import numpy as np
 from numba import njit
 
-from chainchaos.models import bond_forces, bond_potentials, get_model
+from chainchaos.models import bond_forces, energy_kernel, get_model
 
 
 @njit(cache=True)
@@ -39,18 +39,6 @@ def rhs_kernel(y, out, model, inv_mass, bonds, tangent, f, k):
                 g_next = k[N] * y[2 * N + N - 1]
             out[3 * N + n] = g_prev - g_next
             g_prev = g_next
-
-
-@njit(cache=True)
-def energy_kernel(model, q, p, mass, bonds, V):
-    """Total energy H = sum p^2/(2m) + sum_b V_b (every bond in full, docs/conventions.md#hamiltonian)."""
-    bond_potentials(model, q, bonds, V)
-    H = 0.0
-    for n in range(q.shape[0]):
-        H += 0.5 * p[n] * p[n] / mass[n]
-    for b in range(V.shape[0]):
-        H += V[b]
-    return H
 
 
 class RightHandSide:

@@ -28,8 +28,8 @@ from scipy import integrate
 from chainchaos.errors import require
 from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.integrators import advance
-from chainchaos.models import get_model
-from chainchaos.numerics.rhs import RightHandSide, energy_kernel
+from chainchaos.models import energy_kernel, get_model
+from chainchaos.numerics.rhs import RightHandSide
 from chainchaos.problem import Problem
 
 IVP_METHODS = ("RK45", "DOP853")

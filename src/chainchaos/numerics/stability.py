@@ -16,7 +16,7 @@ from chainchaos.errors import ParameterError, SimulationError, require
 from chainchaos.initial import excitation_energy, initial_state
 from chainchaos.integrators import get_scheme
 from chainchaos.linear import normal_modes
-from chainchaos.numerics.rhs import energy_kernel
+from chainchaos.models import energy_kernel
 from chainchaos.numerics.runs import grid_steps, run_chunks, run_scheme
 from chainchaos.problem import Problem
 from chainchaos.simulate import sample_steps

@@ -14,6 +14,7 @@ and a scheme's step ladder stops once its errors are within ``floor_factor`` tim
 uncertainty (or the round-off floor): smaller steps would measure the reference, not the scheme.
 """
 
+import json
 import math
 
 import numpy as np
@@ -188,6 +189,17 @@ def work_precision(chain, cases, schemes=None, dts=None, tolerances=None, t_fina
                     seed=-1 if chain.seed is None else int(chain.seed), alpha=float(chain.alpha),
                     comment="status 'skipped': the scheme's errors had reached floor_factor x the reference "
                             "uncertainty (or round-off) at a larger step")
+    return ds
+
+
+def merge_cases(parts: list[xr.Dataset]) -> xr.Dataset:
+    """One Dataset of the cases measured in separate jobs (each a :func:`work_precision` Dataset),
+    along ``case``, with the parameters of every case in its provenance."""
+    ds = xr.concat(parts, dim="case", data_vars="minimal", coords="minimal", compat="override",
+                   combine_attrs="override")
+    parameters = json.loads(parts[0].attrs["parameters"])
+    parameters["cases"] = [c for p in parts for c in json.loads(p.attrs["parameters"])["cases"]]
+    ds.attrs.update(provenance_attrs(parameters))
     return ds
 
 

@@ -1,7 +1,6 @@
 """Tasks of workflow/rules/numerics.smk: the numerical accuracy and stability of the integrators on
 the chosen chain (work precision, stable steps, energy drift, the Taylor sign of K4, step advice)."""
 
-import json
 import sys
 from pathlib import Path
 
@@ -14,8 +13,7 @@ from chainchaos.progress import ProgressReporter
 from chainchaos.numerics.stability import (drift_dataset, energy_drift, stability_scan,
                                            taylor_dataset, taylor_sign_probe)
 from chainchaos.numerics.tables import advice_tables, stability_tables, work_precision_tables
-from chainchaos.numerics.work_precision import work_precision
-from chainchaos.provenance import provenance_attrs
+from chainchaos.numerics.work_precision import merge_cases, work_precision
 
 
 def _say(message: str) -> None:
@@ -42,12 +40,7 @@ def numerics_work_precision_case(inputs, outputs, params, wildcards) -> None:
 def numerics_work_precision(inputs, outputs, params, wildcards) -> None:
     """The cases in one file (results/numerics/work_precision.nc), the tables of observed orders
     (CSV, LaTeX) and the CSV of every run."""
-    parts = [_load(f) for f in inputs["cases"]]
-    ds = xr.concat(parts, dim="case", data_vars="minimal", coords="minimal", compat="override",
-                   combine_attrs="override")
-    parameters = json.loads(parts[0].attrs["parameters"])
-    parameters["cases"] = [c for p in parts for c in json.loads(p.attrs["parameters"])["cases"]]
-    ds.attrs.update(provenance_attrs(parameters))
+    ds = merge_cases([_load(f) for f in inputs["cases"]])
     write_netcdf(ds, outputs["data"])
     work_precision_tables(ds, outputs["orders_csv"], outputs["orders_tex"], outputs["runs_csv"])
 
