@@ -36,8 +36,7 @@ from numba import literally, njit
 
 from chainchaos.errors import require
 from chainchaos.integrators import _aligned_zeros, _renormalise, advance
-from chainchaos.models import MAX_BOND_PARAMETERS, get_model
-from chainchaos.problem import Problem
+from chainchaos.models import MAX_BOND_PARAMETERS
 from chainchaos.models.base import bond_force, bond_force_stiffness, bond_opening
 from chainchaos.simd import LANES, vbelow, vload, vstore
 
@@ -315,19 +314,3 @@ class SerialBatch(Batch):
             if bad >= 0 and self.bad[j] < 0:
                 self.bad[j] = self.steps + bad
         self.steps += int(n_steps)
-
-
-def warm_up(models) -> None:
-    """Compile (or load from the on-disk cache) the batch kernel for each of ``models``, with
-    and without the tangent map, and with gap counting where bonds open."""
-    from chainchaos.chain import random_chain
-
-    chain = random_chain(0, 2.0, 4)
-    for model in map(get_model, models):
-        for gaps in sorted({False, model.has_gaps}):
-            for tangent in (True, False):
-                q = np.zeros((4, 2))
-                q[1] = 0.1
-                problem = Problem(model, [chain, chain], dt=0.1, tangent=tangent, track_gaps=gaps, check_every=3)
-                b = Batch(problem, q, np.zeros((4, 2)), dp=np.full((4, 2), 0.5))
-                b.advance(4)

@@ -11,12 +11,14 @@ progress report (:func:`progress`). Scenes (``chainchaos.simulate``) and orbit s
 j of the record, as a ``scene_observables.SampledRun``, feeds the observable registry.
 """
 
+import os
 from dataclasses import dataclass
 
 import numpy as np
 
 from chainchaos.errors import SimulationError
-from chainchaos.models import open_bonds
+from chainchaos.models import get_model, open_bonds
+from chainchaos.problem import Problem
 from chainchaos.scene_observables import SampledRun
 
 
@@ -89,15 +91,15 @@ class EnergyGuard:
         self.names, self.limits = list(names), list(limits)
 
     def __call__(self, samples: Samples, i: int) -> None:
-        t = samples.times[i]
-        for j, (name, limit) in enumerate(zip(self.names, self.limits)):
+        for j, name in enumerate(self.names):
             if samples.bad[j] >= 0:
                 raise SimulationError(name, samples.bad[j] * samples.problem.dt,
                                       "non-finite state (the orbit escaped to infinity or the step is unstable)",
                                       float("nan"))
         for j, (name, limit) in enumerate(zip(self.names, self.limits)):
             if not samples.energy_error[j, i] <= limit:
-                raise SimulationError(name, t, "relative energy error", samples.energy_error[j, i], f"{limit:g}")
+                raise SimulationError(name, samples.times[i], "relative energy error", samples.energy_error[j, i],
+                                      f"{limit:g}")
 
 
 def progress(report):
@@ -108,3 +110,24 @@ def progress(report):
             report(samples.times[i], samples.steps[i] / samples.steps[-1])
 
     return monitor
+
+
+def warm_up(models=None) -> str:
+    """Compile (or load from the on-disk cache) every kernel a sampled run of ``models`` (default:
+    the models of the paper's scenes) uses: both engines, with and without the tangent map, with
+    gap counting where bonds open, and the energy and gap kernels of the record. Returns the cache
+    directory. A model not warmed up here compiles in the first job that runs it."""
+    from chainchaos import paper
+    from chainchaos.chain import random_chain
+
+    chain = random_chain(0, 2.0, 4)
+    for model in map(get_model, paper.models() if models is None else models):
+        for track_gaps in sorted({False, model.has_gaps}):
+            for tangent in (True, False):
+                for lanes in (1, 2):  # the single-trajectory engine, the batch engine
+                    q = np.zeros((4, lanes))
+                    q[1] = 0.1
+                    problem = Problem(model, [chain] * lanes, dt=0.1, tangent=tangent, track_gaps=track_gaps,
+                                      check_every=3)
+                    sample(problem, q, np.zeros((4, lanes)), None, np.full((4, lanes), 0.5), [0, 4])
+    return os.environ.get("NUMBA_CACHE_DIR", "")

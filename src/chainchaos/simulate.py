@@ -181,21 +181,3 @@ def _dataset(chain, params, run: SampledRun, u0, H0) -> xr.Dataset:
         final_energy_error=float(energy_error[-1]), max_energy_error=float(energy_error.max()),
     )
     return ds
-
-
-def warm_up(models=None) -> str:
-    """Compile (or load from the on-disk cache) every kernel the scenes of ``models`` (default:
-    those of the paper's scenes) use, on both engines; returns the cache directory. A model not
-    warmed up here compiles in the first job that runs it."""
-    import os
-
-    from chainchaos import batch, paper
-    from chainchaos.chain import random_chain
-
-    models = [get_model(m) for m in (paper.models() if models is None else models)]
-    batch.warm_up(models)
-    chain = random_chain(0, 2.0, 4)
-    for model in models:
-        for observables in (("mlce", "n_gaps") if model.has_gaps else ("mlce",), ("participation",)):
-            simulate(chain, SceneParameters(model.name, 0.01, 1.0, 0.1, observables=observables, excited_site=2))
-    return os.environ.get("NUMBA_CACHE_DIR", "")

@@ -9,7 +9,7 @@ import xarray as xr
 
 from chainchaos import scan
 from chainchaos.io import read_chain, write_netcdf, write_text
-from chainchaos.simulate import warm_up
+from chainchaos.driver import warm_up
 
 
 def compile_scan_kernels(inputs, outputs, params, wildcards) -> None:

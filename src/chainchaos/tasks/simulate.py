@@ -5,9 +5,10 @@ import time
 
 import xarray as xr
 
+from chainchaos.driver import warm_up
 from chainchaos.io import atomic_output, read_chain, write_netcdf, write_text
 from chainchaos.progress import ProgressReporter
-from chainchaos.simulate import SceneParameters, warm_up
+from chainchaos.simulate import SceneParameters
 from chainchaos.simulate import simulate_scenes as integrate_scenes
 
 
