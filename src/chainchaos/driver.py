@@ -52,11 +52,11 @@ class Samples:
                           self.energy_error[j], deviation0)
 
 
-def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), engine: str = "auto") -> Samples:
-    """Integrate the lanes of ``problem`` from q0, p0, dq0, dp0 ((N, B) each) on ``engine``
-    (``Problem.engine``) and record them at the step indices ``steps`` (increasing, from 0);
-    call every monitor after every sample."""
-    engine = problem.engine(q0, p0, dq0, dp0, engine)
+def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto") -> Samples:
+    """Integrate the lanes of ``problem`` from q0, p0, dq0, dp0 ((N, B) each) on the engine of
+    ``kind`` (``Problem.engine``) and record them at the step indices ``steps`` (increasing, from
+    0); call every monitor after every sample."""
+    engine = problem.engine(q0, p0, dq0, dp0, kind)
     N, B, S = problem.N, problem.lanes, len(steps)
     Q, P, DQ, DP = (np.empty((B, S, N)) for _ in range(4))
     samples = Samples(problem, np.asarray(steps), Q, P, DQ, DP, np.zeros((B, S)),

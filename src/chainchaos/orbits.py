@@ -140,7 +140,7 @@ def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings) ->
         except ParameterError:
             pass
         DQ0[:, j], DP0[:, j] = initial_deviation(N, settings.deviation_seed + o.lane)
-    samples = driver.sample(problem, Q0, P0, DQ0, DP0, sample_schedule(settings), engine=settings.engine)
+    samples = driver.sample(problem, Q0, P0, DQ0, DP0, sample_schedule(settings), kind=settings.engine)
 
     out = []
     for j in range(B):

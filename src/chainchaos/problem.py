@@ -6,7 +6,7 @@ DynamicalSystems.jl between a problem and the algorithms that solve it): the for
 step dt (units of 1/omega_max, docs/conventions.md#units), and what runs beside the orbit: the
 tangent map with its renormalisation every ``check_every`` steps, and the counting of open gaps.
 The engines (``batch.Batch``, ``batch.SerialBatch``), the sampling driver (``chainchaos.driver``),
-the measured runs of ``chainchaos.numerics`` and the benchmarks all start from one.
+the measured runs of ``chainchaos.numerics`` and the batch benchmark all start from one.
 """
 
 from dataclasses import dataclass

@@ -191,10 +191,11 @@ def energy_drift(model, chain, energy: float, scheme: str, dt: float, t_final: f
     H(0)) / H(0) every ``check_interval`` time units, reduced to log-spaced windows.
 
     Returns a dict with the window ends ``time`` (the samples of ``simulate.sample_steps`` from
-    t_first to t_final, ``samples_per_decade`` per decade, on the grid of checks), ``max_abs_error`` (largest |e| in the window), ``mean_error`` (mean signed e in
-    the window), ``error`` (e at the window end), the wall ``seconds``, ``n_steps``, and
-    ``growth_exponent``: the least-squares slope of log(max |e| over [t/10, t]) against log t over
-    the windows with t >= 100 (0 for a bounded error, 1/2 for a random walk, 1 for a linear drift).
+    t_first to t_final, ``samples_per_decade`` per decade, on the grid of checks),
+    ``max_abs_error`` (largest |e| in the window), ``mean_error`` (mean signed e in the window),
+    ``error`` (e at the window end), the wall ``seconds``, ``n_steps``, and ``growth_exponent``:
+    the least-squares slope of log(max |e| over [t/10, t]) against log t over the windows with
+    t >= 100 (0 for a bounded error, 1/2 for a random walk, 1 for a linear drift).
     ``progress(t, fraction)`` is called after every window.
     """
     chunk = max(1, int(round(check_interval / dt)))
