@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from chainchaos import random_chain
-from chainchaos.batch import Batch
+from chainchaos.batch import SERIAL_REMAINDER, Batch
 from chainchaos.simd import LANES
 from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.integrators import SCHEMES, advance, get_scheme
@@ -78,13 +78,17 @@ def test_every_lane_matches_the_single_engine(name, integrator):
         assert batch.max_gaps.max() >= 2  # the high energies do open gaps: the check is not vacuous
 
 
-def test_a_batch_of_several_blocks_matches_lane_by_lane():
-    """B = 2 * LANES + 3 trajectories: two full blocks and a padded one, each lane exact."""
-    B = 2 * LANES + 3
+@pytest.mark.parametrize("kind, block_lanes", [("batch", 2 * LANES + SERIAL_REMAINDER), ("auto", 2 * LANES),
+                                               ("single", 0)])
+def test_a_batch_of_several_blocks_matches_lane_by_lane(kind, block_lanes):
+    """B = 2 * LANES + SERIAL_REMAINDER trajectories: two full blocks and a padded one ("batch"),
+    the remainder on the single engine ("auto") or every lane there ("single"); each lane exact."""
+    B = 2 * LANES + SERIAL_REMAINDER
     chains = [random_chain(s, 5.0) for s in range(100, 100 + B)]
     energies = np.geomspace(0.2, 10.0, B)
     q, p, dq, dp = lanes("hertz", chains, energies, [21] * B)
-    batch = Batch(Problem("hertz", chains, dt=0.01, track_gaps=True, check_every=50), q, p, dq, dp)
+    batch = Problem("hertz", chains, dt=0.01, track_gaps=True, check_every=50).engine(q, p, dq, dp, kind)
+    assert batch.block_lanes == block_lanes
     batch.advance(300)
     assert_lanes_match_single_runs("hertz", chains, batch, q, p, dq, dp, "SRKN6b", (300,), 50, True)
 

@@ -24,7 +24,6 @@ _PROBE = """
 import sys
 import numpy as np
 from chainchaos import random_chain, simd
-from chainchaos.batch import Batch, SerialBatch
 from chainchaos.initial import initial_deviation, initial_state
 from chainchaos.models import MODELS
 from chainchaos.problem import Problem
@@ -36,8 +35,9 @@ for name, model in MODELS.items():
     q, p = np.stack([s[0] for s in states], 1), np.stack([s[1] for s in states], 1)
     dq, dp = initial_deviation(40, 1)
     dq, dp = np.tile(dq[:, None], (1, 5)), np.tile(dp[:, None], (1, 5))
-    for engine in (Batch, SerialBatch):
-        b = engine(Problem(name, chains, dt=0.01, tangent=True, track_gaps=model.has_gaps, check_every=97), q, p, dq, dp)
+    for kind in ("batch", "single", "auto"):
+        problem = Problem(name, chains, dt=0.01, tangent=True, track_gaps=model.has_gaps, check_every=97)
+        b = problem.engine(q, p, dq, dp, kind)
         b.advance(700)
         b.advance(300)
         out += [b.q, b.p, b.dq, b.dp, b.log_growth, b.gap_steps.astype(float), b.max_gaps.astype(float)]

@@ -4,10 +4,10 @@
 makes separate passes over the bonds (forces, kick, drift), each storing what the next one loads.
 Here the trajectories go in blocks of ``LANES`` (the SIMD width fitted to the CPU,
 ``chainchaos.simd``), one lane per trajectory: a drift, the forces and stiffnesses at the new
-positions and a kick are one sweep over the bonds that keeps the neighbouring beads' vectors, and
-a bead's momenta from its drift to its kick, in registers, so the square roots of the Hertz force
-overlap with the rest of the work; forces are stored only where the next step's first kick reuses
-them. A block's state and parameters live in one 64-byte aligned buffer, row by row (row r: the
+positions and a kick are one sweep over the bonds that keeps the neighbouring beads' vectors and
+the bonds' forces in registers, each bond's work spread over three iterations so that the square
+roots of the Hertz force overlap with the rest of the work; forces are stored only where the next
+step's first kick reuses them. A block's state and parameters live in one 64-byte aligned buffer, row by row (row r: the
 LANES lanes of each of the ``QUANTITIES`` in turn): all a sweep touches fits in L1 cache, every
 vector load is aligned, and no two quantities that one iteration reads and writes sit 4 KiB apart
 (separately allocated arrays made the timing vary from one process to the next).
@@ -15,9 +15,9 @@ vector load is aligned, and no two quantities that one iteration reads and write
 The trajectories of a batch share the model, the scheme, dt and the number of steps; each has its
 own state, deviation vector and chain parameters (per-trajectory arrays shaped (N+1, B) for bond
 parameters and (N, B) for inverse masses: one chain repeated, or B different realizations). A
-batch of any size B is padded to whole blocks by repeating its last trajectory.
-:class:`SerialBatch` offers the same interface on the single-trajectory engine, the cheaper one
-for a lane or two.
+batch of any size B is padded to whole blocks by repeating its last trajectory, or its last
+lanes run on the single-trajectory engine (:class:`Batch`'s ``serial_lanes``): a block costs
+more than :data:`SERIAL_REMAINDER` single-engine trajectories, whatever its padding.
 
 Semantics are those of ``integrators.advance`` lane by lane, to the bit (tests/test_batch.py,
 tests/test_lane_width.py, at every width): the same kick/drift table (``integrators.SCHEMES``),
@@ -40,6 +40,10 @@ from chainchaos.models import MAX_BOND_PARAMETERS
 from chainchaos.models.base import bond_force, bond_force_stiffness, bond_opening
 from chainchaos.simd import LANES, vbelow, vload, vstore
 
+#: Up to this many lanes beyond whole blocks are cheaper on the single-trajectory engine than in
+#: a padded block, at both vector widths (``benchmarks/batch_throughput.py`` prints both costs).
+SERIAL_REMAINDER = 2
+
 #: The per-row contents of a block's buffer, LANES doubles each. Row r of U and DQ is bead r-1
 #: (the walls are rows 0 and N+1); row n of P, DP and IM is bead n; row b of the bond parameters
 #: B0, B1, B2 (the model's, ``models.base``) and of the bond force F and stiffness K is bond b,
@@ -59,38 +63,31 @@ def _bond_parameters(Z, bond):
 
 @njit(cache=True, error_model="numpy")
 def _sweep(model, tangent, drift, kick, keep_forces, N, Z, a, c):
-    """One pass over the bonds b = 0..N of a block: (if ``drift``) drift(a) of bead b, then (if
-    ``kick``) the force and stiffness of bond b at the new positions and kick(c) of bead b-1,
-    whose two bonds are then both up to date; with ``keep_forces`` the forces and stiffnesses are
-    stored for a kick that follows without a drift. A bead's momenta stay in registers from its
-    drift to its kick, and a bond's force f and tangent force g = k (dq_{b-1} - dq_b) from the
-    kick of the bead on its left to that of the bead on its right: each is computed once. Per lane
-    the operations are those of ``integrators.advance``, in the same order. Row N (no bead) has zero momenta and inverse masses, so its drift leaves the right
-    wall at zero and the loop needs no branch."""
+    """One pass over the bonds b = 0..N of a block: (if ``drift``) drift(a) of every bead, (if
+    ``kick``) the force and stiffness of every bond at the new positions and kick(c) of every
+    bead; with ``keep_forces`` the forces and stiffnesses are stored for a kick that follows
+    without a drift. Iteration b drifts bead b+1, computes bond b (between beads b-1 and b, both
+    drifted) and kicks bead b-2 (whose bonds were computed in the two iterations before), so that
+    the long chain of one bond, drift - force (a square root for Hertz) - kick, is spread over
+    three iterations: the CPU overlaps the bonds instead of holding one bond's chain in its
+    schedulers. A bond's force f and tangent force g = k (dq_{b-1} - dq_b) stay in registers until
+    both kicks that use them are done: each is computed once. Per lane the operations are those
+    of ``integrators.advance``, in the same order. Row N (no bead) has zero momenta and inverse
+    masses, so its drift leaves the right wall at zero."""
     literally(tangent)
     literally(drift)
     literally(kick)
     literally(keep_forces)
     u_left = vload(Z, _U)  # the wall
     dq_left = vload(Z, _DQ)  # deviation of bead b-1
-    p_left = vload(Z, _P)  # momenta of bead b-1 (row 0 is bead 0: its kick comes at b = 1)
-    dp_left = p_left
-    f_left = p_left  # force of bond b-1
-    g_left = p_left  # tangent force k (dq_{b-2} - dq_{b-1}) of bond b-1
+    u_right, dq_right = _drift_bead(drift, tangent, Z, 0, a)
+    f1 = f2 = g1 = g2 = u_left  # f, g of bonds b-1 and b-2
     for b in range(N + 1):
         bond = b * ROW
-        bead = bond + ROW  # row of bead b in U and DQ
-        u_right = vload(Z, bead + _U)
-        dq_right = vload(Z, bead + _DQ)
-        p_right = vload(Z, bond + _P)
-        dp_right = vload(Z, bond + _DP) if tangent else p_right
-        if drift:
-            im = vload(Z, bond + _IM)
-            u_right = u_right + a * im * p_right
-            vstore(Z, bead + _U, u_right)
-            if tangent:
-                dq_right = dq_right + a * im * dp_right
-                vstore(Z, bead + _DQ, dq_right)
+        if b < N:
+            u_next, dq_next = _drift_bead(drift, tangent, Z, bond + ROW, a)
+        else:
+            u_next, dq_next = u_right, dq_right
         if kick:
             parameters = _bond_parameters(Z, bond)
             if tangent:
@@ -103,15 +100,39 @@ def _sweep(model, tangent, drift, kick, keep_forces, N, Z, a, c):
                 if tangent:
                     vstore(Z, bond + _K, k)
             g = k * (dq_left - dq_right) if tangent else f
-            if b >= 1:
-                m = bond - ROW  # bead b-1
-                vstore(Z, m + _P, p_left + c * (f_left - f))
-                if tangent:
-                    vstore(Z, m + _DP, dp_left + c * (g_left - g))
-            f_left, g_left = f, g
-        u_left = u_right
-        dq_left = dq_right
-        p_left, dp_left = p_right, dp_right
+            if b >= 2:
+                _kick_bead(tangent, Z, bond - 2 * ROW, c, f2, f1, g2, g1)
+            f2, g2, f1, g1 = f1, g1, f, g
+        u_left, dq_left = u_right, dq_right
+        u_right, dq_right = u_next, dq_next
+    if kick:
+        _kick_bead(tangent, Z, (N - 1) * ROW, c, f2, f1, g2, g1)
+
+
+@njit(cache=True, inline="always")
+def _drift_bead(drift, tangent, Z, bond, a):
+    """(u, dq) of the bead whose momenta are in row ``bond`` (its displacement in row bond + ROW),
+    drifted by a if ``drift``: u += a M^-1 p, dq += a M^-1 dp."""
+    bead = bond + ROW
+    u = vload(Z, bead + _U)
+    dq = vload(Z, bead + _DQ)
+    if drift:
+        im = vload(Z, bond + _IM)
+        u = u + a * im * vload(Z, bond + _P)
+        vstore(Z, bead + _U, u)
+        if tangent:
+            dq = dq + a * im * vload(Z, bond + _DP)
+            vstore(Z, bead + _DQ, dq)
+    return u, dq
+
+
+@njit(cache=True, inline="always")
+def _kick_bead(tangent, Z, row, c, f_left, f_right, g_left, g_right):
+    """kick(c) of the bead of ``row`` between bonds whose forces are f_left and f_right (tangent
+    forces g_left, g_right): p += c (f_left - f_right), dp += c (g_left - g_right)."""
+    vstore(Z, row + _P, vload(Z, row + _P) + c * (f_left - f_right))
+    if tangent:
+        vstore(Z, row + _DP, vload(Z, row + _DP) + c * (g_left - g_right))
 
 
 @njit(cache=True, error_model="numpy")
@@ -188,10 +209,10 @@ def _advance_block(model, tangent, N, Z, kicks, drifts, dt, n_steps, check_every
 
 @njit(cache=True, error_model="numpy")
 def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, tangent, check_every, track_gaps,
-                  gap_steps, log_growth, max_gaps, bad):
-    """Advance B trajectories (q, p) of ``model`` (a ``chainchaos.models`` Model), shape (N, B),
-    and, if ``tangent``, their deviation vectors (dq, dp) by n_steps steps of the scheme (kicks,
-    drifts).
+                  gap_steps, log_growth, max_gaps, bad, lanes):
+    """Advance the first ``lanes`` of the B trajectories (q, p) of ``model`` (a ``chainchaos.models``
+    Model), shape (N, B), and, if ``tangent``, their deviation vectors (dq, dp) by n_steps steps of
+    the scheme (kicks, drifts), in blocks of LANES (the last padded by repeating its last lane).
 
     inv_mass (N, B); bonds (MAX_BOND_PARAMETERS, N+1, B), the model's bond parameters, bond b
     joining beads b-1 and b (walls at b = 0 and b = N). Every ``check_every`` steps and at the
@@ -201,7 +222,8 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
     ``gap_steps[b, j]`` counts the steps bond b of lane j ends open and ``max_gaps[j]`` keeps the
     largest number of simultaneously open bonds. All arrays are updated in place.
     """
-    N, B = q.shape
+    N = q.shape[0]
+    B = lanes
     Z = _aligned_zeros((N + 2) * ROW)
     block_gaps = _aligned_zeros((N + 1) * LANES)  # counts as doubles, exact below 2**53
     block_growth = np.zeros(LANES)
@@ -246,14 +268,16 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
 
 
 class Batch:
-    """The lanes of a :class:`~chainchaos.problem.Problem` advanced together by ``advance_batch``.
+    """The lanes of a :class:`~chainchaos.problem.Problem` advanced together: the first lanes in
+    SIMD blocks by ``advance_batch``, the last ``serial_lanes`` one after the other by the
+    single-trajectory engine (``integrators.advance``), with the same numbers either way.
 
     ``q, p, dq, dp`` are (N, B) arrays (trajectory index last); ``log_growth`` (B,) accumulates
     ln|v| over renormalisations, so Lambda(t) = log_growth / t as in ``integrators.advance``;
     ``gap_steps`` (N+1, B) and ``max_gaps`` (B,) accumulate the gap counts (the caller resets them).
     """
 
-    def __init__(self, problem, q, p, dq=None, dp=None):
+    def __init__(self, problem, q, p, dq=None, dp=None, serial_lanes: int = 0):
         self.problem, self.model, self.scheme = problem, problem.model, problem.scheme
         self.inv_mass, self.bonds = problem.lane_parameters
         self.q = np.ascontiguousarray(q, dtype=float).copy()
@@ -263,6 +287,9 @@ class Batch:
         self.dq = np.zeros(shape) if dq is None else np.ascontiguousarray(dq, dtype=float).copy()
         self.dp = np.zeros(shape) if dp is None else np.ascontiguousarray(dp, dtype=float).copy()
         N, B = shape
+        require(0 <= int(serial_lanes) <= B, "serial_lanes", serial_lanes, f"an integer from 0 to the {B} lanes")
+        self.block_lanes = B - int(serial_lanes)
+        self._serial = {j: problem.lane(j) for j in range(self.block_lanes, B)}
         self.gap_steps = np.zeros((N + 1, B), dtype=np.int64)
         self.max_gaps = np.zeros(B, dtype=np.int64)
         self.log_growth = np.zeros(B)
@@ -280,37 +307,26 @@ class Batch:
             return
         pr = self.problem
         bad = np.full(self.size, -1, dtype=np.int64)
-        advance_batch(self.model, self.q, self.p, self.dq, self.dp, self.inv_mass, self.bonds, self.scheme.kicks,
-                      self.scheme.drifts, pr.dt, int(n_steps), pr.tangent, pr.check_every, pr.track_gaps,
-                      self.gap_steps, self.log_growth, self.max_gaps, bad)
+        if self.block_lanes:
+            advance_batch(self.model, self.q, self.p, self.dq, self.dp, self.inv_mass, self.bonds, self.scheme.kicks,
+                          self.scheme.drifts, pr.dt, int(n_steps), pr.tangent, pr.check_every, pr.track_gaps,
+                          self.gap_steps, self.log_growth, self.max_gaps, bad, self.block_lanes)
+        for j, lane in self._serial.items():
+            bad[j] = self._advance_serial(j, lane, int(n_steps))
         newly = (bad >= 0) & (self.bad < 0)
         self.bad[newly] = self.steps + bad[newly]
         self.steps += int(n_steps)
 
-
-class SerialBatch(Batch):
-    """The interface of :class:`Batch` on the single-trajectory engine (``integrators.advance``),
-    one lane after the other: the cheaper engine for one lane or a few, with the same numbers."""
-
-    def __init__(self, *args, **kwargs):
-        super().__init__(*args, **kwargs)
-        self._lanes = [self.problem.lane(j) for j in range(self.size)]
-
-    def advance(self, n_steps: int) -> None:
-        if n_steps <= 0:
-            return
+    def _advance_serial(self, j: int, lane: tuple, n_steps: int) -> int:
+        """Lane j on the single-trajectory engine; returns its ``bad`` of this call."""
         pr = self.problem
-        N, B = self.q.shape
-        f, k = np.empty(N + 1), np.empty(N + 1)
-        for j in range(B):
-            q, p, dq, dp = (np.ascontiguousarray(a[:, j]) for a in (self.q, self.p, self.dq, self.dp))
-            diagnostics = np.array([self.log_growth[j], float(self.max_gaps[j])])
-            gaps = np.ascontiguousarray(self.gap_steps[:, j])
-            bad = advance(self.model, q, p, dq, dp, *self._lanes[j], self.scheme.kicks, self.scheme.drifts, pr.dt,
-                          int(n_steps), pr.tangent, pr.check_every, pr.track_gaps, gaps, diagnostics, f, k)
-            self.q[:, j], self.p[:, j], self.dq[:, j], self.dp[:, j] = q, p, dq, dp
-            self.gap_steps[:, j] = gaps
-            self.log_growth[j], self.max_gaps[j] = diagnostics[0], int(diagnostics[1])
-            if bad >= 0 and self.bad[j] < 0:
-                self.bad[j] = self.steps + bad
-        self.steps += int(n_steps)
+        N = self.q.shape[0]
+        q, p, dq, dp = (np.ascontiguousarray(a[:, j]) for a in (self.q, self.p, self.dq, self.dp))
+        diagnostics = np.array([self.log_growth[j], float(self.max_gaps[j])])
+        gaps = np.ascontiguousarray(self.gap_steps[:, j])
+        bad = advance(self.model, q, p, dq, dp, *lane, self.scheme.kicks, self.scheme.drifts, pr.dt, n_steps,
+                      pr.tangent, pr.check_every, pr.track_gaps, gaps, diagnostics, np.empty(N + 1), np.empty(N + 1))
+        self.q[:, j], self.p[:, j], self.dq[:, j], self.dp[:, j] = q, p, dq, dp
+        self.gap_steps[:, j] = gaps
+        self.log_growth[j], self.max_gaps[j] = diagnostics[0], int(diagnostics[1])
+        return bad

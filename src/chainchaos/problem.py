@@ -5,7 +5,7 @@ DynamicalSystems.jl between a problem and the algorithms that solve it): the for
 ``chainchaos.models``), one chain per lane, the splitting scheme (``integrators.SCHEMES``) and its
 step dt (units of 1/omega_max, docs/conventions.md#units), and what runs beside the orbit: the
 tangent map with its renormalisation every ``check_every`` steps, and the counting of open gaps.
-The engines (``batch.Batch``, ``batch.SerialBatch``), the sampling driver (``chainchaos.driver``),
+The engine (``batch.Batch``: SIMD blocks, or the single-trajectory engine lane by lane), the sampling driver (``chainchaos.driver``),
 the measured runs of ``chainchaos.numerics`` and the batch benchmark all start from one.
 """
 
@@ -81,11 +81,15 @@ class Problem:
 
     def engine(self, q, p, dq=None, dp=None, kind: str = "auto"):
         """The engine of this problem from the states q, p (and deviations dq, dp), each (N, B):
-        ``kind`` "batch" (``batch.Batch``), "single" (``batch.SerialBatch``, the single-trajectory
-        engine lane after lane) or "auto" (batch for several lanes, single for one); every kind
-        gives the same numbers."""
-        from chainchaos.batch import Batch, SerialBatch
+        ``kind`` "batch" (every lane in SIMD blocks of the batch engine, the last block padded),
+        "single" (the single-trajectory engine, lane after lane) or "auto" (blocks, and a
+        remainder of up to ``batch.SERIAL_REMAINDER`` lanes beyond them on the single engine);
+        every kind gives the same numbers."""
+        from chainchaos.batch import SERIAL_REMAINDER, Batch
+        from chainchaos.simd import LANES
 
         require(kind in ENGINES, "engine", kind, f"one of {ENGINES}")
-        batch = kind == "batch" or (kind == "auto" and self.lanes > 1)
-        return (Batch if batch else SerialBatch)(self, q, p, dq, dp)
+        remainder = self.lanes % LANES
+        serial = {"batch": 0, "single": self.lanes,
+                  "auto": remainder if remainder <= SERIAL_REMAINDER else 0}[kind]
+        return Batch(self, q, p, dq, dp, serial_lanes=serial)
