@@ -65,6 +65,15 @@ def test_every_rule_runs_the_script_and_task_named_like_it():
         assert TASKS[name].__module__ == f"chainchaos.tasks.{path.stem}", name
 
 
+def test_a_script_s_task_is_found_through_its_rule_file_alone():
+    """A job imports only the task module named like its rule's file (the scripts' `scriptdir`)."""
+    code = ("import sys, types\nfrom chainchaos.tasks import _task\n"
+            f"task = _task(types.SimpleNamespace(rule='plot_panel', scriptdir={str(SCRIPTS)!r}))\n"
+            "print(task.__module__, sorted(m for m in sys.modules if m.startswith(('chainchaos.tasks.', 'numba'))))")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert done.stdout.split(" ", 1) == ["chainchaos.tasks.figures", "['chainchaos.tasks.figures']\n"]
+
+
 def test_every_task_and_script_belongs_to_a_rule():
     scripted = {name for name, (_, text) in rules().items() if script_of(text)}
     assert set(TASKS) == scripted

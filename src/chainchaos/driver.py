@@ -115,19 +115,24 @@ def progress(report):
 def warm_up(models=None) -> str:
     """Compile (or load from the on-disk cache) every kernel a sampled run of ``models`` (default:
     the models of the paper's scenes) uses: both engines, with and without the tangent map, with
-    gap counting where bonds open, and the energy and gap kernels of the record. Returns the cache
-    directory. A model not warmed up here compiles in the first job that runs it."""
+    gap counting where bonds open, the energy and gap kernels of the record, and those of every
+    observable the model has (modes, logarithms). Returns the cache directory. A model not warmed
+    up here compiles in the first job that runs it."""
     from chainchaos import paper
     from chainchaos.chain import random_chain
+    from chainchaos.scene_observables import variables
+    from chainchaos.simulate import model_observables, sample_steps
 
     chain = random_chain(0, 2.0, 4)
+    q, p, dq, dp = np.zeros((4, 2)), np.zeros((4, 2)), np.zeros((4, 2)), np.full((4, 2), 0.5)
+    q[1] = 0.1
     for model in map(get_model, paper.models() if models is None else models):
         for track_gaps in sorted({False, model.has_gaps}):
             for tangent in (True, False):
-                for lanes in (1, 2):  # the single-trajectory engine, the batch engine
-                    q = np.zeros((4, lanes))
-                    q[1] = 0.1
-                    problem = Problem(model, [chain] * lanes, dt=0.1, tangent=tangent, track_gaps=track_gaps,
+                for kind in ("single", "batch"):
+                    problem = Problem(model, [chain] * 2, dt=0.1, tangent=tangent, track_gaps=track_gaps,
                                       check_every=3)
-                    sample(problem, q, np.zeros((4, lanes)), None, np.full((4, lanes), 0.5), [0, 4])
+                    samples = sample(problem, q, p, dq, dp, sample_steps(0.4, 0.1, 2, 0.1), kind=kind)
+                    if tangent and track_gaps == model.has_gaps and kind == "batch":
+                        variables(samples.run(0, np.concatenate([dq[:, 0], dp[:, 0]])), model_observables(model.name))
     return os.environ.get("NUMBA_CACHE_DIR", "")

@@ -34,6 +34,11 @@ class SimulationError(RuntimeError):
         super().__init__(f"scene {scene!r} stopped at t = {time:.6g}: {quantity} = {value:.6g}{detail}")
 
 
+class BuildError(RuntimeError):
+    """A build failure with a message for the reader (no traceback is shown): TeX missing, a
+    LaTeX error (chainchaos.manuscript)."""
+
+
 def require(condition: bool, name: str, value, allowed: str) -> None:
     """Raise :class:`ParameterError` unless ``condition`` holds."""
     if not condition:

@@ -16,16 +16,13 @@ import subprocess
 import sys
 from pathlib import Path
 
+from chainchaos.errors import BuildError
 from chainchaos.io import atomic_output
 
 TEX_PACKAGES = "texlive-latex-base texlive-latex-recommended texlive-publishers latexmk"
 #: The generated fragments: input key -> file name under generated/ in the build.
 GENERATED = {"macros": "macros.tex", "table": "claims_table.tex", "notes": "claims_notes.tex",
              "scenes": "scenes_table.tex", "thresholds": "thresholds.tex", "search": "search_table.tex"}
-
-
-class BuildError(RuntimeError):
-    """A build failure with a message for the reader (no traceback is shown)."""
 
 
 def missing_tex() -> list[str]:

@@ -20,26 +20,11 @@ localrules:
     scan_thresholds,
 
 
-rule compile_scan_kernels:
-    """Compile the batch (and single-trajectory) kernels once before the group jobs fan out."""
-    output:
-        flag=result("scan", "kernels_compiled.txt"),
-    log:
-        log_file("compile_scan_kernels"),
-    benchmark:
-        benchmark_file("compile_scan_kernels")
-    resources:
-        mem_mb=2000,
-        runtime=15,
-    script:
-        "../scripts/compile_scan_kernels.py"
-
-
 rule scan_energy_group:
     """One group of (model, energy) trajectories on the chosen chain."""
     input:
         chain=result("chain", "chain.nc"),
-        kernels=result("scan", "kernels_compiled.txt"),
+        kernels=result("kernels_compiled.txt"),
     output:
         group=result("scan", "groups", "energy_scan", "{group}.nc"),
     params:
@@ -58,7 +43,7 @@ rule scan_energy_group:
 rule scan_disorder_group:
     """One group of (model, realization, energy) trajectories on alpha = 5 realizations."""
     input:
-        kernels=result("scan", "kernels_compiled.txt"),
+        kernels=result("kernels_compiled.txt"),
     output:
         group=result("scan", "groups", "disorder", "{group}.nc"),
     params:

@@ -11,8 +11,8 @@ wildcard_constraints:
 
 
 rule compile_kernels:
-    """Compile the Numba kernels once into the on-disk cache before the simulations fan out.
-    An edit to a kernel's source reruns it, and so the scenes."""
+    """Compile the Numba kernels once into the on-disk cache before the simulations, scans and
+    the search fan out. An edit to a kernel's source reruns it, and every integration after it."""
     input:
         sources=[str(path) for path in kernel_sources()],
     output:
@@ -21,6 +21,9 @@ rule compile_kernels:
         log_file("compile_kernels"),
     benchmark:
         benchmark_file("compile_kernels")
+    resources:
+        mem_mb=2000,
+        runtime=15,
     script:
         "../scripts/compile_kernels.py"
 

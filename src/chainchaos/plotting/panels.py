@@ -13,7 +13,6 @@ import xarray as xr
 from matplotlib.colors import LogNorm, Normalize, to_rgb
 from matplotlib.figure import Figure
 from matplotlib.ticker import LogLocator, MaxNLocator, NullLocator
-from statsmodels.nonparametric.smoothers_lowess import lowess
 
 from chainchaos import paper
 from chainchaos.plotting import style
@@ -116,6 +115,8 @@ def _scene_title(ax, ds: xr.Dataset) -> None:
 
 def _smoothed_curve(ax, t: np.ndarray, y: np.ndarray, color, linestyle="-", label=None) -> None:
     """LOWESS smoothing of y against log10 t, with the raw values faintly behind it."""
+    from statsmodels.nonparametric.smoothers_lowess import lowess  # only the panels that smooth load it
+
     ax.plot(t, y, color=color, linewidth=0.5, alpha=style.RAW_ALPHA)
     fraction = max(LOWESS_FRACTION, LOWESS_MIN_SAMPLES / t.size)  # short runs: still a real fit
     fit = lowess(y, np.log10(t), frac=fraction, return_sorted=True)

@@ -14,7 +14,7 @@ def evaluate_claims(inputs, outputs, params, wildcards) -> None:
 
 def build_manuscript(inputs, outputs, params, wildcards) -> None:
     """latexmk in the build directory on a copy of manuscript/ms.tex and of its inputs; a
-    :class:`~chainchaos.manuscript.BuildError` (TeX missing, a LaTeX error) names what to do."""
+    :class:`~chainchaos.errors.BuildError` (TeX missing, a LaTeX error) names what to do."""
     figures = {k: v for k, v in inputs.items() if k.startswith("fig")}
     numerics = {k[len("numerics_"):]: v for k, v in inputs.items() if k.startswith("numerics_")}
     manuscript.build(inputs["tex"], {k: inputs[k] for k in manuscript.GENERATED}, figures, numerics, outputs["pdf"],

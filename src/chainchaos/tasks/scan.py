@@ -9,16 +9,6 @@ import xarray as xr
 
 from chainchaos import scan
 from chainchaos.io import read_chain, write_netcdf, write_text
-from chainchaos.driver import warm_up
-
-
-def compile_scan_kernels(inputs, outputs, params, wildcards) -> None:
-    """Compile both engines once into Numba's on-disk cache before the scan jobs fan out."""
-    start = time.perf_counter()
-    cache = warm_up()
-    text = f"batch and single-trajectory kernels compiled in {time.perf_counter() - start:.1f} s; cache {cache}\n"
-    print(text, file=sys.stderr, end="")
-    write_text(text, outputs["flag"])
 
 
 def _run_group(kind: str, group: int, compute, out) -> None:
@@ -99,5 +89,5 @@ def scan_thresholds(inputs, outputs, params, wildcards) -> None:
     write_text(scan.thresholds_tex(rows, ds), outputs["tex"])
 
 
-TASKS = (compile_scan_kernels, scan_energy_group, scan_disorder_group, merge_energy_scan, merge_disorder,
+TASKS = (scan_energy_group, scan_disorder_group, merge_energy_scan, merge_disorder,
          plot_energy_scan, plot_disorder_statistics, scan_thresholds)
