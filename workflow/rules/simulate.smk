@@ -2,6 +2,8 @@
 # computing only the observables its panels use, then one file per scene.
 
 
+import os
+
 from chainchaos._numba_cache import kernel_sources
 
 
@@ -14,7 +16,7 @@ rule compile_kernels:
     """Compile the Numba kernels once into the on-disk cache before the simulations, scans and
     the search fan out. An edit to a kernel's source reruns it, and every integration after it."""
     input:
-        sources=[str(path) for path in kernel_sources()],
+        sources=[os.path.relpath(path) for path in kernel_sources()],
     output:
         flag=result("kernels_compiled.txt"),
     log:
