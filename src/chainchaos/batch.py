@@ -7,10 +7,11 @@ Here the trajectories go in blocks of ``LANES`` (the SIMD width fitted to the CP
 positions and a kick are one sweep over the bonds that keeps the neighbouring beads' vectors and
 the bonds' forces in registers, each bond's work spread over three iterations so that the square
 roots of the Hertz force overlap with the rest of the work; forces are stored only where the next
-step's first kick reuses them. A block's state and parameters live in one 64-byte aligned buffer, row by row (row r: the
-LANES lanes of each of the ``QUANTITIES`` in turn): all a sweep touches fits in L1 cache, every
-vector load is aligned, and no two quantities that one iteration reads and writes sit 4 KiB apart
-(separately allocated arrays made the timing vary from one process to the next).
+step's first kick reuses them. A block's state and parameters live in one 64-byte aligned buffer,
+row by row (row r: the LANES lanes of each of the ``QUANTITIES`` in turn): all a sweep touches
+fits in L1 cache, every vector load is aligned, and no two quantities that one iteration reads and
+writes sit 4 KiB apart (separately allocated arrays made the timing vary from one process to the
+next).
 
 The trajectories of a batch share the model, the scheme, dt and the number of steps; each has its
 own state, deviation vector and chain parameters (per-trajectory arrays shaped (N+1, B) for bond

@@ -5,8 +5,9 @@ DynamicalSystems.jl between a problem and the algorithms that solve it): the for
 ``chainchaos.models``), one chain per lane, the splitting scheme (``integrators.SCHEMES``) and its
 step dt (units of 1/omega_max, docs/conventions.md#units), and what runs beside the orbit: the
 tangent map with its renormalisation every ``check_every`` steps, and the counting of open gaps.
-The engine (``batch.Batch``: SIMD blocks, or the single-trajectory engine lane by lane), the sampling driver (``chainchaos.driver``),
-the measured runs of ``chainchaos.numerics`` and the batch benchmark all start from one.
+The engine (``batch.Batch``: SIMD blocks, or the single-trajectory engine lane by lane), the
+sampling driver (``chainchaos.driver``), the measured runs of ``chainchaos.numerics`` and the batch
+benchmark all start from one.
 """
 
 from dataclasses import dataclass

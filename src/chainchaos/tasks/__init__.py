@@ -3,9 +3,9 @@
 Every script in workflow/scripts is two lines (``from chainchaos.tasks import run_rule;
 run_rule(snakemake)``), named like its rule: :func:`run_rule` sends stderr to the rule's log and
 calls the rule's task, a function ``rule(inputs, outputs, params, wildcards)`` of dicts. The task of
-a rule in ``workflow/rules/X.smk`` lives in ``chainchaos.tasks.X`` (``TASKS``: all of them). A task reads its inputs, calls
-the package and writes its outputs atomically (``write_netcdf``, ``write_text``,
-``atomic_output``); the physics is elsewhere. The ``chainchaos`` command is the command line.
+a rule in ``workflow/rules/X.smk`` lives in ``chainchaos.tasks.X`` (``TASKS``: all of them). A task
+reads its inputs, calls the package and writes its outputs atomically (``write_netcdf``,
+``write_text``, ``atomic_output``); the physics is elsewhere. The ``chainchaos`` command is the command line.
 """
 
 import contextlib
