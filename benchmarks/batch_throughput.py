@@ -15,12 +15,17 @@ excluded) and is the best of ``--repeats`` timings of the process's CPU time (ti
 the kernels are single-threaded, and CPU time is far less disturbed than wall time on a shared,
 busy machine). The ratio printed is batch throughput / single throughput on the same B
 trajectories; the single engine's row is its throughput on the largest B.
+
+The last line is a bound on the Hertz ratio: either engine takes one square root per bond and force
+evaluation, a vectorised loop of independent square roots gives the least time they can take on this
+CPU, and the ratio cannot exceed the single engine's time per step over that floor.
 """
 
 import argparse
 import json
 import time
 
+import numba
 import numpy as np
 
 from chainchaos import random_chain
@@ -64,6 +69,26 @@ def single_rate(name, chain, B, steps, dt, integrator, tangent, repeats):
     return B * steps / best
 
 
+@numba.njit(cache=True)
+def _square_roots(x, y, repeats):
+    for _ in range(repeats):
+        for i in range(x.size):
+            y[i] = np.sqrt(x[i])
+
+
+def square_root_seconds(repeats=3, passes=50000):
+    """CPU seconds per square root of a double in a vectorised loop of independent square roots."""
+    x = np.linspace(1.0, 2.0, 512)
+    y = np.empty_like(x)
+    _square_roots(x, y, 1)
+    best = np.inf
+    for _ in range(repeats):
+        t0 = time.process_time()
+        _square_roots(x, y, passes)
+        best = min(best, time.process_time() - t0)
+    return best / (passes * x.size)
+
+
 def batch_rate(name, chain, B, steps, dt, integrator, tangent, repeats):
     q, p, dq, dp = states(name, chain, B)
     best = np.inf
@@ -102,6 +127,12 @@ def main(argv=None):
             rows.append({"model": name, "engine": "batch", "lanes": B, "rate": rate, "ratio": rate / single,
                          "single_rate": single})
         print(f"{name:6} {'single':8} {1:5d} {single:14.4g} {1e6 / single:13.3f} {1.0:6.2f}")
+    per_root = square_root_seconds()
+    roots = (chain.N + 1) * get_scheme(a.integrator).force_evaluations
+    floor = roots * per_root
+    hertz_single = max((r for r in rows if r["model"] == "hertz"), key=lambda r: r["lanes"])["single_rate"]
+    print(f"hertz square roots alone ({roots} per step and trajectory, {1e9 * per_root:.2f} ns each): "
+          f"{1e6 * floor:.3f} us/step/traj, so batch/single <= {1 / (floor * hertz_single):.2f}")
     if a.json:
         with open(a.json, "w") as fh:
             json.dump({"machine": machine_line(), "N": chain.N, "integrator": a.integrator, "dt": a.dt, "tangent": tangent,
