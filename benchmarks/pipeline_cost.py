@@ -22,6 +22,8 @@ from pathlib import Path
 
 import xarray as xr
 
+from chainchaos.provenance import machine_line
+
 #: Parts of the pipeline, by the rules whose jobs they are (first match wins), in table order.
 PARTS = (
     ("kernel compilation", r"compile_kernels"),
@@ -61,9 +63,7 @@ def machine(results: Path) -> str:
     """The machine that wrote the results, from the provenance of the first scene file."""
     for path in sorted((results / "scenes").glob("*.nc")):
         with xr.open_dataset(path) as ds:
-            a = ds.attrs
-            return (f"CPU: {a.get('cpu_model', '?')} | vector extensions: {a.get('cpu_vector_extensions', '?')} | "
-                    f"Numba target: {a.get('numba_target_cpu', '?')}")
+            return machine_line(ds.attrs)
     return "unknown (no scene file)"
 
 
@@ -80,7 +80,8 @@ def main(argv=None) -> dict:
     parts = {name: [] for name, _ in PARTS}
     for r in records:
         parts.setdefault(part_of(r["rule"]), []).append(r)
-    print(machine(a.results))
+    machine_of_results = machine(a.results)
+    print(machine_of_results)
     print(f"{len(records)} jobs, {total / 60:.1f} min of job time, span {span / 60:.1f} min "
           f"(first job start to last job end; {total / span:.2f} jobs running on average)\n")
     print("| part | jobs | job time, min | longest job, s | share |")
@@ -92,7 +93,7 @@ def main(argv=None) -> dict:
         s = sum(r["s"] for r in rs)
         table.append({"part": name, "jobs": len(rs), "seconds": s, "longest": max(r["s"] for r in rs)})
         print(f"| {name} | {len(rs)} | {s / 60:.1f} | {max(r['s'] for r in rs):.0f} | {s / total:.0%} |")
-    summary = {"machine": machine(a.results), "jobs": len(records), "job_seconds": total, "span_seconds": span,
+    summary = {"machine": machine_of_results, "jobs": len(records), "job_seconds": total, "span_seconds": span,
                "parts": table}
     if a.json:
         Path(a.json).write_text(json.dumps(summary, indent=1))

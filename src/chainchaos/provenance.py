@@ -121,13 +121,20 @@ def machine_attrs() -> dict:
     }
 
 
-def machine_line() -> str:
-    """One line naming the machine a benchmark ran on: CPU model, its vector extensions, the CPU
-    Numba compiles for and the SIMD width of the engines."""
-    from chainchaos.simd import LANES
+def machine_line(attrs: dict | None = None) -> str:
+    """One line naming a machine: CPU model, its vector extensions and the CPU Numba compiles for;
+    by default this machine's, with the SIMD width of the engines (benchmarks), else the one whose
+    :func:`machine_attrs` are ``attrs`` (a result file's provenance)."""
+    width = ""
+    if attrs is None:
+        from chainchaos.simd import LANES
 
-    return (f"CPU: {cpu_model()} | vector extensions: {cpu_vector_extensions() or 'unknown'} | "
-            f"Numba target: {numba_target_cpu()} | SIMD width: {LANES} doubles")
+        attrs = {"cpu_model": cpu_model(), "cpu_vector_extensions": cpu_vector_extensions(),
+                 "numba_target_cpu": numba_target_cpu()}
+        width = f" | SIMD width: {LANES} doubles"
+    extensions = attrs.get("cpu_vector_extensions") or "unknown"
+    return (f"CPU: {attrs.get('cpu_model') or '?'} | vector extensions: {extensions} | "
+            f"Numba target: {attrs.get('numba_target_cpu') or '?'}{width}")
 
 
 def provenance_attrs(parameters: dict) -> dict:
