@@ -9,6 +9,7 @@ reads its inputs, calls the package and writes its outputs atomically (``write_n
 """
 
 import contextlib
+import functools
 import importlib
 import re
 import sys
@@ -26,10 +27,9 @@ def family_tasks(family: str) -> dict:
     return {task.__name__: task for task in importlib.import_module(f"chainchaos.tasks.{family}").TASKS}
 
 
+@functools.cache
 def _all_tasks() -> dict:
-    if "TASKS" not in globals():
-        globals()["TASKS"] = {rule: task for family in FAMILIES for rule, task in family_tasks(family).items()}
-    return globals()["TASKS"]
+    return {rule: task for family in FAMILIES for rule, task in family_tasks(family).items()}
 
 
 def __getattr__(name):
