@@ -7,7 +7,7 @@
 
 from snakemake.utils import min_version, validate
 
-from chainchaos.config_check import check_config, typed_overrides
+from chainchaos.workflow.config_check import check_config, typed_overrides
 
 min_version("9.0")
 

@@ -1,10 +1,10 @@
-"""Throughput of the batch engine (chainchaos.batch) against the single-trajectory engine
-(chainchaos.integrators.advance) at N = 40: trajectories x steps per second, both models, with the
+"""Throughput of the batch engine (chainchaos.engine.batch) against the single-trajectory engine
+(chainchaos.engine.integrators.advance) at N = 40: trajectories x steps per second, both models, with the
 tangent map (the scan's configuration: SRKN6b, Hertz with gap counting).
 
     python benchmarks/batch_throughput.py [--steps 20000] [--lanes B ...] [--json out.json]
 
-``--lanes`` defaults to one, two and eight SIMD blocks (``chainchaos.simd.LANES`` trajectories
+``--lanes`` defaults to one, two and eight SIMD blocks (``chainchaos.engine.simd.LANES`` trajectories
 each). The first line names the machine: CPU model, vector extensions, Numba's target, the width.
 
 Both engines integrate the same trajectories: B single-site excitations of the alpha = 5 chain of
@@ -29,13 +29,13 @@ import numba
 import numpy as np
 
 from chainchaos import random_chain
-from chainchaos.batch import Batch
-from chainchaos.problem import Problem
-from chainchaos.initial import initial_deviation, initial_state
-from chainchaos.integrators import advance, get_scheme
-from chainchaos.models import get_model
-from chainchaos.provenance import machine_line
-from chainchaos.simd import LANES
+from chainchaos.engine.batch import Batch
+from chainchaos.engine.integrators import advance, get_scheme
+from chainchaos.engine.simd import LANES
+from chainchaos.output.provenance import machine_line
+from chainchaos.system.initial import initial_deviation, initial_state
+from chainchaos.system.models import get_model
+from chainchaos.system.problem import Problem
 
 
 def states(model, chain, B, site=21):

@@ -7,14 +7,14 @@ and OpenBLAS pick the code they would pick on another x86-64 CPU:
 
     native   nothing changed: this machine's choices
     avx512   OpenBLAS' SkylakeX kernels (an AVX-512 Intel CPU); NumPy and Numba as on this machine
-    avx2     chainchaos.provenance.EMULATED_AVX2: NumPy without its AVX-512 dispatch targets
+    avx2     chainchaos.output.provenance.EMULATED_AVX2: NumPy without its AVX-512 dispatch targets
              (NPY_DISABLE_CPU_FEATURES), Numba/LLVM code for Haswell with Haswell's features only
              (NUMBA_CPU_NAME, NUMBA_CPU_FEATURES), OpenBLAS' Haswell kernels (OPENBLAS_CORETYPE,
              honoured by NumPy's and SciPy's bundled OpenBLAS alike)
     numpy_avx2, numba_haswell, blas_haswell
              avx512 with one of the three changes of avx2, to tell which library makes a difference
     sse4     a CPU without AVX and FMA (x86-64-v2), down to glibc's libm (GLIBC_TUNABLES); the
-             package assumes FMA for the C library's log10, pow and log (chainchaos.exactmath)
+             package assumes FMA for the C library's log10, pow and log (chainchaos.engine.exactmath)
 
 Each build gets its own Numba cache (``<workdir>/numba_cache/<build>/<kernel key>``), so kernels
 compiled for one target are never loaded by another. The snippet is run as
@@ -41,8 +41,8 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from chainchaos._numba_cache import kernel_key  # noqa: E402  (does not import numba)
-from chainchaos.provenance import EMULATED_AVX2, cpu_model, cpu_vector_extensions  # noqa: E402
+from chainchaos.engine.cache import kernel_key  # noqa: E402  (does not import numba)
+from chainchaos.output.provenance import EMULATED_AVX2, cpu_model, cpu_vector_extensions  # noqa: E402
 
 BUILDS = {
     "native": {},
@@ -72,17 +72,17 @@ DEFAULT_SNIPPET = textwrap.dedent('''
     import sys
     from pathlib import Path
 
-    from chainchaos.chain import random_chain
-    from chainchaos.io import chain_dataset, ensemble_dataset, write_netcdf
-    from chainchaos.simulate import GAPS, OBSERVABLES, SceneParameters, simulate
+    from chainchaos.observe.registry import model_observables
+    from chainchaos.output.io import chain_dataset, ensemble_dataset, write_netcdf
+    from chainchaos.run.scenes import SceneParameters, simulate
+    from chainchaos.system.chain import random_chain
 
     out = Path(sys.argv[1])
     chain = random_chain(5346, 5.0, 40)
     write_netcdf(chain_dataset(chain), out / "chain.nc")
-    scenes = {"hertz": (3.0, OBSERVABLES), "fput": (8.7381, tuple(o for o in OBSERVABLES if o not in GAPS))}
-    for model, (energy, observables) in scenes.items():
-        params = SceneParameters(model, energy, t_final=1000.0, dt=0.005, observables=observables,
-                                 samples_per_decade=10, t_first_sample=0.1)
+    for model, energy in {"hertz": 3.0, "fput": 8.7381}.items():
+        params = SceneParameters(model=model, energy=energy, t_final=1000.0, dt=0.005,
+                                 observables=model_observables(model), samples_per_decade=10, t_first_sample=0.1)
         write_netcdf(simulate(chain, params), out / f"{model}.nc")
     write_netcdf(ensemble_dataset([2.0, 5.0], 100), out / "ensemble.nc")
 ''')

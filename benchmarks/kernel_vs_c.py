@@ -4,7 +4,7 @@
 
 Compiles benchmarks/c_reference/srkn6b_chain.c into benchmarks/build/ (gcc -O3 -march=native
 -std=c99 -fno-math-errno: no -ffast-math, as Numba runs without fastmath; -fno-math-errno only
-lets gcc vectorise sqrt, like Numba's), integrates the benchmark problem of chainchaos.bench
+lets gcc vectorise sqrt, like Numba's), integrates the benchmark problem of chainchaos.studies.numerics.bench
 (N = 40, alpha = 5 chain of seed 879, H = 1.8, dt = 5e-4, renormalisation every 1000 steps) with
 both, checks that they end in the same state (q, p, dq, dp and the log growth), and prints
 Markdown tables: ns per step (best of the repeats) of Numba and C and their ratio for SRKN6b,
@@ -22,9 +22,9 @@ os.environ["NUMBA_NUM_THREADS"] = "1"  # single thread, before numba is imported
 
 import numpy as np  # noqa: E402
 
-from chainchaos.bench import CHECK_EVERY, DT, benchmark_problem, run_kernel  # noqa: E402
-from chainchaos.integrators import SCHEMES  # noqa: E402
-from chainchaos.provenance import machine_line  # noqa: E402
+from chainchaos.engine.integrators import SCHEMES  # noqa: E402
+from chainchaos.output.provenance import machine_line  # noqa: E402
+from chainchaos.studies.numerics.bench import CHECK_EVERY, DT, benchmark_problem, run_kernel  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 SOURCE = HERE / "c_reference" / "srkn6b_chain.c"

@@ -22,7 +22,7 @@ from pathlib import Path
 
 import xarray as xr
 
-from chainchaos.provenance import machine_line
+from chainchaos.output.provenance import machine_line
 
 #: Parts of the pipeline, by the rules whose jobs they are (first match wins), in table order.
 PARTS = (

@@ -3,7 +3,7 @@ wrong type, a value out of range, an unknown name, NaN, and files that are missi
 or not a chain. Each is refused before anything runs, with a message naming the key or option and
 what is allowed, and nothing is written.
 
-Config keys are checked through chainchaos.config_check.check_config, the function the Snakefile
+Config keys are checked through chainchaos.workflow.config_check.check_config, the function the Snakefile
 calls before any rule; a few real ``snakemake -n`` runs check that the Snakefile does call it."""
 
 import copy
@@ -17,10 +17,11 @@ import pytest
 import xarray as xr
 import yaml
 
-from chainchaos import cli, config_docs, random_chain
-from chainchaos.config_check import check_config, typed_overrides
+from chainchaos import random_chain
 from chainchaos.errors import ConfigError
-from chainchaos.io import chain_dataset, write_netcdf
+from chainchaos.output.io import chain_dataset, write_netcdf
+from chainchaos.workflow import cli, config_docs
+from chainchaos.workflow.config_check import check_config, typed_overrides
 
 ROOT = Path(__file__).resolve().parents[1]
 SCENE = "hertz_H1.8"  # stands for <scene name> in a key's path
@@ -171,9 +172,9 @@ CROSS_CASES = [
     (["scenes", SCENE, "t_final"], 1e-3, "config key simulation.dt = 0.01: allowed is dt <= t_final = 0.001"),
     (["scan", "energy_scan", "energy_min"], 50.0,
      "config key scan.energy_scan.energy_min = 50.0: allowed is 0 < energy_min <= energy_max = 10"),
-    (["scan", "disorder", "dt"], 1e6, "config key scan.disorder.dt = 1000000.0: allowed is <= t_final"),
-    (["search", "settings", "dt"], 1e6, "config key search.settings.dt = 1000000.0: allowed is <= t_final"),
-    (["verdicts", "settings", "dt"], 1e6, "config key verdicts.settings.dt = 1000000.0: allowed is <= t_final"),
+    (["scan", "disorder", "dt"], 1e6, "config key scan.disorder.dt = 1000000.0: allowed is dt <= t_final"),
+    (["search", "settings", "dt"], 1e6, "config key search.settings.dt = 1000000.0: allowed is dt <= t_final"),
+    (["verdicts", "settings", "dt"], 1e6, "config key verdicts.settings.dt = 1000000.0: allowed is dt <= t_final"),
     (["chain", "selection", "p_min"], 3.5, "config key chain.selection.p_min = 3.5: allowed is <= p_max"),
     (["chain", "selection", "mode"], 41, "config key chain.selection.mode = 41: allowed is 1..N = 1..40"),
     (["chain", "N"], 20, "allowed is 1..N = 1..20"),  # the selection's mode 34 no longer fits

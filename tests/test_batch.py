@@ -1,15 +1,15 @@
-"""The batch engine (chainchaos.batch) against the single-trajectory engine, lane by lane."""
+"""The batch engine (chainchaos.engine.batch) against the single-trajectory engine, lane by lane."""
 
 import numpy as np
 import pytest
 
 from chainchaos import random_chain
-from chainchaos.batch import SERIAL_REMAINDER, Batch
-from chainchaos.simd import LANES
-from chainchaos.initial import initial_deviation, initial_state
-from chainchaos.integrators import SCHEMES, advance, get_scheme
-from chainchaos.models import MODELS, get_model
-from chainchaos.problem import Problem
+from chainchaos.engine.batch import SERIAL_REMAINDER, Batch
+from chainchaos.engine.integrators import SCHEMES, advance, get_scheme
+from chainchaos.engine.simd import LANES
+from chainchaos.system.initial import initial_deviation, initial_state
+from chainchaos.system.models import MODELS, get_model
+from chainchaos.system.problem import Problem
 
 N = 40
 

@@ -1,10 +1,11 @@
-"""The claims table (src/chainchaos/claims/) and the manuscript build.
+"""The claims table (src/chainchaos/paper/claims/) and the manuscript build.
 
 Unit tests run the measurements on small constructed Datasets, each built so that a wrong
 criterion fails; the slow tests use the quick-scale results of the `quick` fixture (conftest.py),
 whose pipeline run already built the manuscript.
 """
 
+import csv
 import re
 import shutil
 import subprocess
@@ -14,15 +15,15 @@ import numpy as np
 import pytest
 import xarray as xr
 import yaml
-
-from chainchaos import claims as cl
-from chainchaos import paper, random_chain
-from chainchaos.claims import quantities as q
-from chainchaos.claims import writers
-from chainchaos.criteria import Criteria
-from chainchaos.io import chain_dataset, ensemble_dataset
-
 from conftest import QUICK_MANUSCRIPT
+
+from chainchaos import random_chain
+from chainchaos.output.io import chain_dataset, ensemble_dataset
+from chainchaos.paper import claims as cl
+from chainchaos.paper import panels
+from chainchaos.paper.claims import quantities as q
+from chainchaos.paper.claims import writers
+from chainchaos.paper.criteria import Criteria
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -172,7 +173,7 @@ def test_taylor_sign_barrier_blocks_the_high_fput_energies():
     barrier = q.taylor_sign_barrier(taylor, 21)
     assert 0.5 < barrier < 8.7381
     from chainchaos.errors import ParameterError
-    from chainchaos.initial import initial_displacement
+    from chainchaos.system.initial import initial_displacement
 
     initial_displacement("fput", taylor, 0.9 * barrier, 21)
     with pytest.raises(ParameterError):
@@ -186,7 +187,7 @@ def synthetic_scenes(t_final=1e5, u0=1.0410, hertz_spreads=True):
     """Every scene of the paper with every variable a claim reads, shaped like the paper's story."""
     t = times(t_final)
     out = {}
-    for name, scene in paper.scenes().items():
+    for name, scene in panels.scenes().items():
         spreading = (scene.model == "hertz" and scene.energy >= 1.8 and hertz_spreads) or \
                     (scene.model == "fput" and scene.energy in (2.9, 8.7381))
         chaotic = spreading or (scene.model == "hertz" and scene.energy == 0.5) or (scene.model == "fput"
@@ -374,17 +375,18 @@ def test_quick_manuscript_has_every_figure_and_the_claims(quick):
     pdf = quick / QUICK_MANUSCRIPT
     assert pdf.read_bytes()[:5] == b"%PDF-"
     embedded = {Path(name.decode()).stem for name in figure_objects(pdf)}
-    assert {f"fig{n}" for n in paper.LAYOUTS} | {"figscan", "figdisorder"} <= embedded
+    assert {f"fig{n}" for n in panels.LAYOUTS} | {"figscan", "figdisorder"} <= embedded
     if (quick / "figures" / "work_precision.pdf").exists():  # the numerics rules are part of the workflow
         assert {"work_precision", "stability"} <= embedded
     images = subprocess.run(["pdfimages", "-list", str(pdf)], capture_output=True, text=True, check=True).stdout
     assert len(images.splitlines()) > 2 + 10  # the density maps are raster images inside the figures
     text = subprocess.run(["pdftotext", "-layout", str(pdf), "-"], capture_output=True, text=True,
                           check=True).stdout
-    for n in paper.LAYOUTS:
+    for n in panels.LAYOUTS:
         assert re.search(rf"FIG\. {n}\.", text), f"caption of figure {n} missing"
     assert "TABLE I" in text.upper() and "??" not in text
-    rows = writers.read_csv(quick / "claims" / "claims.csv")
+    with open(quick / "claims" / "claims.csv", newline="") as fh:
+        rows = list(csv.DictReader(fh))
     assert rows and all(r["verdict"] in cl.VERDICTS for r in rows)
     assert sum(r["verdict"] == cl.UNTESTABLE for r in rows) > 0  # quick scale ends at t = 1e3
     scan_rows = [r for r in rows if r["scenes"] == "energy_scan"]

@@ -1,4 +1,4 @@
-"""The catalogue of claims (src/chainchaos/claims/catalogue.py) and the measures its rows call.
+"""The catalogue of claims (src/chainchaos/paper/claims/catalogue.py) and the measures its rows call.
 
 The catalogue is data: these tests check that every row can be evaluated (its measure exists and
 takes its scenes and arguments, its scenes are the panel table's, its criteria references and
@@ -14,12 +14,12 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from chainchaos import paper
-from chainchaos.claims import framework as fw
-from chainchaos.claims import measures as ms
-from chainchaos.claims.catalogue import CATALOGUE, STATEMENT_ROWS, statement_rows
-from chainchaos.claims.evidence import REASONS
-from chainchaos.criteria import Criteria
+from chainchaos.paper import panels, statements
+from chainchaos.paper.claims import framework as fw
+from chainchaos.paper.claims import measures as ms
+from chainchaos.paper.claims.catalogue import CATALOGUE, STATEMENT_ROWS, statement_rows
+from chainchaos.paper.claims.evidence import REASONS
+from chainchaos.paper.criteria import Criteria
 
 ROWS = (*CATALOGUE, *STATEMENT_ROWS)
 
@@ -49,8 +49,8 @@ def test_every_row_names_a_measure_that_takes_its_scenes_and_arguments(row):
 
 @pytest.mark.parametrize("row", ROWS, ids=lambda row: row.id)
 def test_every_row_reads_scenes_of_the_panel_table_and_names_existing_statements(row):
-    assert set(row.scenes) <= {*paper.scenes(), fw.ENERGY_SCAN}
-    assert set(row.statements) <= {st.id for st in paper.STATEMENTS}
+    assert set(row.scenes) <= {*panels.scenes(), fw.ENERGY_SCAN}
+    assert set(row.statements) <= {st.id for st in statements.STATEMENTS}
     if not isinstance(row.reason, str):
         assert row.reason[0] in REASONS
 
@@ -72,9 +72,9 @@ def test_every_check_and_criterion_resolves_against_the_criteria(row):
 
 def test_every_statement_of_the_paper_is_the_subject_of_a_row():
     covered = {i for row in ROWS for i in row.statements}
-    assert covered == {st.id for st in paper.STATEMENTS}
+    assert covered == {st.id for st in statements.STATEMENTS}
     assert not {i for row in STATEMENT_ROWS for i in row.statements} & {i for row in CATALOGUE for i in row.statements}
-    assert statement_rows(()) and len(statement_rows(())) == len(paper.STATEMENTS)
+    assert statement_rows(()) and len(statement_rows(())) == len(statements.STATEMENTS)
 
 
 # ------------------------------------------------------------------ framework
@@ -239,7 +239,7 @@ def test_ensemble_measures_look_at_the_alphas_from_4_on():
 
 def test_chain_measures():
     from chainchaos import random_chain
-    from chainchaos.io import chain_dataset
+    from chainchaos.output.io import chain_dataset
 
     chain = chain_dataset(random_chain(879, 5.0))
     inp = inputs(chain=chain)

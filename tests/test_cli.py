@@ -11,10 +11,10 @@ import pytest
 import xarray as xr
 
 from chainchaos import chain_from_radii, normal_modes, random_chain
-from chainchaos.io import read_chain
-from chainchaos.models import MODELS
-from chainchaos.scene_observables import GAPS, OBSERVABLES, needing
-from chainchaos.simulate import SceneParameters, model_observables
+from chainchaos.observe.registry import GAPS, OBSERVABLES, needing
+from chainchaos.output.io import read_chain
+from chainchaos.run.scenes import SceneParameters, model_observables
+from chainchaos.system.models import MODELS
 
 CHAIN_PARAMETERS = ("radius", "mass", "A", "delta", "K2", "K3", "K4", "frequency", "mode_shape",
                     "mode_participation")
@@ -22,7 +22,7 @@ CHAIN_PARAMETERS = ("radius", "mass", "A", "delta", "K2", "K3", "K4", "frequency
 
 def chainchaos(*args, cwd):
     """Run the installed console script (as a user would), or the module where it is not on PATH."""
-    command = [shutil.which("chainchaos")] if shutil.which("chainchaos") else [sys.executable, "-m", "chainchaos.cli"]
+    command = [shutil.which("chainchaos")] if shutil.which("chainchaos") else [sys.executable, "-m", "chainchaos.workflow.cli"]
     done = subprocess.run([*command, *map(str, args)], cwd=cwd, capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, f"chainchaos {' '.join(map(str, args))}:\n{done.stdout}{done.stderr}"
     return done
@@ -89,7 +89,7 @@ def test_chain_from_radii_takes_the_reference_and_alpha():
 
 @pytest.mark.parametrize("model", sorted(MODELS))
 def test_default_observables_follow_the_model(model):
-    params = SceneParameters(model, 1.0, 10.0, 0.01)
+    params = SceneParameters(model=model, energy=1.0, t_final=10.0, dt=0.01)
     assert params.observables == model_observables(model)
     assert (set(OBSERVABLES) - set(params.observables)) == (set() if model == "hertz" else needing(GAPS))
 

@@ -1,5 +1,5 @@
 """Every kind of NetCDF product passes the IOOS compliance checker's CF suite without errors, and
-writing a file in those conventions (chainchaos.cf) keeps every value."""
+writing a file in those conventions (chainchaos.output.cf) keeps every value."""
 
 import fnmatch
 
@@ -9,8 +9,8 @@ import xarray as xr
 from compliance_checker.base import BaseCheck
 from compliance_checker.runner import CheckSuite
 
-from chainchaos import cf
-from chainchaos.io import write_netcdf
+from chainchaos.output import cf
+from chainchaos.output.io import write_netcdf
 
 #: the newest CF version compliance-checker 6.1 checks
 CF_SUITE = "cf:1.11"
@@ -94,7 +94,7 @@ def test_every_kind_of_product_passes_the_cf_checker(quick):
 
 
 def test_conventions_keep_the_values_and_the_dataset(tmp_path, monkeypatch):
-    """String, int64 and dimensionless-time coordinates written in the conventions of chainchaos.cf
+    """String, int64 and dimensionless-time coordinates written in the conventions of chainchaos.output.cf
     read back with the same values and index; the Dataset written is not changed."""
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")
     ds = xr.Dataset(

@@ -2,7 +2,7 @@
 
 from pathlib import Path
 
-from chainchaos import config_docs
+from chainchaos.workflow import config_docs
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -13,7 +13,7 @@ def test_every_config_key_has_a_description():
 
 def test_committed_config_readme_is_the_generated_one():
     committed = (ROOT / config_docs.README).read_text()
-    assert committed == config_docs.render(), "config/README.md is stale: run python -m chainchaos.config_docs"
+    assert committed == config_docs.render(), "config/README.md is stale: run python -m chainchaos.workflow.config_docs"
 
 
 def test_readme_lists_every_key_with_its_type_and_default():

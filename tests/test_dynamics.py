@@ -3,10 +3,11 @@
 import numpy as np
 import pytest
 
-from chainchaos.initial import initial_state
-from chainchaos.integrators import SCHEMES, advance, get_scheme
-from chainchaos.models import get_model, open_bonds, total_energy
-from chainchaos.simulate import SceneParameters, sample_steps, simulate
+from chainchaos.engine.integrators import SCHEMES, advance, get_scheme
+from chainchaos.run.driver import sample_steps
+from chainchaos.run.scenes import SceneParameters, simulate
+from chainchaos.system.initial import initial_state
+from chainchaos.system.models import get_model, open_bonds, total_energy
 
 HERTZ, FPUT, TODA = get_model("hertz"), get_model("fput"), get_model("toda")
 
@@ -64,7 +65,7 @@ def test_tangent_map_matches_finite_differences(chain, model, energy):
 def test_energy_is_conserved_to_scheme_accuracy(chain, model):
     errors = []
     for dt in (0.02, 0.01):
-        ds = simulate(chain, SceneParameters(model, 0.5, 1000.0, dt, observables=("participation",)))
+        ds = simulate(chain, SceneParameters(model=model, energy=0.5, t_final=1000.0, dt=dt, observables=("participation",)))
         errors.append(ds.attrs["max_energy_error"])
     assert errors[1] < 1e-6
     assert errors[0] / errors[1] > 2**4 * 0.7  # fourth order in the energy error too
@@ -73,7 +74,7 @@ def test_energy_is_conserved_to_scheme_accuracy(chain, model):
 def test_mlce_times_t_is_bounded_for_the_harmonic_chain(chain):
     """For a linear chain the tangent flow is the (quasi-periodic) flow itself: ln|v(t)| is bounded
     by half the log of the condition number of the energy norm against the Euclidean norm."""
-    ds = simulate(chain, SceneParameters("harmonic", 0.25, 3000.0, 0.02, observables=("mlce",)))
+    ds = simulate(chain, SceneParameters(model="harmonic", energy=0.25, t_final=3000.0, dt=0.02, observables=("mlce",)))
     K2 = chain.K2
     K = np.diag(K2[:-1] + K2[1:]) - np.diag(K2[1:-1], 1) - np.diag(K2[1:-1], -1)
     ev = np.linalg.eigvalsh(K)
@@ -87,15 +88,15 @@ def test_hertz_and_fput_agree_at_small_energy(chain):
     """At H = 1e-6 (strains ~1e-3 delta) the FPUT chain with the Taylor sign of K4 is the Hertz chain
     up to fifth-order terms, over t = 100; with the paper's sign the quartic term differs."""
     common = dict(t_final=100.0, dt=0.01, observables=("energy_density",), samples_per_decade=5)
-    h = simulate(chain, SceneParameters("hertz", 1e-6, **common)).energy_density
-    taylor = simulate(chain, SceneParameters("fput", 1e-6, k4_sign=-1, **common)).energy_density
-    paper = simulate(chain, SceneParameters("fput", 1e-6, **common)).energy_density
+    h = simulate(chain, SceneParameters(model="hertz", energy=1e-6, **common)).energy_density
+    taylor = simulate(chain, SceneParameters(model="fput", energy=1e-6, k4_sign=-1, **common)).energy_density
+    paper = simulate(chain, SceneParameters(model="fput", energy=1e-6, **common)).energy_density
     assert float(np.abs(h - taylor).max()) < 1e-9
     assert float(np.abs(h - paper).max()) < 1e-4
 
 
 def test_eta_starts_at_one(chain):
-    ds = simulate(chain, SceneParameters("hertz", 0.25, 10.0, 0.01, observables=("eta",)))
+    ds = simulate(chain, SceneParameters(model="hertz", energy=0.25, t_final=10.0, dt=0.01, observables=("eta",)))
     assert ds.eta.values[0] == 1.0
     assert 0 < ds.eta.attrs["equipartition_value"] < 1
 

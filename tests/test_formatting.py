@@ -1,11 +1,18 @@
-"""The one formatter of numbers and model names (src/chainchaos/formatting.py)."""
+"""The one formatter of numbers and model names (src/chainchaos/output/formatting.py)."""
 
 import math
 
 import numpy as np
 
-from chainchaos.formatting import (plain_number, round_significant, tex_escape, tex_math, tex_number,
-                                   tex_parameter, tex_scientific)
+from chainchaos.output.formatting import (
+    plain_number,
+    round_significant,
+    tex_escape,
+    tex_math,
+    tex_number,
+    tex_parameter,
+    tex_scientific,
+)
 
 
 def test_measured_numbers_have_three_significant_digits_and_powers_of_ten_outside_the_plain_range():

@@ -1,4 +1,4 @@
-"""Results do not depend on the SIMD width (chainchaos.simd.LANES) or on which scenes share a batch.
+"""Results do not depend on the SIMD width (chainchaos.engine.simd.LANES) or on which scenes share a batch.
 
 The width is fitted to the CPU (8 with AVX-512, 4 otherwise) and ``CHAINCHAOS_SIMD_LANES`` selects
 another; both engines are compiled for it. These are bit-for-bit reproducibility tests: the same
@@ -12,10 +12,11 @@ import sys
 import numpy as np
 import pytest
 
-from chainchaos import random_chain, simd
+from chainchaos import random_chain
+from chainchaos.engine import simd
 from chainchaos.errors import ParameterError
-from chainchaos.models import MODELS
-from chainchaos.simulate import SceneParameters, model_observables, simulate, simulate_scenes
+from chainchaos.run.scenes import SceneParameters, model_observables, simulate, simulate_scenes
+from chainchaos.system.models import MODELS
 
 OTHER_WIDTH = 4 if simd.LANES == 8 else 8
 
@@ -23,10 +24,11 @@ OTHER_WIDTH = 4 if simd.LANES == 8 else 8
 _PROBE = """
 import sys
 import numpy as np
-from chainchaos import random_chain, simd
-from chainchaos.initial import initial_deviation, initial_state
-from chainchaos.models import MODELS
-from chainchaos.problem import Problem
+from chainchaos import random_chain
+from chainchaos.engine import simd
+from chainchaos.system.initial import initial_deviation, initial_state
+from chainchaos.system.models import MODELS
+from chainchaos.system.problem import Problem
 
 chains = [random_chain(s, 5.0) for s in (879, 5346, 11, 12, 13)]
 out = [np.array([simd.LANES], dtype=float)]
@@ -82,10 +84,10 @@ def test_scenes_integrated_together_equal_each_scene_alone(model):
     chain = random_chain(879, 5.0)
     common = dict(t_final=50.0, dt=0.01, samples_per_decade=8, check_every=300)
     gaps = [o for o in ("n_gaps", "gap_fraction") if o in model_observables(model)]
-    scenes = [SceneParameters(model, 1.8, **common, name="a"),
-              SceneParameters(model, 0.25, **common, excited_site=15, observables=("participation",), name="b"),
-              SceneParameters(model, 3.0, **common, deviation_seed=4, observables=("mlce", *gaps[:1]), name="c"),
-              SceneParameters(model, 0.5, **common, observables=("eta", *gaps[1:]), name="d")]
+    scenes = [SceneParameters(model=model, energy=1.8, **common, name="a"),
+              SceneParameters(model=model, energy=0.25, **common, excited_site=15, observables=("participation",), name="b"),
+              SceneParameters(model=model, energy=3.0, **common, deviation_seed=4, observables=("mlce", *gaps[:1]), name="c"),
+              SceneParameters(model=model, energy=0.5, **common, observables=("eta", *gaps[1:]), name="d")]
     together = simulate_scenes(chain, scenes)
     for params, ds in zip(scenes, together):
         alone = simulate(chain, params)
@@ -96,7 +98,7 @@ def test_scenes_integrated_together_equal_each_scene_alone(model):
 
 def test_scenes_that_cannot_share_a_batch_are_refused():
     chain = random_chain(879, 5.0)
-    a = SceneParameters("hertz", 1.8, 10.0, 0.01)
-    b = SceneParameters("hertz", 0.5, 10.0, 0.02)
+    a = SceneParameters(model="hertz", energy=1.8, t_final=10.0, dt=0.01)
+    b = SceneParameters(model="hertz", energy=0.5, t_final=10.0, dt=0.02)
     with pytest.raises(ParameterError, match="scenes"):
         simulate_scenes(chain, [a, b])

@@ -4,10 +4,10 @@ import numpy as np
 import pytest
 
 from chainchaos import mode_participation, normal_modes, random_chain
-from chainchaos.io import ensemble_dataset
-from chainchaos.linear import modal_energies, mode_energy_density
-from chainchaos.observables import normalised_entropy, spectral_entropy
-from chainchaos.selection import SelectionCriteria, qualifies, select_realization
+from chainchaos.observe.formulas import normalised_entropy, spectral_entropy
+from chainchaos.output.io import ensemble_dataset
+from chainchaos.studies.search.selection import SelectionCriteria, qualifies, select_realization
+from chainchaos.system.linear import modal_energies, mode_energy_density
 
 
 def test_homogeneous_chain_parameters(homogeneous):

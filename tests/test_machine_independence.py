@@ -1,5 +1,5 @@
 """The same numbers on every x86-64: correctly rounded chain parameters, a deterministic
-eigensolver and products (chainchaos.exactmath, chainchaos.linear), and bit-for-bit checks.
+eigensolver and products (chainchaos.engine.exactmath, chainchaos.system.linear), and bit-for-bit checks.
 
 The tests named ``*_bit_for_bit`` are reproducibility tests: the numbers they hold are this code's
 own output (written on an AMD Zen 5 with AVX-512), not independent reference values. They must come
@@ -24,15 +24,17 @@ import pytest
 from scipy.linalg import eigh_tridiagonal
 
 from chainchaos import Chain, chain_from_radii, random_chain
-from chainchaos import exactmath
-from chainchaos._numba_cache import kernel_key
-from chainchaos.initial import initial_deviation, initial_state
-from chainchaos.integrators import advance, get_scheme
-from chainchaos.io import chain_dataset
-from chainchaos.linear import tridiagonal_eigh
-from chainchaos.models import get_model
-from chainchaos.provenance import EMULATED_AVX2
-from chainchaos.simulate import SceneParameters, model_observables, sample_steps, simulate
+from chainchaos.engine import exactmath
+from chainchaos.engine.cache import kernel_key
+from chainchaos.engine.integrators import advance, get_scheme
+from chainchaos.observe.registry import model_observables
+from chainchaos.output.io import chain_dataset
+from chainchaos.output.provenance import EMULATED_AVX2
+from chainchaos.run.driver import sample_steps
+from chainchaos.run.scenes import SceneParameters, simulate
+from chainchaos.system.initial import initial_deviation, initial_state
+from chainchaos.system.linear import tridiagonal_eigh
+from chainchaos.system.models import get_model
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -40,7 +42,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 
 def decimal_bond(r_left: float, r_right: float) -> list[float]:
-    """(A, delta, K2, K3, K4) from the formulas of chainchaos.chain evaluated with 60 decimal
+    """(A, delta, K2, K3, K4) from the formulas of chainchaos.system.chain evaluated with 60 decimal
     digits on the exact values of the double radii, each rounded once to a double."""
     with localcontext() as ctx:
         ctx.prec = 60
@@ -172,7 +174,7 @@ def test_sample_steps_are_those_of_the_numpy_version():
 
 
 def test_provenance_records_the_machine(chain):
-    attrs = simulate(chain, SceneParameters("fput", 0.1, 1.0, 0.1, observables=("participation",))).attrs
+    attrs = simulate(chain, SceneParameters(model="fput", energy=0.1, t_final=1.0, dt=0.1, observables=("participation",))).attrs
     for key in ("cpu_model", "cpu_vector_extensions", "numpy_simd_targets", "numba_target_cpu",
                 "python_version", "numpy_version", "numba_version", "llvmlite_version", "scipy_version",
                 "xarray_version", "git_commit", "chainchaos_version", "parameters"):
@@ -294,7 +296,7 @@ def scene(model: str):
     """A short scene with every observable of the model on random_chain(5346, 5, 40)."""
     energy = {"hertz": 3.0, "fput": 8.7381}[model]
     observables = model_observables(model)
-    params = SceneParameters(model, energy, 200.0, 0.01, observables=observables, samples_per_decade=10)
+    params = SceneParameters(model=model, energy=energy, t_final=200.0, dt=0.01, observables=observables, samples_per_decade=10)
     return simulate(random_chain(5346, 5.0, 40), params)
 
 
@@ -306,7 +308,7 @@ def test_scene_data_bit_for_bit(model):
 
 def test_same_bits_in_an_emulated_avx2_build():
     """Rerun every other test of this file, the bit-for-bit ones included, with NumPy, Numba and
-    OpenBLAS choosing the code of an AVX2 CPU (chainchaos.provenance.EMULATED_AVX2), with a
+    OpenBLAS choosing the code of an AVX2 CPU (chainchaos.output.provenance.EMULATED_AVX2), with a
     Numba cache of its own."""
     if os.environ.get("NUMBA_CPU_NAME"):
         pytest.skip("already running in an emulated build")

@@ -1,4 +1,4 @@
-"""The model registry (chainchaos.models): every bond law against exact properties.
+"""The model registry (chainchaos.system.models): every bond law against exact properties.
 
 Each registered model is checked the same way, so a new model is tested by its registry line:
 its force is the derivative of its potential (up to the precompression force f(0), the same on
@@ -9,12 +9,12 @@ its parameters fit the engines' rows.
 
 import numpy as np
 import pytest
-
-from chainchaos.chain import random_chain
-from chainchaos.errors import ParameterError
-from chainchaos.models import MAX_BOND_PARAMETERS, MODELS, energy_kernel, get_model, model_label, total_energy
-from chainchaos.models.base import bond_force, bond_force_stiffness, bond_potential
 from numba import njit
+
+from chainchaos.errors import ParameterError
+from chainchaos.system.chain import random_chain
+from chainchaos.system.models import MAX_BOND_PARAMETERS, MODELS, energy_kernel, get_model, model_label, total_energy
+from chainchaos.system.models.base import bond_force, bond_force_stiffness, bond_potential
 
 CHAIN = random_chain(879, 5.0, 40)
 

@@ -6,13 +6,11 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from chainchaos.engine.rhs import RightHandSide
 from chainchaos.errors import ParameterError, SimulationError
-from chainchaos.initial import initial_state
-from chainchaos.io import write_netcdf
-from chainchaos.linear import normal_modes
-from chainchaos.models import bond_forces, get_model, total_energy
-from chainchaos.numerics import (
-    RightHandSide,
+from chainchaos.output.io import write_netcdf
+from chainchaos.run.scenes import SceneParameters, simulate
+from chainchaos.studies.numerics import (
     energy_drift,
     largest_stable_dt,
     linear_instability_intervals,
@@ -22,13 +20,15 @@ from chainchaos.numerics import (
     phase_space_error,
     run_scheme,
     run_solve_ivp,
-    sonic_vacuum_chain,
     step_advice,
     taylor_sign_probe,
     work_precision,
 )
-from chainchaos.numerics.stability import chain_at_alpha, excitation_barrier, is_stable
-from chainchaos.simulate import SceneParameters, simulate
+from chainchaos.studies.numerics.stability import excitation_barrier, is_stable
+from chainchaos.system.chain import chain_at_alpha, sonic_vacuum_chain
+from chainchaos.system.initial import initial_state
+from chainchaos.system.linear import normal_modes
+from chainchaos.system.models import bond_forces, get_model, total_energy
 
 HERTZ, FPUT = get_model("hertz"), get_model("fput")
 
@@ -192,13 +192,13 @@ def test_taylor_sign_fput_is_stopped_with_a_clear_error(chain):
     assert 1.8 < barrier < 8.7381
     # below the barrier the energy is reached, the state escapes, and the guard names scene and time
     with pytest.raises(SimulationError) as err:
-        simulate(chain, SceneParameters("fput", 1.8, t_final=100.0, dt=5e-3, k4_sign=-1,
+        simulate(chain, SceneParameters(model="fput", energy=1.8, t_final=100.0, dt=5e-3, k4_sign=-1,
                                         observables=("energy_error",), check_every=100))
     assert err.value.scene == "fput_H1.8" and 0 < err.value.time < 100.0
     assert "fput_H1.8" in str(err.value) and f"t = {err.value.time:.6g}" in str(err.value)
     # above it the energy cannot be put into the excitation at all
     with pytest.raises(ParameterError, match=r"energy = 8.7381.*at most"):
-        simulate(chain, SceneParameters("fput", 8.7381, t_final=100.0, dt=5e-3, k4_sign=-1,
+        simulate(chain, SceneParameters(model="fput", energy=8.7381, t_final=100.0, dt=5e-3, k4_sign=-1,
                                         observables=("energy_error",)))
     rows = taylor_sign_probe(chain, [0.25, 1.8, 8.7381], 50.0, 5e-3, "SRKN6b")
     assert [r["outcome"] for r in rows] == ["bounded", "SimulationError", "ParameterError"]
@@ -216,7 +216,7 @@ def test_step_advice_reports_error_per_scene(chain):
 
 def test_figures_are_byte_stable(chain, tmp_path):
     pytest.importorskip("matplotlib")
-    from chainchaos.numerics.plots import plot_work_precision
+    from chainchaos.studies.numerics.plots import plot_work_precision
 
     ds = work_precision(chain, [("hertz", 0.05)], schemes=["verlet"], dts=[0.1, 0.05], tolerances={"RK45": [1e-5]},
                         t_final=10.0, t_probe=10.0, reference={"scheme": "SRKN6b", "dt": {"hertz": 0.01}},

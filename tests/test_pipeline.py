@@ -14,8 +14,8 @@ import pytest
 import xarray as xr
 from matplotlib.image import imread
 
-from chainchaos import paper
-from chainchaos.simd import LANES
+from chainchaos.engine.simd import LANES
+from chainchaos.paper import panels, statements
 
 ROOT = Path(__file__).resolve().parents[1]
 QUICK = ["--configfile", "config/quick.yaml"]
@@ -39,7 +39,7 @@ def planned_jobs(output: str) -> dict[str, int]:
 
 @pytest.mark.slow
 def test_every_panel_and_figure_exists_and_is_not_blank(quick):
-    names = [f"fig{p}" for p in paper.PANELS] + [f"fig{n}" for n in paper.LAYOUTS]
+    names = [f"fig{p}" for p in panels.PANELS] + [f"fig{n}" for n in panels.LAYOUTS]
     for name in names:
         pdf, png = quick / "figures" / f"{name}.pdf", quick / "figures" / f"{name}.png"
         assert pdf.stat().st_size > 1000 and pdf.read_bytes()[:5] == b"%PDF-", name
@@ -49,9 +49,9 @@ def test_every_panel_and_figure_exists_and_is_not_blank(quick):
 
 @pytest.mark.slow
 def test_each_scene_holds_what_its_panels_asked_for(quick):
-    for name, scene in paper.scenes().items():
+    for name, scene in panels.scenes().items():
         with xr.open_dataset(quick / "scenes" / f"{name}.nc") as ds:
-            asked = set(paper.scene_observables(name))
+            asked = set(panels.scene_observables(name))
             written = {v for v in ds.data_vars if v in _contract_variables()}
             assert written == asked | {"energy_error"}, name
             assert ds.attrs["model"] == scene.model and ds.attrs["energy"] == scene.energy
@@ -60,7 +60,7 @@ def test_each_scene_holds_what_its_panels_asked_for(quick):
 
 
 def _contract_variables():
-    from chainchaos.scene_observables import OBSERVABLES
+    from chainchaos.observe.registry import OBSERVABLES
 
     return set(OBSERVABLES)
 
@@ -85,7 +85,7 @@ def test_changed_scene_parameter_reruns_only_its_batch(quick, tmp_path):
     rerun = set(re.findall(r"(?:local)?rule simulate_scene:\n(?:[ \t]+\w+:.*\n)*?[ \t]+output: \S*/scenes/(\w+_H[\d.]+)\.nc", out))
     assert "hertz_H1.8" in rerun and all(name.startswith("hertz_") for name in rerun)
     assert jobs["simulate_scene"] == len(rerun) and jobs["simulate_scenes"] == 2
-    affected = {p for name in rerun for p in paper.panels_of_scene(name)}
+    affected = {p for p, panel in panels.PANELS.items() if rerun & {s.name for s in panel.scenes}}
     assert jobs["plot_panel"] == len(affected)
     assert jobs["plot_figure"] == len({p[:-1] for p in affected})
     assert "compute_ensemble" not in jobs and "select_chain" not in jobs
@@ -95,14 +95,14 @@ def test_paper_scale_dry_run_plans_every_scene(tmp_path):
     code, out = snakemake("-n", "--config", f"results={tmp_path}")
     assert code == 0, out[-4000:]
     jobs = planned_jobs(out)
-    assert jobs["simulate_scene"] == len(paper.scenes()) and jobs["plot_panel"] == len(paper.PANELS)
+    assert jobs["simulate_scene"] == len(panels.scenes()) and jobs["plot_panel"] == len(panels.PANELS)
     # scenes that share their settings run together, one SIMD block per job
-    per_model = [sum(s.model == model for s in paper.scenes().values()) for model in ("hertz", "fput")]
+    per_model = [sum(s.model == model for s in panels.scenes().values()) for model in ("hertz", "fput")]
     assert jobs["simulate_scenes"] == sum(-(-n // LANES) for n in per_model)
     # the realization search: stage-1 jobs of 8 candidates, the survivors' scores, one verdict per scene
     assert jobs["search_candidates"] == 1 and jobs["search_filter"] == 5 and jobs["search_score"] == 6
     assert jobs["search_merge"] == 1
-    assert jobs["ensemble_verdicts"] == len(paper.statement_scenes())
+    assert jobs["ensemble_verdicts"] == len(statements.statement_scenes())
 
 
 def test_a_pinned_seed_rescores_that_chain_without_a_search(tmp_path):
@@ -121,11 +121,11 @@ def test_the_search_chooses_the_chain_and_the_verdicts_run_on_it(quick):
     found = xr.load_dataset(quick / "search" / "search.nc")
     chain = xr.load_dataset(quick / "chain" / "chain.nc")
     assert int(chain.attrs["seed"]) == found.attrs["chosen_seed"] == int(chain.attrs["selection_seed"])
-    assert found.sizes["statement"] == len(paper.STATEMENTS) and found.attrs["n_scored"] >= 1
-    for name in paper.statement_scenes():
+    assert found.sizes["statement"] == len(statements.STATEMENTS) and found.attrs["n_scored"] >= 1
+    for name in statements.statement_scenes():
         v = xr.load_dataset(quick / "verdicts" / f"{name}.nc")
         assert int(v.attrs["seed"]) == found.attrs["chosen_seed"]
-        assert v.sizes["lane"] >= 2 and set(v.statement.values) == {s.id for s in paper.statements_of_scene(name)}
+        assert v.sizes["lane"] >= 2 and set(v.statement.values) == {s.id for s in statements.statements_of_scene(name)}
         u0 = v["u0"].values
         assert np.all(np.abs(u0[1:] / u0[0] - 1) <= 1e-9) and len(set(u0)) == u0.size
     image = imread(quick / "figures" / "search.png")

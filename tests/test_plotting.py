@@ -3,7 +3,6 @@ Datasets that follow the data contract (docs/conventions.md#data-contract), and 
 byte-stable, atomic saving."""
 
 import io
-
 from pathlib import Path
 
 import numpy as np
@@ -14,9 +13,8 @@ from matplotlib.colors import LogNorm, to_rgb
 from matplotlib.image import imread
 from matplotlib.text import Text
 
-from chainchaos import paper
-from chainchaos.plotting import plot_figure, plot_panel, save_figure
-from chainchaos.plotting import style
+from chainchaos.output.plotting import plot_figure, plot_panel, save_figure, style
+from chainchaos.paper import panels
 
 N = 40  # sites; Fig. 1b's inset shows mode 34
 T_FINAL = 1000.0  # shorter than the profile time 1e5 of Figs. 3c,d
@@ -33,7 +31,7 @@ def _densities(rng, shape) -> np.ndarray:
     return x / x.sum(axis=-1, keepdims=True)
 
 
-def synthetic_scene(scene: paper.Scene, rng) -> xr.Dataset:
+def synthetic_scene(scene: panels.Scene, rng) -> xr.Dataset:
     """A scene Dataset with every observable of the contract (gaps only for Hertz)."""
     t = _times()
     S = t.size
@@ -90,7 +88,7 @@ def synthetic_ensemble(rng) -> xr.Dataset:
 @pytest.fixture(scope="module")
 def data() -> dict:
     rng = np.random.default_rng(2024)
-    scenes = {name: synthetic_scene(scene, rng) for name, scene in sorted(paper.scenes().items())}
+    scenes = {name: synthetic_scene(scene, rng) for name, scene in sorted(panels.scenes().items())}
     return {**scenes, "chain": synthetic_chain(rng), "ensemble": synthetic_ensemble(rng)}
 
 
@@ -107,7 +105,7 @@ def _texts(legend) -> list[str]:
 # --------------------------------------------------------------------------- every panel, every figure
 
 
-@pytest.mark.parametrize("panel_id", sorted(paper.PANELS))
+@pytest.mark.parametrize("panel_id", sorted(panels.PANELS))
 def test_every_panel_draws(panel_id, data):
     fig = plot_panel(panel_id, data)
     ax = fig.axes[0]
@@ -115,17 +113,17 @@ def test_every_panel_draws(panel_id, data):
     assert _render(fig).startswith(b"\x89PNG")
 
 
-@pytest.mark.parametrize("number", sorted(paper.LAYOUTS))
+@pytest.mark.parametrize("number", sorted(panels.LAYOUTS))
 def test_every_figure_draws_its_panels_lettered(number, data):
     fig = plot_figure(number, data)
     letters = [ax.get_title(loc="left").split("$")[1] for ax in fig.axes if ax.get_title(loc="left")]
-    expected = [rf"\bf{{({letter})}}" for row in paper.LAYOUTS[number] for letter in row]
+    expected = [rf"\bf{{({letter})}}" for row in panels.LAYOUTS[number] for letter in row]
     assert letters == expected
-    assert len(expected) == len(paper.panels_of_figure(number))
+    assert len(expected) == len(panels.panels_of_figure(number))
     assert _render(fig).startswith(b"\x89PNG")
 
 
-@pytest.mark.parametrize("number", sorted(paper.LAYOUTS))
+@pytest.mark.parametrize("number", sorted(panels.LAYOUTS))
 def test_panel_titles_clear_the_colour_bar_labels(number, data):
     """A lettered title that reaches over a map's colour bar (Fig. 9h) does not touch its tick labels."""
     fig = plot_figure(number, data)

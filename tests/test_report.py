@@ -11,7 +11,8 @@ import pytest
 from docutils.core import publish_parts
 from jinja2 import Environment
 
-from chainchaos import paper, report_captions
+from chainchaos.output import report_captions
+from chainchaos.paper import panels, statements
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -31,36 +32,36 @@ def _render(template: str, **wildcards) -> str:
 
 def test_committed_caption_templates_are_the_generated_ones():
     for path, text in report_captions.templates().items():
-        assert (ROOT / path).read_text() == text, f"{path} is stale: run python -m chainchaos.report_captions"
+        assert (ROOT / path).read_text() == text, f"{path} is stale: run python -m chainchaos.output.report_captions"
 
 
 def test_every_panel_and_figure_has_a_caption_that_renders_cleanly():
     panel = (ROOT / report_captions.PANEL_TEMPLATE).read_text()
-    for p in paper.PANELS:
+    for p in panels.PANELS:
         html = _render(panel, panel=p)
         assert f"Fig. {p[:-1]}({p[-1]})" in html and "Shows" in html and "The paper reports" in html, p
-        for s in paper.statements_of_panel(p):
+        for s in statements.statements_of_panel(p):
             assert s.text.split("$")[0].strip() in html, (p, s.id)
     figure = (ROOT / report_captions.FIGURE_TEMPLATE).read_text()
-    for n in paper.LAYOUTS:
+    for n in panels.LAYOUTS:
         html = _render(figure, number=str(n))
-        kinds = {paper.PANELS[p].kind for p in paper.panels_of_figure(n)}
+        kinds = {panels.PANELS[p].kind for p in panels.panels_of_figure(n)}
         assert f"Fig. {n}</strong>" in html and html.count("<li>") >= len(kinds), n
-        for p in paper.panels_of_figure(n):
+        for p in panels.panels_of_figure(n):
             assert re.search(rf"<em>\([a-z, ]*{p[-1]}[a-z, ]*\)</em>", html), p
 
 
 def test_every_statement_is_about_a_panel_of_the_figure_it_cites():
-    for s in paper.STATEMENTS:
-        panels = paper.statement_panels(s)
-        assert panels and all(s.scene in paper.PANELS[p].scenes for p in panels), s.id
-        assert all(f"(Fig. {p[:-1]}" in s.text for p in panels), s.id
+    for s in statements.STATEMENTS:
+        ids = statements.statement_panels(s)
+        assert ids and all(s.scene in panels.PANELS[p].scenes for p in ids), s.id
+        assert all(f"(Fig. {p[:-1]}" in s.text for p in ids), s.id
 
 
 def test_labels_tell_the_panels_of_a_figure_apart():
-    for n in paper.LAYOUTS:
+    for n in panels.LAYOUTS:
         rows = [report_captions.figure_labels(n)] + [report_captions.panel_labels(p)
-                                                    for p in paper.panels_of_figure(n)]
+                                                    for p in panels.panels_of_figure(n)]
         assert len({tuple(r.values()) for r in rows}) == len(rows)
         assert all(list(r) == list(rows[0]) for r in rows)
     assert report_captions.panel_labels("4c")["model"] == "Hertz, FPUT"
@@ -87,18 +88,18 @@ def test_report_of_the_quick_run_holds_every_figure_with_caption_and_labels(quic
     results = {Path(path).name: entry for path, entry in _embedded(html, "results").items()}
     categories = _embedded(html, "categories")
 
-    for p in paper.PANELS:
+    for p in panels.PANELS:
         entry = results[f"fig{p}.png"]
         assert entry["labels"] == report_captions.panel_labels(p)
         assert f"Fig. {p[:-1]}({p[-1]})" in entry["caption"], p
-    for n in paper.LAYOUTS:
+    for n in panels.LAYOUTS:
         entry = results[f"fig{n}.png"]
         assert entry["labels"] == report_captions.figure_labels(n)
         assert f"Fig. {n}</strong>" in entry["caption"]
     for name in OTHER_RESULTS:
         assert results[name]["caption"].strip() and results[name]["labels"], name
-    assert set(categories["Paper figures"]) == {report_captions.figure_subcategory(n) for n in paper.LAYOUTS}
-    expected = len(paper.PANELS) + len(paper.LAYOUTS) + len(OTHER_RESULTS)
+    assert set(categories["Paper figures"]) == {report_captions.figure_subcategory(n) for n in panels.LAYOUTS}
+    expected = len(panels.PANELS) + len(panels.LAYOUTS) + len(OTHER_RESULTS)
     assert len(results) == expected
     # the start page (workflow/report/workflow.rst) links every category by its name
     for category in categories:

@@ -1,11 +1,25 @@
-"""Energy scans and disorder statistics (chainchaos.scan): reductions, criteria, grouping, merge."""
+"""Energy scans and disorder statistics (chainchaos.studies.scan.runs): reductions, criteria, grouping, merge."""
 
 import numpy as np
 import pytest
 import xarray as xr
 
-from chainchaos import random_chain, scan
-from chainchaos.models import get_model
+from chainchaos import random_chain
+from chainchaos.studies.scan.merge import merge_disorder, merge_energy_scan, wilson_interval
+from chainchaos.studies.scan.runs import (
+    ScanSettings,
+    Trajectory,
+    disorder_group,
+    energy_grid,
+    energy_scan_group,
+    group_items,
+    items,
+    n_groups,
+    run_trajectories,
+    select_excitation,
+)
+from chainchaos.studies.scan.thresholds import PAPER_THRESHOLDS, thresholds_csv, thresholds_table, thresholds_tex
+from chainchaos.system.models import get_model
 
 CFG = {
     "settings": {"dt": 0.02, "samples_per_decade": 8, "p_delocalized": 10.0, "chaos_slope": -0.5,
@@ -25,24 +39,24 @@ def chain():
 
 def test_groups_cover_every_trajectory_once():
     for kind in ("energy_scan", "disorder"):
-        n = scan.n_groups(kind, CFG)
-        seen = [it for g in range(n) for it in scan.group_items(kind, CFG, g)]
-        assert seen == scan.items(kind, CFG)
+        n = n_groups(kind, CFG)
+        seen = [it for g in range(n) for it in group_items(kind, CFG, g)]
+        assert seen == items(kind, CFG)
         assert len(set(seen)) == len(seen)
-    assert scan.n_groups("energy_scan", CFG) == 3  # 8 trajectories, 3 per job
-    assert scan.n_groups("disorder", CFG) == 3  # 12 trajectories, 5 per job
+    assert n_groups("energy_scan", CFG) == 3  # 8 trajectories, 3 per job
+    assert n_groups("disorder", CFG) == 3  # 12 trajectories, 5 per job
 
 
 def test_energy_grid_is_log_spaced_and_rounded():
-    grid = scan.energy_grid({"n_energies": 100, "energy_min": 0.1, "energy_max": 10})
+    grid = energy_grid({"n_energies": 100, "energy_min": 0.1, "energy_max": 10})
     assert grid[0] == 0.1 and grid[-1] == 10.0 and grid.size == 100
     assert np.allclose(np.diff(np.log(grid)), np.log(100) / 99, rtol=0, atol=1e-5)
 
 
 def test_selection_rule_picks_a_localized_high_mode_near_the_centre(chain):
-    pick = scan.select_excitation(chain, high_frequency_modes=14, centre_window=5)
+    pick = select_excitation(chain, high_frequency_modes=14, centre_window=5)
     assert pick["mode"] > chain.N - 14 and abs(pick["site"] - (chain.N + 1) / 2) <= 5 and not pick["fallback"]
-    from chainchaos.linear import mode_energy_density, normal_modes, participation_number
+    from chainchaos.system.linear import mode_energy_density, normal_modes, participation_number
 
     omega, U = normal_modes(chain)
     h = mode_energy_density(chain, omega, U)
@@ -50,15 +64,15 @@ def test_selection_rule_picks_a_localized_high_mode_near_the_centre(chain):
     near = [k for k in range(chain.N - 14, chain.N) if abs(np.argmax(h[:, k]) + 1 - 20.5) <= 5]
     assert pick["participation"] == pytest.approx(min(P[near]))
     # with no candidate near the centre the most localized high mode is taken, flagged
-    assert scan.select_excitation(chain, high_frequency_modes=1, centre_window=0)["fallback"] in (True, False)
+    assert select_excitation(chain, high_frequency_modes=1, centre_window=0)["fallback"] in (True, False)
 
 
 def test_engines_agree_and_criteria_follow_their_definitions(chain):
-    settings = scan.ScanSettings(t_final=400.0, dt=0.02, samples_per_decade=8, p_delocalized=6.0,
+    settings = ScanSettings(t_final=400.0, dt=0.02, samples_per_decade=8, p_delocalized=6.0,
                                  chaos_growth_margin=2.0, final_samples=20)
-    trajs = [scan.Trajectory(m, E, chain, 21) for m in ("hertz", "fput", "toda") for E in (0.2, 3.0)]
-    a = scan.run_trajectories(trajs, settings)
-    b = scan.run_trajectories(trajs, scan.ScanSettings(**{**settings.__dict__, "engine": "single"}))
+    trajs = [Trajectory(m, E, chain, 21) for m in ("hertz", "fput", "toda") for E in (0.2, 3.0)]
+    a = run_trajectories(trajs, settings)
+    b = run_trajectories(trajs, ScanSettings(**{**settings.__dict__, "engine": "single"}))
     for ra, rb in zip(a, b):
         for key in ("participation_final", "mlce_final", "eta_final", "max_gaps", "chaotic"):
             assert ra[key] == rb[key]  # the engines are bit-identical
@@ -82,8 +96,8 @@ def test_engines_agree_and_criteria_follow_their_definitions(chain):
 
 
 def test_energy_scan_groups_merge_onto_the_grid(chain):
-    groups = [scan.energy_scan_group(chain, CFG, g) for g in range(scan.n_groups("energy_scan", CFG))]
-    ds = scan.merge_energy_scan(groups, CFG, chain)
+    groups = [energy_scan_group(chain, CFG, g) for g in range(n_groups("energy_scan", CFG))]
+    ds = merge_energy_scan(groups, CFG, chain)
     assert ds.participation_final.dims == ("model", "energy")
     assert ds.participation.dims == ("model", "energy", "time")
     assert list(ds.model.values) == ["hertz", "fput"] and ds.sizes["energy"] == 4
@@ -91,11 +105,11 @@ def test_energy_scan_groups_merge_onto_the_grid(chain):
     assert (ds.max_gaps.sel(model="fput") == -1).all() and (ds.max_gaps.sel(model="hertz") >= 0).all()
     for key in ("git_commit", "parameters", "chainchaos_version", "delocalization_criterion", "chaos_criterion"):
         assert key in ds.attrs
-    rows = scan.thresholds_table(ds)
-    assert {(r["model"], r["criterion"]) for r in rows} == set(scan.PAPER_THRESHOLDS)
-    csv = scan.thresholds_csv(rows, ds)
+    rows = thresholds_table(ds)
+    assert {(r["model"], r["criterion"]) for r in rows} == set(PAPER_THRESHOLDS)
+    csv = thresholds_csv(rows, ds)
     assert "model,criterion,first_energy,always_above" in csv and "p_delocalized = 10" in csv
-    assert "\\begin{tabular}" in scan.thresholds_tex(rows, ds)
+    assert "\\begin{tabular}" in thresholds_tex(rows, ds)
 
 
 def test_thresholds_table_reads_first_and_always_above():
@@ -104,7 +118,7 @@ def test_thresholds_table_reads_first_and_always_above():
     ds = xr.Dataset({"delocalized": (("model", "energy"), flags), "chaotic": (("model", "energy"), flags[::-1]),
                      "valid": (("model", "energy"), np.ones_like(flags))},
                     coords={"model": ["hertz", "fput"], "energy": E})
-    rows = {(r["model"], r["criterion"]): r for r in scan.thresholds_table(ds)}
+    rows = {(r["model"], r["criterion"]): r for r in thresholds_table(ds)}
     assert rows["hertz", "delocalization"]["first_energy"] == 0.2
     assert rows["hertz", "delocalization"]["always_above"] == 1.0
     assert np.isnan(rows["hertz", "chaos"]["first_energy"])
@@ -112,8 +126,8 @@ def test_thresholds_table_reads_first_and_always_above():
 
 
 def test_disorder_statistics_with_binomial_bands():
-    groups = [scan.disorder_group(CFG, g) for g in range(scan.n_groups("disorder", CFG))]
-    ds = scan.merge_disorder(groups, CFG)
+    groups = [disorder_group(CFG, g) for g in range(n_groups("disorder", CFG))]
+    ds = merge_disorder(groups, CFG)
     assert ds.participation_final.dims == ("model", "energy", "realization")
     assert ds.sizes["realization"] == 3 and (ds.count_valid == 3).all()
     for what in ("delocalized", "chaotic"):
@@ -123,30 +137,31 @@ def test_disorder_statistics_with_binomial_bands():
         np.testing.assert_allclose(p, k / 3)
     # the excited bead of each realization follows the selection rule
     for r in range(3):
-        pick = scan.select_excitation(random_chain(100 + r, 5.0), 14, 5)
+        pick = select_excitation(random_chain(100 + r, 5.0), 14, 5)
         assert int(ds.excited_site[r]) == pick["site"] and int(ds.excited_mode[r]) == pick["mode"]
     assert ds.delocalization_onset_quantiles.dims == ("model", "energy", "quantile")
     assert "selection_rule" in ds.attrs and ds.attrs["confidence_interval"].startswith("Wilson")
 
 
 def test_wilson_interval_known_values():
-    lo, hi = scan.wilson_interval(0, 10)
+    lo, hi = wilson_interval(0, 10)
     assert lo == 0 and hi == pytest.approx(0.2775, abs=1e-3)
-    lo, hi = scan.wilson_interval(5, 10)
+    lo, hi = wilson_interval(5, 10)
     assert lo == pytest.approx(0.2366, abs=1e-3) and hi == pytest.approx(0.7634, abs=1e-3)
-    lo, hi = scan.wilson_interval(0, 0)
+    lo, hi = wilson_interval(0, 0)
     assert np.isnan(lo) and np.isnan(hi)
 
 
 def test_scan_figures_are_byte_stable(tmp_path, chain):
-    from chainchaos import scan_plots
+    from chainchaos.output.plotting.style import save_figure
+    from chainchaos.studies.scan import plots as scan_plots
 
-    groups = [scan.energy_scan_group(chain, CFG, g) for g in range(scan.n_groups("energy_scan", CFG))]
-    ds = scan.merge_energy_scan(groups, CFG, chain)
-    dis = scan.merge_disorder([scan.disorder_group(CFG, g) for g in range(scan.n_groups("disorder", CFG))], CFG)
+    groups = [energy_scan_group(chain, CFG, g) for g in range(n_groups("energy_scan", CFG))]
+    ds = merge_energy_scan(groups, CFG, chain)
+    dis = merge_disorder([disorder_group(CFG, g) for g in range(n_groups("disorder", CFG))], CFG)
     for name, fig_fn, data in (("e", scan_plots.energy_scan_figure, ds), ("d", scan_plots.disorder_figure, dis)):
-        scan_plots.save(fig_fn(data), tmp_path / f"{name}1")
-        scan_plots.save(fig_fn(data), tmp_path / f"{name}2")
+        save_figure(fig_fn(data), tmp_path / f"{name}1")
+        save_figure(fig_fn(data), tmp_path / f"{name}2")
         a, b = (tmp_path / f"{name}1.pdf").read_bytes(), (tmp_path / f"{name}2.pdf").read_bytes()
         assert a[:5] == b"%PDF-" and a == b and b"CreationDate" not in a
         assert (tmp_path / f"{name}1.png").read_bytes() == (tmp_path / f"{name}2.png").read_bytes()

@@ -7,13 +7,13 @@ import sys
 import numpy as np
 import xarray as xr
 
-from chainchaos.io import write_netcdf
-from chainchaos.scene_observables import OBSERVABLES
-from chainchaos.simulate import SceneParameters, simulate
+from chainchaos.observe.registry import OBSERVABLES
+from chainchaos.output.io import write_netcdf
+from chainchaos.run.scenes import SceneParameters, simulate
 
 
 def test_only_requested_observables_are_written(tmp_path, chain):
-    ds = simulate(chain, SceneParameters("fput", 0.5, 10.0, 0.01, observables=("mlce", "eta")))
+    ds = simulate(chain, SceneParameters(model="fput", energy=0.5, t_final=10.0, dt=0.01, observables=("mlce", "eta")))
     path = write_netcdf(ds, tmp_path / "scene.nc")
     with xr.open_dataset(path) as back:
         assert set(back.data_vars) == {"mlce", "eta", "energy_error", "initial_deviation", "frequency"}
@@ -26,7 +26,7 @@ def test_only_requested_observables_are_written(tmp_path, chain):
 
 
 def test_every_observable_of_the_contract(chain):
-    ds = simulate(chain, SceneParameters("hertz", 1.8, 100.0, 0.01))
+    ds = simulate(chain, SceneParameters(model="hertz", energy=1.8, t_final=100.0, dt=0.01))
     for name in OBSERVABLES + ("initial_deviation",):
         assert name in ds, name
     assert np.allclose(ds.energy_density.sum("site"), 1.0) and np.allclose(ds.dvd.sum("site"), 1.0)
@@ -37,7 +37,7 @@ def test_every_observable_of_the_contract(chain):
 
 
 def test_command_line_chain_and_simulate(tmp_path):
-    run = [sys.executable, "-m", "chainchaos.cli"]
+    run = [sys.executable, "-m", "chainchaos.workflow.cli"]
     subprocess.run(run + ["chain", "--seed", "879", "--alpha", "5", "--out", str(tmp_path / "c.nc")], check=True)
     done = subprocess.run(run + ["simulate", "--chain", str(tmp_path / "c.nc"), "--model", "hertz", "--energy",
                                  "1.8", "--t-final", "20", "--dt", "0.01", "--observables", "participation",
@@ -55,7 +55,7 @@ def test_command_line_chain_and_simulate(tmp_path):
 
 def test_radii_file(tmp_path):
     (tmp_path / "radii.txt").write_text("\n".join(str(r) for r in np.linspace(1, 5, 10)) + "\n")
-    subprocess.run([sys.executable, "-m", "chainchaos.cli", "chain", "--radii", str(tmp_path / "radii.txt"),
+    subprocess.run([sys.executable, "-m", "chainchaos.workflow.cli", "chain", "--radii", str(tmp_path / "radii.txt"),
                     "--out", str(tmp_path / "c.nc")], check=True, capture_output=True)
     with xr.open_dataset(tmp_path / "c.nc") as ds:
         assert ds.sizes["site"] == 10 and ds.attrs["alpha"] == 5.0

@@ -1,13 +1,13 @@
-"""Explicit SIMD vectors (chainchaos.simd): every lane gets exactly its scalar operation."""
+"""Explicit SIMD vectors (chainchaos.engine.simd): every lane gets exactly its scalar operation."""
 
 import numpy as np
 import pytest
 from numba import njit
 
-from chainchaos.chain import random_chain
-from chainchaos.models import MODELS
-from chainchaos.models.base import bond_force, bond_force_stiffness, bond_opening
-from chainchaos.simd import LANES, vbelow, vload, vnext, vprev, vstore
+from chainchaos.engine.simd import LANES, vbelow, vload, vnext, vprev, vstore
+from chainchaos.system.chain import random_chain
+from chainchaos.system.models import MODELS
+from chainchaos.system.models.base import bond_force, bond_force_stiffness, bond_opening
 
 # normal numbers, signed zeros, subnormals, infinities and NaN in every operand position
 SPECIAL = np.array([1.5, -2.25, 0.0, -0.0, 5e-324, -1e-310, np.inf, -np.inf, np.nan, 3.0e300, -7.0, 0.125])

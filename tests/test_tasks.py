@@ -1,7 +1,7 @@
-"""The workflow's scripts and the task functions they run (chainchaos.tasks).
+"""The workflow's scripts and the task functions they run (chainchaos.workflow.tasks).
 
 Every rule `X` of workflow/rules/F.smk runs workflow/scripts/X.py, two lines that call
-``run_rule(snakemake)``, which runs ``chainchaos.tasks.F.X`` with stderr in the rule's log. The
+``run_rule(snakemake)``, which runs ``chainchaos.workflow.tasks.F.X`` with stderr in the rule's log. The
 end-to-end run of every task is the quick pipeline (tests/test_pipeline.py); the cheap ones are
 also run here on small inputs."""
 
@@ -18,9 +18,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from chainchaos.io import ensemble_dataset
-from chainchaos.manuscript import GENERATED
-from chainchaos.tasks import TASKS, run_rule
+from chainchaos.output.io import ensemble_dataset
+from chainchaos.output.manuscript import GENERATED
+from chainchaos.workflow.tasks import TASKS, run_rule
 
 ROOT = Path(__file__).resolve().parents[1]
 SCRIPTS = ROOT / "workflow" / "scripts"
@@ -62,16 +62,16 @@ def test_every_rule_runs_the_script_and_task_named_like_it():
             continue
         assert script == f"{name}.py", f"rule {name} runs {script}"
         assert name in TASKS, f"rule {name} has no task"
-        assert TASKS[name].__module__ == f"chainchaos.tasks.{path.stem}", name
+        assert TASKS[name].__module__ == f"chainchaos.workflow.tasks.{path.stem}", name
 
 
 def test_a_script_s_task_is_found_through_its_rule_file_alone():
     """A job imports only the task module named like its rule's file (the scripts' `scriptdir`)."""
-    code = ("import sys, types\nfrom chainchaos.tasks import _task\n"
+    code = ("import sys, types\nfrom chainchaos.workflow.tasks import _task\n"
             f"task = _task(types.SimpleNamespace(rule='plot_panel', scriptdir={str(SCRIPTS)!r}))\n"
-            "print(task.__module__, sorted(m for m in sys.modules if m.startswith(('chainchaos.tasks.', 'numba'))))")
+            "print(task.__module__, sorted(m for m in sys.modules if m.startswith(('chainchaos.workflow.tasks.', 'numba'))))")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    assert done.stdout.split(" ", 1) == ["chainchaos.tasks.figures", "['chainchaos.tasks.figures']\n"]
+    assert done.stdout.split(" ", 1) == ["chainchaos.workflow.tasks.figures", "['chainchaos.workflow.tasks.figures']\n"]
 
 
 def test_every_task_and_script_belongs_to_a_rule():
@@ -85,7 +85,7 @@ def test_a_script_is_the_call_into_the_package(path):
     body = ast.parse(path.read_text()).body
     if isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant):
         body = body[1:]  # the docstring
-    assert [ast.unparse(node) for node in body] == ["from chainchaos.tasks import run_rule", "run_rule(snakemake)"]
+    assert [ast.unparse(node) for node in body] == ["from chainchaos.workflow.tasks import run_rule", "run_rule(snakemake)"]
 
 
 # ------------------------------------------------------------------ run_rule
@@ -112,7 +112,7 @@ def test_missing_tex_stops_with_the_debian_packages_and_no_traceback(tmp_path):
     inputs = {"tex": "manuscript/ms.tex", **{key: str(tmp_path / "missing" / name) for key, name in GENERATED.items()}}
     rule = dict(rule="build_manuscript", log=[str(log)], input=inputs,
                 output={"pdf": str(pdf)}, params={"build_dir": str(tmp_path / "build")}, wildcards={})
-    code = ("import json, sys, types\nfrom chainchaos.tasks import run_rule\n"
+    code = ("import json, sys, types\nfrom chainchaos.workflow.tasks import run_rule\n"
             "run_rule(types.SimpleNamespace(**json.loads(sys.argv[1])))")
     done = subprocess.run([sys.executable, "-c", code, json.dumps(rule)], cwd=ROOT, capture_output=True, text=True,
                           env={**os.environ, "PATH": str(empty)})

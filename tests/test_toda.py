@@ -1,4 +1,4 @@
-"""The Toda chain (chainchaos.models.toda) against its exact properties.
+"""The Toda chain (chainchaos.system.models.toda) against its exact properties.
 
 - Its bond law expands to the FPUT one: K2 and K3 by construction, and the chain's K4 (paper sign)
   too, since 2 K3^2 / (3 K2) = h / 96; the first difference is the D^4 term K2 beta^3 / 24.
@@ -11,10 +11,10 @@
 import numpy as np
 import pytest
 
-from chainchaos.chain import chain_from_radii, random_chain
-from chainchaos.initial import initial_state
-from chainchaos.models import fput, get_model, toda
-from chainchaos.problem import Problem
+from chainchaos.system.chain import chain_from_radii, random_chain
+from chainchaos.system.initial import initial_state
+from chainchaos.system.models import fput, get_model, toda
+from chainchaos.system.problem import Problem
 
 TODA = get_model("toda")
 

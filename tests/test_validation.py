@@ -7,8 +7,8 @@ import xarray as xr
 
 from chainchaos import Chain, random_chain
 from chainchaos.errors import ChainFileError, ParameterError, SimulationError
-from chainchaos.io import chain_dataset, read_chain, write_netcdf
-from chainchaos.simulate import SceneParameters, simulate
+from chainchaos.output.io import chain_dataset, read_chain, write_netcdf
+from chainchaos.run.scenes import SceneParameters, simulate
 
 
 def scene(**overrides):
@@ -73,7 +73,7 @@ def test_unreachable_energy_with_taylor_sign(chain):
 def test_escape_to_infinity_is_stopped_by_the_guard(chain):
     """FPUT with the Taylor sign of K4 just below the barrier escapes: the run stops with the scene
     and time named, not NaNs."""
-    from chainchaos.initial import initial_displacement
+    from chainchaos.system.initial import initial_displacement
 
     # the barrier height along the excitation: the largest energy that still has a root
     energies = np.linspace(0.5, 20, 40)

@@ -7,12 +7,14 @@ Hertz chain at H = 3 spreads and is strongly chaotic."""
 import numpy as np
 import pytest
 
-from chainchaos import paper, random_chain, search, verdicts
-from chainchaos.criteria import Criteria
-from chainchaos.orbits import Orbit, OrbitSettings, integrate, lane_factor, sample_schedule
-from chainchaos.reductions import (final_average, is_chaotic, loglog_slope, sustained_onset, time_average)
-from chainchaos.selection import SelectionCriteria
-from chainchaos.simulate import SceneParameters, simulate
+from chainchaos import random_chain
+from chainchaos.observe.reductions import final_average, is_chaotic, loglog_slope, sustained_onset, time_average
+from chainchaos.paper import statements, verdicts
+from chainchaos.paper.criteria import Criteria
+from chainchaos.run.orbits import Orbit, OrbitSettings, integrate, lane_factor, sample_schedule
+from chainchaos.run.scenes import SceneParameters, simulate
+from chainchaos.studies.search import stages as search
+from chainchaos.studies.search.selection import SelectionCriteria
 
 
 @pytest.fixture(scope="module")
@@ -49,7 +51,7 @@ def test_sustained_onset_ignores_a_single_peak():
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
 def test_the_harmonic_chain_is_regular_for_every_deviation_vector(chain, seed):
-    params = SceneParameters("harmonic", 1.0, t_final=1e4, dt=0.05, observables=("mlce",), deviation_seed=seed,
+    params = SceneParameters(model="harmonic", energy=1.0, t_final=1e4, dt=0.05, observables=("mlce",), deviation_seed=seed,
                              samples_per_decade=20, t_first_sample=1.0)
     ds = simulate(chain, params)
     t, L = ds.time.values, ds.mlce.values
@@ -58,7 +60,7 @@ def test_the_harmonic_chain_is_regular_for_every_deviation_vector(chain, seed):
 
 
 def test_a_spreading_hertz_orbit_is_chaotic(chain):
-    params = SceneParameters("hertz", 3.0, t_final=1e4, dt=0.02, observables=("mlce",), samples_per_decade=20,
+    params = SceneParameters(model="hertz", energy=3.0, t_final=1e4, dt=0.02, observables=("mlce",), samples_per_decade=20,
                              t_first_sample=1.0)
     ds = simulate(chain, params)
     t, L = ds.time.values, ds.mlce.values
@@ -99,8 +101,8 @@ def test_statements_are_decided_per_orbit_and_an_early_break_counts():
     t = np.concatenate([[0.0], np.logspace(0, 5, 101)])
     with np.errstate(divide="ignore"):
         regular_growth = np.log1p(t)
-    loc = next(s for s in paper.STATEMENTS if s.id == "loc-H0.25-hertz")
-    reg = next(s for s in paper.STATEMENTS if s.id == "regular-H0.25-hertz")
+    loc = next(s for s in statements.STATEMENTS if s.id == "loc-H0.25-hertz")
+    reg = next(s for s in statements.STATEMENTS if s.id == "regular-H0.25-hertz")
     localized = synthetic_run(t, np.full(t.size, 2.0), regular_growth)
     spread = synthetic_run(t, np.where(t > 1e2, 20.0, 2.0), 1e-2 * t)
     assert verdicts.outcome(loc, t, localized, c)[1] == 1.0
@@ -130,7 +132,7 @@ def test_search_filters_scores_and_chooses_the_best(tmp_path):
     assert len(kept) == 2
     scores = [search.score_candidate(selection, plan, settings, c, rows, int(k), 21) for k in kept]
     ds = search.merge(selection, plan, settings, c, found, filters, scores)
-    assert ds.sizes == {"candidate": 3, "statement": len(paper.STATEMENTS)}
+    assert ds.sizes == {"candidate": 3, "statement": len(statements.STATEMENTS)}
     scored = np.flatnonzero(ds["scored"].values == 1)
     assert set(scored) == set(int(k) for k in kept)
     best = ds.attrs["chosen_candidate"]

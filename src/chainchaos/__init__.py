@@ -5,23 +5,34 @@ bond models, symplectic splitting integrators applied together with their tangen
 observables of the paper, written as CF-style NetCDF through xarray.
 """
 
-from chainchaos._numba_cache import configure_numba_cache
+from chainchaos.engine.cache import configure_numba_cache
 
 configure_numba_cache()
 
 __version__ = "0.1.0"
 
-#: The package's public names and the modules that define them, imported on first use: a job
-#: that draws a panel need not load the engines.
+#: The package's public names: (module, attribute), imported on first use, so that a job that
+#: draws a panel need not load the engines. The registries are where a new model, scheme,
+#: observable, statement, panel or claim is one entry (docs/architecture.md).
 _EXPORTS = {
-    "Chain": "chainchaos.chain",
-    "chain_from_radii": "chainchaos.chain",
-    "random_chain": "chainchaos.chain",
-    "normal_modes": "chainchaos.linear",
-    "mode_participation": "chainchaos.linear",
-    "participation_number": "chainchaos.linear",
-    "ensemble_participation": "chainchaos.linear",
-    "simulate": "chainchaos.simulate",
+    "Chain": ("chainchaos.system.chain", "Chain"),
+    "chain_from_radii": ("chainchaos.system.chain", "chain_from_radii"),
+    "random_chain": ("chainchaos.system.chain", "random_chain"),
+    "normal_modes": ("chainchaos.system.linear", "normal_modes"),
+    "mode_participation": ("chainchaos.system.linear", "mode_participation"),
+    "participation_number": ("chainchaos.system.linear", "participation_number"),
+    "ensemble_participation": ("chainchaos.system.linear", "ensemble_participation"),
+    "Problem": ("chainchaos.system.problem", "Problem"),
+    "RunSettings": ("chainchaos.run.settings", "RunSettings"),
+    "SceneParameters": ("chainchaos.run.scenes", "SceneParameters"),
+    "simulate": ("chainchaos.run.scenes", "simulate"),
+    "sample": ("chainchaos.run.driver", "sample"),
+    "MODELS": ("chainchaos.system.models", "MODELS"),
+    "SCHEMES": ("chainchaos.engine.integrators", "SCHEMES"),
+    "OBSERVABLES": ("chainchaos.observe.registry", "REGISTRY"),
+    "PANELS": ("chainchaos.paper.panels", "PANELS"),
+    "STATEMENTS": ("chainchaos.paper.statements", "STATEMENTS"),
+    "CLAIMS": ("chainchaos.paper.claims.catalogue", "CATALOGUE"),
 }
 __all__ = [*_EXPORTS, "__version__"]
 
@@ -30,7 +41,8 @@ def __getattr__(name):
     if name in _EXPORTS:
         import importlib
 
-        value = getattr(importlib.import_module(_EXPORTS[name]), name)
+        module, attribute = _EXPORTS[name]
+        value = getattr(importlib.import_module(module), attribute)
         globals()[name] = value
         return value
     raise AttributeError(f"module 'chainchaos' has no attribute {name!r}")

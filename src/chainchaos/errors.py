@@ -18,7 +18,7 @@ class ChainFileError(ValueError):
 
 class ConfigError(ValueError):
     """A wrong pipeline config: one line per wrong key, naming the key, its value and what is
-    allowed (chainchaos.config_check)."""
+    allowed (chainchaos.workflow.config_check)."""
 
     def __init__(self, messages: list[str]):
         self.messages = list(messages)
@@ -36,7 +36,7 @@ class SimulationError(RuntimeError):
 
 class BuildError(RuntimeError):
     """A build failure with a message for the reader (no traceback is shown): TeX missing, a
-    LaTeX error (chainchaos.manuscript)."""
+    LaTeX error (chainchaos.output.manuscript)."""
 
 
 def require(condition: bool, name: str, value, allowed: str) -> None:

@@ -5,17 +5,16 @@
 import glob
 import math
 import re
-
-from chainchaos import paper
-from chainchaos import scan as _scan
-from chainchaos.report_captions import figure_labels, figure_subcategory, panel_labels
-from chainchaos.search import SearchPlan
-from chainchaos.simd import LANES
-from chainchaos.simulate import SceneParameters, scene_batches
+from chainchaos.engine.simd import LANES
+from chainchaos.output.report_captions import figure_labels, figure_subcategory, panel_labels
+from chainchaos.paper import panels, statements
+from chainchaos.run.scenes import scene_batches, scene_parameters
+from chainchaos.studies.scan import runs as scan_runs
+from chainchaos.studies.search.stages import SearchPlan
 
 RESULTS = config["results"]
-SCENES = paper.scenes()
-FIGURES = sorted(paper.LAYOUTS)
+SCENES = panels.scenes()
+FIGURES = sorted(panels.LAYOUTS)
 
 
 def result(*parts):
@@ -30,25 +29,14 @@ def benchmark_file(rule_name, stem="run"):
     return result("benchmarks", rule_name, f"{stem}.tsv")
 
 
-def scene_parameters(scene_name):
-    """SceneParameters keyword arguments of a scene: the `simulation` block, the scene's own
-    overrides, and the observables its panels use (paper.scene_observables)."""
-    scene = SCENES[scene_name]
-    params = {**config["simulation"], **config.get("scenes", {}).get(scene_name, {})}
-    params.update(
-        model=scene.model,
-        energy=scene.energy,
-        observables=paper.scene_observables(scene_name),
-        name=scene_name,
-    )
-    return params
-
-
+# Every scene as the config runs it (built once: the simulate_scenes jobs take these objects).
+SCENE_PARAMETERS = {
+    name: scene_parameters(config, scene, name, panels.scene_observables(name))
+    for name, scene in SCENES.items()
+}
 # Scenes that share their integration settings run together, as many as the SIMD width of this
-# machine's batch engine (chainchaos.simd.LANES); results do not depend on the grouping.
-SCENE_BATCHES = scene_batches(
-    {name: SceneParameters(**scene_parameters(name)) for name in SCENES}, LANES
-)
+# machine's batch engine (chainchaos.engine.simd.LANES); results do not depend on the grouping.
+SCENE_BATCHES = scene_batches(SCENE_PARAMETERS, LANES)
 SCENE_BATCH = {name: batch for batch, names in SCENE_BATCHES.items() for name in names}
 
 
@@ -58,7 +46,7 @@ def scene_file(scene_name):
 
 def panel_inputs(panel_id):
     """Files a panel is drawn from."""
-    panel = paper.PANELS[panel_id]
+    panel = panels.PANELS[panel_id]
     files = {s.name: scene_file(s.name) for s in panel.scenes}
     if panel.kind == "ensemble_participation":
         files["ensemble"] = result("ensemble", "participation_stats.nc")
@@ -69,7 +57,7 @@ def panel_inputs(panel_id):
 
 def figure_inputs(number):
     files = {}
-    for panel_id in paper.panels_of_figure(number):
+    for panel_id in panels.panels_of_figure(number):
         files.update(panel_inputs(panel_id))
     return files
 
@@ -86,7 +74,7 @@ REPORT_CATEGORIES = {
 
 
 PANEL_TARGETS = [
-    result("figures", f"fig{p}.{ext}") for p in sorted(paper.PANELS) for ext in ("pdf", "png")
+    result("figures", f"fig{p}.{ext}") for p in sorted(panels.PANELS) for ext in ("pdf", "png")
 ]
 FIGURE_TARGETS = [result("figures", f"fig{n}.{ext}") for n in FIGURES for ext in ("pdf", "png")]
 ALL_TARGETS = PANEL_TARGETS + FIGURE_TARGETS
@@ -114,13 +102,13 @@ def scan_params(kind):
 
 def scan_group_files(kind):
     return [
-        result("scan", "groups", kind, f"{g:04d}.nc") for g in range(_scan.n_groups(kind, SCAN))
+        result("scan", "groups", kind, f"{g:04d}.nc") for g in range(scan_runs.n_groups(kind, SCAN))
     ]
 
 
 def scan_runtime(kind):
     """Minutes a group job of a scan may take."""
-    s = _scan.settings_for(kind, SCAN)
+    s = scan_runs.settings_for(kind, SCAN)
     return cluster_runtime(SCAN[kind]["trajectories_per_job"], s.t_final, s.dt)
 
 
@@ -164,7 +152,11 @@ def manuscript_numerics():
 
 
 # The code that measures and writes the claims (an input of evaluate_claims).
-CLAIMS_CODE = [*sorted(glob.glob("src/chainchaos/claims/*.py")), "src/chainchaos/formatting.py"]
+CLAIMS_CODE = [
+    *sorted(glob.glob("src/chainchaos/paper/claims/*.py")),
+    "src/chainchaos/output/formatting.py",
+    "src/chainchaos/workflow/tasks/manuscript.py",
+]
 
 
 def claims_inputs(wildcards=None):

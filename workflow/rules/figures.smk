@@ -2,7 +2,7 @@
 
 
 wildcard_constraints:
-    panel="|".join(paper.PANELS),
+    panel="|".join(panels.PANELS),
     number="|".join(str(n) for n in FIGURES),
 
 

@@ -123,9 +123,8 @@ rule numerics_energy_drift:
         kernels=result("kernels_compiled.txt"),
     output:
         data=result("numerics", "energy_drift.nc"),
-    # The longest single job of `all` (~12 min at paper scale): started first, it runs beside the
-    # rest instead of alone at the end (measured: 30.1 min wall without, the rest being ~26 CPU-min
-    # per core).
+    # The longest single job of `all` at paper scale (one trajectory of 2e9 steps): started first,
+    # it runs beside the rest instead of alone at the end (its time per machine: README).
     priority: 10
     params:
         settings=NUMERICS["drift"],
@@ -136,7 +135,7 @@ rule numerics_energy_drift:
         benchmark_file("numerics_energy_drift")
     resources:
         mem_mb=1000,
-        runtime=90,  # 2e9 steps: ~12 CPU-minutes, more on a busy node
+        runtime=90,  # 2e9 steps of one trajectory, with room for a slow or busy node
     script:
         "../scripts/numerics_energy_drift.py"
 

@@ -1,7 +1,7 @@
 # Energy scan and disorder statistics of delocalization and chaos (issue 7).
 #
 # Many short trajectories, grouped `trajectories_per_job` to a job so that the DAG stays at
-# hundreds of jobs at paper scale (chainchaos.scan.n_groups); each group file holds its
+# hundreds of jobs at paper scale (chainchaos.studies.scan.runs.n_groups); each group file holds its
 # trajectories' scan observables, a merge rule puts them on the (model, energy[, realization])
 # grid. `resources:` (mem_mb, runtime in minutes) feed the SLURM profile (profiles/slurm/);
 # a group's runtime follows from its steps and the measured cost per step, `scan.us_per_step`.

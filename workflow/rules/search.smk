@@ -1,7 +1,7 @@
-# The realization chosen by the paper's published dynamics (chainchaos.search): the linear rule,
+# The realization chosen by the paper's published dynamics (chainchaos.studies.search.stages): the linear rule,
 # a short-run filter, and ensembles of the survivors scored against the paper's statements
-# (paper.STATEMENTS); then, on the chosen chain, the ensemble verdicts of every statement
-# (chainchaos.verdicts) that the claims table reads. With `search.pinned_seed` set, the search
+# (chainchaos.paper.statements.STATEMENTS); then, on the chosen chain, the ensemble verdicts of every statement
+# (chainchaos.paper.verdicts) that the claims table reads. With `search.pinned_seed` set, the search
 # re-scores that chain only.
 
 
@@ -9,7 +9,7 @@ wildcard_constraints:
     rank=r"\d+",
 
 
-N_STATEMENT_SCENES = len(paper.statement_scenes())
+N_STATEMENT_SCENES = len(statements.statement_scenes())
 
 
 rule search_candidates:
@@ -135,7 +135,7 @@ rule ensemble_verdicts:
         "../scripts/ensemble_verdicts.py"
 
 
-VERDICT_FILES = {name: result("verdicts", f"{name}.nc") for name in paper.statement_scenes()}
+VERDICT_FILES = {name: result("verdicts", f"{name}.nc") for name in statements.statement_scenes()}
 SEARCH_TARGETS = [
     result("search", "search.nc"),
     result("figures", "search.pdf"),

@@ -4,7 +4,7 @@
 
 import os
 
-from chainchaos._numba_cache import kernel_sources
+from chainchaos.engine.cache import kernel_sources
 
 
 wildcard_constraints:
@@ -40,7 +40,7 @@ rule simulate_scenes:
         batch=temp(result("scenes", "batches", "{batch}.nc")),
     priority: 5  # the longest jobs: before the many short scan and plot jobs, so the figures do not wait
     params:
-        scenes=lambda wildcards: [scene_parameters(name) for name in SCENE_BATCHES[wildcards.batch]],
+        scenes=lambda wildcards: [SCENE_PARAMETERS[name] for name in SCENE_BATCHES[wildcards.batch]],
     log:
         log_file("simulate_scenes", "{batch}"),
     benchmark:

@@ -1,5 +1,5 @@
-"""build_manuscript: see chainchaos.tasks.manuscript.build_manuscript."""
+"""build_manuscript: see chainchaos.workflow.tasks.manuscript.build_manuscript."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

@@ -1,5 +1,5 @@
-"""compile_kernels: see chainchaos.tasks.simulate.compile_kernels."""
+"""compile_kernels: see chainchaos.workflow.tasks.simulate.compile_kernels."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

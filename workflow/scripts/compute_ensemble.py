@@ -1,5 +1,5 @@
-"""compute_ensemble: see chainchaos.tasks.chain.compute_ensemble."""
+"""compute_ensemble: see chainchaos.workflow.tasks.chain.compute_ensemble."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

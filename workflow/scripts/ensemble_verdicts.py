@@ -1,5 +1,5 @@
-"""ensemble_verdicts: see chainchaos.tasks.search.ensemble_verdicts."""
+"""ensemble_verdicts: see chainchaos.workflow.tasks.search.ensemble_verdicts."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

@@ -1,5 +1,5 @@
-"""evaluate_claims: see chainchaos.tasks.manuscript.evaluate_claims."""
+"""evaluate_claims: see chainchaos.workflow.tasks.manuscript.evaluate_claims."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

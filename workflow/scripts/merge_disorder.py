@@ -1,5 +1,5 @@
-"""merge_disorder: see chainchaos.tasks.scan.merge_disorder."""
+"""merge_disorder: see chainchaos.workflow.tasks.scan.merge_disorder."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

@@ -1,5 +1,5 @@
-"""numerics_plot_work_precision: see chainchaos.tasks.numerics.numerics_plot_work_precision."""
+"""numerics_plot_work_precision: see chainchaos.workflow.tasks.numerics.numerics_plot_work_precision."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

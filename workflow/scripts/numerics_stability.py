@@ -1,5 +1,5 @@
-"""numerics_stability: see chainchaos.tasks.numerics.numerics_stability."""
+"""numerics_stability: see chainchaos.workflow.tasks.numerics.numerics_stability."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

@@ -1,5 +1,5 @@
-"""numerics_step_advice: see chainchaos.tasks.numerics.numerics_step_advice."""
+"""numerics_step_advice: see chainchaos.workflow.tasks.numerics.numerics_step_advice."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

@@ -1,5 +1,5 @@
-"""plot_figure: see chainchaos.tasks.figures.plot_figure."""
+"""plot_figure: see chainchaos.workflow.tasks.figures.plot_figure."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

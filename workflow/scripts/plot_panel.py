@@ -1,5 +1,5 @@
-"""plot_panel: see chainchaos.tasks.figures.plot_panel."""
+"""plot_panel: see chainchaos.workflow.tasks.figures.plot_panel."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

@@ -1,5 +1,5 @@
-"""plot_search: see chainchaos.tasks.search.plot_search."""
+"""plot_search: see chainchaos.workflow.tasks.search.plot_search."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

@@ -1,5 +1,5 @@
-"""scan_thresholds: see chainchaos.tasks.scan.scan_thresholds."""
+"""scan_thresholds: see chainchaos.workflow.tasks.scan.scan_thresholds."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

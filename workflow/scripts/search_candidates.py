@@ -1,5 +1,5 @@
-"""search_candidates: see chainchaos.tasks.search.search_candidates."""
+"""search_candidates: see chainchaos.workflow.tasks.search.search_candidates."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

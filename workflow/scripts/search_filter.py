@@ -1,5 +1,5 @@
-"""search_filter: see chainchaos.tasks.search.search_filter."""
+"""search_filter: see chainchaos.workflow.tasks.search.search_filter."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

@@ -1,5 +1,5 @@
-"""search_merge: see chainchaos.tasks.search.search_merge."""
+"""search_merge: see chainchaos.workflow.tasks.search.search_merge."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

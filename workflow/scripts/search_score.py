@@ -1,5 +1,5 @@
-"""search_score: see chainchaos.tasks.search.search_score."""
+"""search_score: see chainchaos.workflow.tasks.search.search_score."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

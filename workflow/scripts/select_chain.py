@@ -1,5 +1,5 @@
-"""select_chain: see chainchaos.tasks.chain.select_chain."""
+"""select_chain: see chainchaos.workflow.tasks.chain.select_chain."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

@@ -1,5 +1,5 @@
-"""simulate_scene: see chainchaos.tasks.simulate.simulate_scene."""
+"""simulate_scene: see chainchaos.workflow.tasks.simulate.simulate_scene."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

@@ -1,5 +1,5 @@
-"""simulate_scenes: see chainchaos.tasks.simulate.simulate_scenes."""
+"""simulate_scenes: see chainchaos.workflow.tasks.simulate.simulate_scenes."""
 
-from chainchaos.tasks import run_rule
+from chainchaos.workflow.tasks import run_rule
 
 run_rule(snakemake)  # noqa: F821 (defined by Snakemake)

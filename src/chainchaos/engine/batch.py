@@ -1,0 +1,333 @@
+"""A batch engine: B trajectories integrated at once, vectorised across trajectories.
+
+``integrators.advance`` integrates one trajectory, vectorised across its bonds: every split step
+makes separate passes over the bonds (forces, kick, drift), each storing what the next one loads.
+Here the trajectories go in blocks of ``LANES`` (the SIMD width fitted to the CPU,
+``chainchaos.engine.simd``), one lane per trajectory: a drift, the forces and stiffnesses at the new
+positions and a kick are one sweep over the bonds that keeps the neighbouring beads' vectors and
+the bonds' forces in registers, each bond's work spread over three iterations so that the square
+roots of the Hertz force overlap with the rest of the work; forces are stored only where the next
+step's first kick reuses them. A block's state and parameters live in one 64-byte aligned buffer,
+row by row (row r: the LANES lanes of each of the ``QUANTITIES`` in turn): all a sweep touches
+fits in L1 cache, every vector load is aligned, and no two quantities that one iteration reads and
+writes sit 4 KiB apart (separately allocated arrays made the timing vary from one process to the
+next).
+
+The trajectories of a batch share the model, the scheme, dt and the number of steps; each has its
+own state, deviation vector and chain parameters (per-trajectory arrays shaped (N+1, B) for bond
+parameters and (N, B) for inverse masses: one chain repeated, or B different realizations). A
+batch of any size B is padded to whole blocks by repeating its last trajectory, or its last
+lanes run on the single-trajectory engine (:class:`Batch`'s ``serial_lanes``): a block costs
+more than :data:`SERIAL_REMAINDER` single-engine trajectories, whatever its padding.
+
+Semantics are those of ``integrators.advance`` lane by lane, to the bit (tests/test_batch.py,
+tests/test_lane_width.py, at every width): the same kick/drift table (``integrators.SCHEMES``),
+the same floating-point operations in the same order, a force evaluation reused by the next kick
+when no drift came in between, the tangent map drift(c): dq += c dt M^-1 dp, kick(d): dp -= d dt
+Hess V(u) dq with Hess V tridiagonal from the bond stiffness, and every ``check_every`` steps and
+at the end of a call the deviation vector of each trajectory renormalised, its log growth added
+to ``log_growth[j]``. A trajectory whose state becomes non-finite is reported in ``bad[j]`` (the
+step of the first failed check) while the other lanes go on: lanes never mix.
+
+Speed: ``benchmarks/batch_throughput.py`` (figures in the README, per machine).
+"""
+
+import numpy as np
+from numba import literally, njit
+
+from chainchaos.engine.integrators import _aligned_zeros, _renormalise, advance
+from chainchaos.engine.simd import LANES, vbelow, vload, vstore
+from chainchaos.errors import require
+from chainchaos.system.models import MAX_BOND_PARAMETERS
+from chainchaos.system.models.base import bond_force, bond_force_stiffness, bond_opening
+
+#: Up to this many lanes beyond whole blocks are cheaper on the single-trajectory engine than in
+#: a padded block, at both vector widths (``benchmarks/batch_throughput.py`` prints both costs).
+SERIAL_REMAINDER = 2
+
+#: The per-row contents of a block's buffer, LANES doubles each. Row r of U and DQ is bead r-1
+#: (the walls are rows 0 and N+1); row n of P, DP and IM is bead n; row b of the bond parameters
+#: B0, B1, B2 (the model's, ``models.base``) and of the bond force F and stiffness K is bond b,
+#: which joins beads b-1 and b.
+QUANTITIES = ("U", "DQ", "P", "DP", "IM", "B0", "B1", "B2", "F", "K")
+_U, _DQ, _P, _DP, _IM, _B0, _B1, _B2, _F, _K = (i * LANES for i in range(len(QUANTITIES)))
+assert len(QUANTITIES) == 7 + MAX_BOND_PARAMETERS
+#: Doubles per row of a block's buffer.
+ROW = len(QUANTITIES) * LANES
+
+
+@njit(cache=True, inline="always")
+def _bond_parameters(Z, bond):
+    """The bond parameters (B0, B1, B2) of the bond whose row starts at ``bond``, as vectors."""
+    return vload(Z, bond + _B0), vload(Z, bond + _B1), vload(Z, bond + _B2)
+
+
+@njit(cache=True, error_model="numpy")
+def _sweep(model, tangent, drift, kick, keep_forces, N, Z, a, c):
+    """One pass over the bonds b = 0..N of a block: (if ``drift``) drift(a) of every bead, (if
+    ``kick``) the force and stiffness of every bond at the new positions and kick(c) of every
+    bead; with ``keep_forces`` the forces and stiffnesses are stored for a kick that follows
+    without a drift. Iteration b drifts bead b+1, computes bond b (between beads b-1 and b, both
+    drifted) and kicks bead b-2 (whose bonds were computed in the two iterations before), so that
+    the long chain of one bond, drift - force (a square root for Hertz) - kick, is spread over
+    three iterations: the CPU overlaps the bonds instead of holding one bond's chain in its
+    schedulers. A bond's force f and tangent force g = k (dq_{b-1} - dq_b) stay in registers until
+    both kicks that use them are done: each is computed once. Per lane the operations are those
+    of ``integrators.advance``, in the same order. Row N (no bead) has zero momenta and inverse
+    masses, so its drift leaves the right wall at zero."""
+    literally(tangent)
+    literally(drift)
+    literally(kick)
+    literally(keep_forces)
+    u_left = vload(Z, _U)  # the wall
+    dq_left = vload(Z, _DQ)  # deviation of bead b-1
+    u_right, dq_right = _drift_bead(drift, tangent, Z, 0, a)
+    f1 = f2 = g1 = g2 = u_left  # f, g of bonds b-1 and b-2
+    for b in range(N + 1):
+        bond = b * ROW
+        if b < N:
+            u_next, dq_next = _drift_bead(drift, tangent, Z, bond + ROW, a)
+        else:
+            u_next, dq_next = u_right, dq_right
+        if kick:
+            parameters = _bond_parameters(Z, bond)
+            if tangent:
+                f, k = bond_force_stiffness(model, parameters, u_left, u_right)
+            else:
+                f = bond_force(model, parameters, u_left, u_right)
+                k = f
+            if keep_forces:
+                vstore(Z, bond + _F, f)
+                if tangent:
+                    vstore(Z, bond + _K, k)
+            g = k * (dq_left - dq_right) if tangent else f
+            if b >= 2:
+                _kick_bead(tangent, Z, bond - 2 * ROW, c, f2, f1, g2, g1)
+            f2, g2, f1, g1 = f1, g1, f, g
+        u_left, dq_left = u_right, dq_right
+        u_right, dq_right = u_next, dq_next
+    if kick:
+        _kick_bead(tangent, Z, (N - 1) * ROW, c, f2, f1, g2, g1)
+
+
+@njit(cache=True, inline="always")
+def _drift_bead(drift, tangent, Z, bond, a):
+    """(u, dq) of the bead whose momenta are in row ``bond`` (its displacement in row bond + ROW),
+    drifted by a if ``drift``: u += a M^-1 p, dq += a M^-1 dp."""
+    bead = bond + ROW
+    u = vload(Z, bead + _U)
+    dq = vload(Z, bead + _DQ)
+    if drift:
+        im = vload(Z, bond + _IM)
+        u = u + a * im * vload(Z, bond + _P)
+        vstore(Z, bead + _U, u)
+        if tangent:
+            dq = dq + a * im * vload(Z, bond + _DP)
+            vstore(Z, bead + _DQ, dq)
+    return u, dq
+
+
+@njit(cache=True, inline="always")
+def _kick_bead(tangent, Z, row, c, f_left, f_right, g_left, g_right):
+    """kick(c) of the bead of ``row`` between bonds whose forces are f_left and f_right (tangent
+    forces g_left, g_right): p += c (f_left - f_right), dp += c (g_left - g_right)."""
+    vstore(Z, row + _P, vload(Z, row + _P) + c * (f_left - f_right))
+    if tangent:
+        vstore(Z, row + _DP, vload(Z, row + _DP) + c * (g_left - g_right))
+
+
+@njit(cache=True, error_model="numpy")
+def _kick_only(tangent, N, Z, c):
+    """kick(c) of every bead with the stored forces and stiffnesses (the tangent force of bond b,
+    g_b = k_b (dq_{b-1} - dq_b), carried from one bead to the next)."""
+    literally(tangent)
+    f_left = vload(Z, _F)
+    g_left = vload(Z, _K) * (vload(Z, _DQ) - vload(Z, ROW + _DQ)) if tangent else f_left
+    for n in range(N):
+        row = n * ROW
+        f = vload(Z, row + ROW + _F)
+        vstore(Z, row + _P, vload(Z, row + _P) + c * (f_left - f))
+        f_left = f
+        if tangent:
+            g = vload(Z, row + ROW + _K) * (vload(Z, row + ROW + _DQ) - vload(Z, row + 2 * ROW + _DQ))
+            vstore(Z, row + _DP, vload(Z, row + _DP) + c * (g_left - g))
+            g_left = g
+
+
+@njit(cache=True, error_model="numpy")
+def _count_gaps(model, N, Z, gap_steps, max_gaps):
+    """Open bonds of every lane (the model's opening < 0): one step added to
+    gap_steps[b] (a row of LANES counts per bond, as doubles) and max_gaps (LANES) raised to the
+    number open now where that is larger."""
+    n_open = vload(max_gaps, 0) * 0.0
+    for b in range(N + 1):
+        bond = b * ROW
+        parameters = _bond_parameters(Z, bond)
+        is_open = vbelow(bond_opening(model, parameters, vload(Z, bond + _U), vload(Z, bond + ROW + _U)), 0.0)
+        vstore(gap_steps, b * LANES, vload(gap_steps, b * LANES) + is_open)
+        n_open = n_open + is_open
+    vstore(max_gaps, 0, max(n_open, vload(max_gaps, 0)))
+
+
+@njit(cache=True, error_model="numpy")
+def _advance_block(model, tangent, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, gap_steps,
+                   log_growth, max_gaps, bad):
+    """``advance_batch`` for one block in its buffer Z; gap_steps is (N+1) x LANES, flattened, and
+    with max_gaps held as doubles."""
+    literally(tangent)
+    n_stages = drifts.shape[0]
+    force_valid = False
+    for step in range(n_steps):
+        c = kicks[0] * dt
+        if c != 0.0:
+            if force_valid:
+                _kick_only(tangent, N, Z, c)
+            else:
+                _sweep(model, tangent, False, True, False, N, Z, 0.0, c)
+        for i in range(n_stages):
+            a, c = drifts[i] * dt, kicks[i + 1] * dt
+            if c == 0.0:
+                _sweep(model, tangent, True, False, False, N, Z, a, c)
+            elif i == n_stages - 1:  # the next step's first kick reuses these forces
+                _sweep(model, tangent, True, True, True, N, Z, a, c)
+            else:
+                _sweep(model, tangent, True, True, False, N, Z, a, c)
+            force_valid = c != 0.0
+        if track_gaps:
+            _count_gaps(model, N, Z, gap_steps, max_gaps)
+        if (step + 1) % check_every == 0 or step + 1 == n_steps:
+            for j in range(LANES):
+                s = 0.0
+                for n in range(N):
+                    s += Z[(n + 1) * ROW + _U + j] + Z[n * ROW + _P + j]
+                if tangent:  # lane j's deviation vector: every ROW-th element of the buffer
+                    log_growth[j] += _renormalise(Z[ROW + _DQ + j:(N + 1) * ROW + _DQ + j:ROW],
+                                                  Z[_DP + j:N * ROW + _DP + j:ROW])
+                    s += Z[ROW + _DQ + j]
+                if bad[j] < 0 and not np.isfinite(s):
+                    bad[j] = step + 1
+
+
+@njit(cache=True, error_model="numpy")
+def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, tangent, check_every, track_gaps,
+                  gap_steps, log_growth, max_gaps, bad, lanes):
+    """Advance the first ``lanes`` of the B trajectories (q, p) of ``model`` (a ``chainchaos.system.models``
+    Model), shape (N, B), and, if ``tangent``, their deviation vectors (dq, dp) by n_steps steps of
+    the scheme (kicks, drifts), in blocks of LANES (the last padded by repeating its last lane).
+
+    inv_mass (N, B); bonds (MAX_BOND_PARAMETERS, N+1, B), the model's bond parameters, bond b
+    joining beads b-1 and b (walls at b = 0 and b = N). Every ``check_every`` steps and at the
+    end: each lane's state is checked for finiteness (``bad[j]`` set to the step count of the
+    first failed check if it is still < 0) and, with ``tangent``, its deviation vector
+    renormalised, ln|v| added to ``log_growth[j]``. With ``track_gaps`` (a model whose bonds open)
+    ``gap_steps[b, j]`` counts the steps bond b of lane j ends open and ``max_gaps[j]`` keeps the
+    largest number of simultaneously open bonds. All arrays are updated in place.
+    """
+    N = q.shape[0]
+    B = lanes
+    Z = _aligned_zeros((N + 2) * ROW)
+    block_gaps = _aligned_zeros((N + 1) * LANES)  # counts as doubles, exact below 2**53
+    block_growth = np.zeros(LANES)
+    block_max_gaps = _aligned_zeros(LANES)
+    block_bad = np.zeros(LANES, dtype=np.int64)
+    for first in range(0, B, LANES):
+        Z[:] = 0.0
+        for lane in range(LANES):
+            j = min(first + lane, B - 1)  # padding lanes repeat the last trajectory
+            for n in range(N):
+                Z[(n + 1) * ROW + _U + lane] = q[n, j]
+                Z[(n + 1) * ROW + _DQ + lane] = dq[n, j]
+                Z[n * ROW + _P + lane] = p[n, j]
+                Z[n * ROW + _DP + lane] = dp[n, j]
+                Z[n * ROW + _IM + lane] = inv_mass[n, j]
+            for b in range(N + 1):
+                for r in range(MAX_BOND_PARAMETERS):
+                    Z[b * ROW + _B0 + r * LANES + lane] = bonds[r, b, j]
+                block_gaps[b * LANES + lane] = gap_steps[b, j]
+            block_growth[lane] = log_growth[j]
+            block_max_gaps[lane] = max_gaps[j]
+            block_bad[lane] = bad[j]
+        # the tangent flag literal: each case compiles to its own code without these branches
+        if tangent:
+            _advance_block(model, True, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+                           block_gaps, block_growth, block_max_gaps, block_bad)
+        else:
+            _advance_block(model, False, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+                           block_gaps, block_growth, block_max_gaps, block_bad)
+        for lane in range(min(LANES, B - first)):
+            j = first + lane
+            for n in range(N):
+                q[n, j] = Z[(n + 1) * ROW + _U + lane]
+                dq[n, j] = Z[(n + 1) * ROW + _DQ + lane]
+                p[n, j] = Z[n * ROW + _P + lane]
+                dp[n, j] = Z[n * ROW + _DP + lane]
+            for b in range(N + 1):
+                gap_steps[b, j] = np.int64(block_gaps[b * LANES + lane])
+            log_growth[j] = block_growth[lane]
+            max_gaps[j] = np.int64(block_max_gaps[lane])
+            bad[j] = block_bad[lane]
+
+
+class Batch:
+    """The lanes of a :class:`~chainchaos.system.problem.Problem` advanced together: the first lanes in
+    SIMD blocks by ``advance_batch``, the last ``serial_lanes`` one after the other by the
+    single-trajectory engine (``integrators.advance``), with the same numbers either way.
+
+    ``q, p, dq, dp`` are (N, B) arrays (trajectory index last); ``log_growth`` (B,) accumulates
+    ln|v| over renormalisations, so Lambda(t) = log_growth / t as in ``integrators.advance``;
+    ``gap_steps`` (N+1, B) and ``max_gaps`` (B,) accumulate the gap counts (the caller resets them).
+    """
+
+    def __init__(self, problem, q, p, dq=None, dp=None, serial_lanes: int = 0):
+        self.problem, self.model, self.scheme = problem, problem.model, problem.scheme
+        self.inv_mass, self.bonds = problem.lane_parameters
+        self.q = np.ascontiguousarray(q, dtype=float).copy()
+        self.p = np.ascontiguousarray(p, dtype=float).copy()
+        shape = self.q.shape
+        require(self.p.shape == shape == self.inv_mass.shape, "state shape", shape, f"(N, B) = {self.inv_mass.shape}")
+        self.dq = np.zeros(shape) if dq is None else np.ascontiguousarray(dq, dtype=float).copy()
+        self.dp = np.zeros(shape) if dp is None else np.ascontiguousarray(dp, dtype=float).copy()
+        N, B = shape
+        require(0 <= int(serial_lanes) <= B, "serial_lanes", serial_lanes, f"an integer from 0 to the {B} lanes")
+        self.block_lanes = B - int(serial_lanes)
+        self._serial = {j: problem.lane(j) for j in range(self.block_lanes, B)}
+        self.gap_steps = np.zeros((N + 1, B), dtype=np.int64)
+        self.max_gaps = np.zeros(B, dtype=np.int64)
+        self.log_growth = np.zeros(B)
+        self.bad = np.full(B, -1, dtype=np.int64)
+        self.steps = 0
+
+    @property
+    def size(self) -> int:
+        return self.q.shape[1]
+
+    def advance(self, n_steps: int) -> None:
+        """Advance every lane by n_steps; a lane that turned non-finite gets ``bad`` >= 0 (its
+        absolute step count), the others are unaffected."""
+        if n_steps <= 0:
+            return
+        pr = self.problem
+        bad = np.full(self.size, -1, dtype=np.int64)
+        if self.block_lanes:
+            advance_batch(self.model, self.q, self.p, self.dq, self.dp, self.inv_mass, self.bonds, self.scheme.kicks,
+                          self.scheme.drifts, pr.dt, int(n_steps), pr.tangent, pr.check_every, pr.track_gaps,
+                          self.gap_steps, self.log_growth, self.max_gaps, bad, self.block_lanes)
+        for j, lane in self._serial.items():
+            bad[j] = self._advance_serial(j, lane, int(n_steps))
+        newly = (bad >= 0) & (self.bad < 0)
+        self.bad[newly] = self.steps + bad[newly]
+        self.steps += int(n_steps)
+
+    def _advance_serial(self, j: int, lane: tuple, n_steps: int) -> int:
+        """Lane j on the single-trajectory engine; returns its ``bad`` of this call."""
+        pr = self.problem
+        N = self.q.shape[0]
+        q, p, dq, dp = (np.ascontiguousarray(a[:, j]) for a in (self.q, self.p, self.dq, self.dp))
+        diagnostics = np.array([self.log_growth[j], float(self.max_gaps[j])])
+        gaps = np.ascontiguousarray(self.gap_steps[:, j])
+        bad = advance(self.model, q, p, dq, dp, *lane, self.scheme.kicks, self.scheme.drifts, pr.dt, n_steps,
+                      pr.tangent, pr.check_every, pr.track_gaps, gaps, diagnostics, np.empty(N + 1), np.empty(N + 1))
+        self.q[:, j], self.p[:, j], self.dq[:, j], self.dp[:, j] = q, p, dq, dp
+        self.gap_steps[:, j] = gaps
+        self.log_growth[j], self.max_gaps[j] = diagnostics[0], int(diagnostics[1])
+        return bad

@@ -1,0 +1,280 @@
+"""Symplectic splitting schemes for H = T(p) + V(u), applied together with their tangent map.
+
+A scheme is a table of coefficients: one step of size dt is
+
+    kick(b_0) drift(a_0) kick(b_1) drift(a_1) ... drift(a_{s-1}) kick(b_s)
+
+with drift(c): u += c dt M^-1 p and kick(d): p += d dt F(u). The tangent map method (Skokos &
+Gerlach 2010) applies the same maps to a deviation vector (du, dp):
+
+    drift(c): du += c dt M^-1 dp        kick(d): dp -= d dt Hess V(u) du
+
+with Hess V tridiagonal from the bond stiffness k = df/dD. A zero kick is skipped, and a force
+evaluation is reused by the next kick when no drift came in between, so schemes whose step starts
+and ends with a kick (BAB, "first same as last") cost one force evaluation less per step.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+from numba import literally, njit
+
+from chainchaos.engine.exactmath import ln
+from chainchaos.engine.simd import LANES, vload, vnext, vprev, vstore
+from chainchaos.errors import require
+from chainchaos.system.models.base import MAX_BOND_PARAMETERS, bond_force, bond_force_stiffness, bond_opening
+
+
+@dataclass(frozen=True)
+class Scheme:
+    name: str
+    order: int
+    kicks: np.ndarray
+    drifts: np.ndarray
+    reference: str
+
+    @property
+    def force_evaluations(self) -> int:
+        """Force evaluations per step in a long run (kicks not preceded directly by a kick)."""
+        stages = [("k", b) for b in self.kicks[:1]]
+        for a, b in zip(self.drifts, self.kicks[1:]):
+            stages += [("d", a), ("k", b)]
+        ops = [kind for kind, c in stages if c != 0.0]
+        cyclic = ops + ops[:1]
+        return sum(1 for i in range(len(ops)) if cyclic[i + 1] == "k" and cyclic[i] == "d")
+
+
+def _symmetric(half: list[float], middle: float | None = None) -> np.ndarray:
+    tail = half[::-1]
+    return np.array(half + ([middle] if middle is not None else []) + tail)
+
+
+def _kick_drift_pairs(b: list[float], a: list[float]) -> tuple[np.ndarray, np.ndarray]:
+    """Pairs (kick b_i, drift a_i) as written by Blanes & Moan and McLachlan & Atela."""
+    return np.array(b + [0.0]), np.array(a)
+
+
+def _composition_of_verlet(weights: list[float]) -> tuple[np.ndarray, np.ndarray]:
+    """Compose kick-drift-kick Verlet sub-steps of sizes w_i dt, merging adjacent half kicks."""
+    w = np.asarray(weights)
+    kicks = np.concatenate(([w[0] / 2], (w[:-1] + w[1:]) / 2, [w[-1] / 2]))
+    return kicks, w.copy()
+
+
+def _build_table() -> dict[str, Scheme]:
+    table = {}
+
+    def add(name, order, kicks, drifts, reference):
+        kicks, drifts = np.asarray(kicks, float), np.asarray(drifts, float)
+        assert kicks.size == drifts.size + 1
+        assert abs(kicks.sum() - 1) < 1e-14 and abs(drifts.sum() - 1) < 1e-14, name
+        table[name] = Scheme(name, order, kicks, drifts, reference)
+
+    add("verlet", 2, [0.5, 0.5], [1.0], "velocity Verlet (Stormer-Verlet, kick-drift-kick)")
+
+    # McLachlan & Atela 1992, optimal fourth order RKN (4 stages, non-symmetric).
+    add("mclachlan_atela4", 4, *_kick_drift_pairs(
+        [0.1344961992774310892, -0.2248198030794208058, 0.7563200005156682911, 0.3340036032863214255],
+        [0.5153528374311229364, -0.085782019412973646, 0.4415830236164665242, 0.1288461583653841854]),
+        "McLachlan & Atela, Nonlinearity 5, 541 (1992)")
+
+    # Blanes & Moan 2002, SRKN_6^b: order 4, BAB, 6 force evaluations per step.
+    b1, b2, b3 = 0.082984406417405200, 0.39630980149836800, -0.039056304922348600
+    a1, a2 = 0.24529895718427100, 0.60487266571108000
+    add("SRKN6b", 4, _symmetric([b1, b2, b3], 1 - 2 * (b1 + b2 + b3)),
+        _symmetric([a1, a2, 0.5 - a1 - a2]),
+        "Blanes & Moan, J. Comput. Appl. Math. 142, 313 (2002), SRKN_6^b")
+
+    # Blanes, Casas, Farres, Laskar, Makazaga & Murua 2013, ABA864: order 4 (8,6,4), 7 evaluations.
+    a = [0.0711334264982231177779387300061549964174, 0.241153427956640098736487795326289649618,
+         0.521411761772814789212136078067994229991, -0.333698616227678005726562603400438876027]
+    b = [0.183083687472197221961703757166430291072, 0.310782859898574869507522291054262796375,
+         -0.0265646185119588006972121379164987592663]
+    add("ABA864", 4, np.concatenate(([0.0], _symmetric(b, 1 - 2 * sum(b)), [0.0])),
+        _symmetric(a[:3] + [0.5 - sum(a[:3])]),
+        "Blanes et al., Appl. Numer. Math. 68, 58 (2013), ABA(8,6,4)")
+
+    # Blanes & Moan 2002, SRKN_11^b: order 6, BAB, 11 force evaluations per step.
+    b = [0.041464998518262400, 0.19812867191806700, -0.040006192104153300,
+         0.075253984301580700, -0.011511387420687900]
+    a = [0.12322977594627100, 0.29055379779955800, -0.12704921262541700,
+         -0.24633176106207500, 0.35720887279592800]
+    add("SRKN11b", 6, _symmetric(b + [0.5 - sum(b)]), _symmetric(a, 1 - 2 * sum(a)),
+        "Blanes & Moan, J. Comput. Appl. Math. 142, 313 (2002), SRKN_11^b")
+
+    # Yoshida 1990, sixth order solution A: seven Verlet sub-steps.
+    w1, w2, w3 = -1.17767998417887, 0.235573213359357, 0.784513610477560
+    add("yoshida6", 6, *_composition_of_verlet([w3, w2, w1, 1 - 2 * (w1 + w2 + w3), w1, w2, w3]),
+        "Yoshida, Phys. Lett. A 150, 262 (1990), solution A")
+    return table
+
+
+SCHEMES: dict[str, Scheme] = _build_table()
+
+
+def get_scheme(name: str) -> Scheme:
+    require(name in SCHEMES, "integrator", name, f"one of {sorted(SCHEMES)}")
+    return SCHEMES[name]
+
+
+@njit(cache=True)
+def _renormalise(dq, dp):
+    s = 0.0
+    for n in range(dq.shape[0]):
+        s += dq[n] * dq[n] + dp[n] * dp[n]
+    norm = np.sqrt(s)
+    for n in range(dq.shape[0]):
+        dq[n] /= norm
+        dp[n] /= norm
+    return ln(norm)
+
+
+#: The rows of the single engine's work buffer, all indexed alike and padded to whole vectors:
+#: displacements U and deviations DQ with the walls (U[0] = U[N+1] = 0, beads at 1..N), momenta
+#: P, DP and inverse masses IM of the beads at 1..N, bond force F and stiffness K and the bond
+#: parameters B0, B1, B2 (the model's, ``models.base``) of bond b = 0..N, which joins U[b] and
+#: U[b+1].
+ROWS = ("U", "DQ", "P", "DP", "IM", "F", "K", "B0", "B1", "B2")
+assert len(ROWS) == 7 + MAX_BOND_PARAMETERS
+
+
+@njit(cache=True, inline="always")
+def _row_offsets(L):
+    """Where each of ``ROWS`` starts in the work buffer: rows of L + LANES doubles, so that every
+    row starts on a vector boundary and a sweep may read one vector past L."""
+    R = L + LANES
+    return 0, R, 2 * R, 3 * R, 4 * R, 5 * R, 6 * R, 7 * R, 8 * R, 9 * R
+
+
+@njit(cache=True, error_model="numpy")
+def _step_loop(model, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, gap_steps,
+               diagnostics):
+    """The steps of ``advance`` on its work buffer Z (``ROWS``, ``_row_offsets``).
+
+    Every loop runs over whole, aligned vectors of LANES elements, 0..L-1 with L >= N + 2; a
+    neighbour's values (U[b+1], F[i-1], ...) come from the vector before or after by a shuffle
+    (``simd.vnext``, ``simd.vprev``), not from an unaligned load of data just stored. Padding
+    beads (0 and N+1.. L-1) have zero inverse mass and never move (P[0] and P[N+1] collect the
+    walls' impulse, unused); padding bonds have zero parameters and carry no force. Per element
+    the operations are those of the scalar expressions, in the same order.
+    """
+    literally(tangent)
+    U, DQ, P, DP, IM, F, K, B0, B1, B2 = _row_offsets(L)
+    zero = vload(Z, L)  # U[L:L+LANES], always zero
+    n_stages = drifts.shape[0]
+    force_valid = False
+    bad = -1
+    for step in range(n_steps):
+        for i in range(n_stages + 1):
+            c = kicks[i] * dt
+            if c != 0.0:
+                if not force_valid:  # bond b between U[b] and U[b+1]
+                    u = vload(Z, U)
+                    for b in range(0, L, LANES):
+                        u_after = vload(Z, U + b + LANES)
+                        u_right = vnext(u, u_after)
+                        bond = (vload(Z, B0 + b), vload(Z, B1 + b), vload(Z, B2 + b))
+                        if tangent:
+                            f, k = bond_force_stiffness(model, bond, u, u_right)
+                            vstore(Z, K + b, k)
+                        else:
+                            f = bond_force(model, bond, u, u_right)
+                        vstore(Z, F + b, f)
+                        u = u_after
+                    force_valid = True
+                # kick: p_i += c (F_{i-1} - F_i);  dp_i += c (G_{i-1} - G_i), G_b = K_b (dq_b - dq_{b+1})
+                f_before = zero
+                g_before = zero
+                dq = vload(Z, DQ)
+                for n in range(0, L, LANES):
+                    f = vload(Z, F + n)
+                    vstore(Z, P + n, vload(Z, P + n) + c * (vprev(f_before, f) - f))
+                    f_before = f
+                    if tangent:
+                        dq_after = vload(Z, DQ + n + LANES)
+                        g = vload(Z, K + n) * (dq - vnext(dq, dq_after))
+                        vstore(Z, DP + n, vload(Z, DP + n) + c * (vprev(g_before, g) - g))
+                        g_before, dq = g, dq_after
+            if i < n_stages:
+                # drift: u_i += c p_i / m_i;  dq_i += c dp_i / m_i
+                c = drifts[i] * dt
+                for n in range(0, L, LANES):
+                    im = vload(Z, IM + n)
+                    vstore(Z, U + n, vload(Z, U + n) + c * im * vload(Z, P + n))
+                    if tangent:
+                        vstore(Z, DQ + n, vload(Z, DQ + n) + c * im * vload(Z, DP + n))
+                force_valid = False
+        if track_gaps:  # open bonds
+            n_open = 0
+            for b in range(N + 1):
+                is_open = bond_opening(model, (Z[B0 + b], Z[B1 + b], Z[B2 + b]), Z[U + b], Z[U + b + 1]) < 0.0
+                gap_steps[b] += is_open
+                n_open += is_open
+            if n_open > diagnostics[1]:
+                diagnostics[1] = n_open
+        if (step + 1) % check_every == 0 or step + 1 == n_steps:
+            s = 0.0
+            for n in range(1, N + 1):
+                s += Z[U + n] + Z[P + n]
+            if tangent:
+                diagnostics[0] += _renormalise(Z[DQ + 1:DQ + N + 1], Z[DP + 1:DP + N + 1])
+                s += Z[DQ + 1]
+            if not np.isfinite(s):
+                bad = step + 1
+                break
+    return bad
+
+
+@njit(cache=True)
+def _aligned_zeros(n):
+    """n zeros starting on a 64-byte boundary (a cache line, an AVX-512 vector)."""
+    buf = np.zeros(n + 8)
+    misalignment = int(buf.ctypes.data % np.uint64(64)) // 8
+    return buf[(8 - misalignment) % 8:][:n]
+
+
+@njit(cache=True, error_model="numpy")
+def advance(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, tangent, check_every, track_gaps,
+            gap_steps, diagnostics, f, k):
+    """Advance the state (q, p) of ``model`` (a ``chainchaos.system.models`` Model) and, if ``tangent``,
+    the deviation vector (dq, dp) by n_steps.
+
+    inv_mass (N,); bonds (MAX_BOND_PARAMETERS, N+1), the model's bond parameters
+    (``Model.bond_parameters``). Every ``check_every`` steps and at the end the state is checked
+    for finiteness and the deviation vector is renormalised, its log growth added to
+    diagnostics[0]. With ``track_gaps`` (a model whose bonds open) the number of steps each bond
+    ends open is added to gap_steps and the largest number of simultaneously open bonds is kept in
+    diagnostics[1]. f and k (N+1) are left holding the last bond forces and stiffnesses.
+    Returns -1, or the number of steps done when a non-finite state stopped the run.
+
+    The state and parameters are copied into one aligned work buffer (``ROWS``), padded to whole
+    SIMD vectors (``chainchaos.engine.simd``), and the steps run on explicit vectors across the bonds:
+    no loop has a scalar remainder or needs a runtime check that two arrays do not overlap. The
+    model's bond law is compiled in (each model gets its own machine code); the cache directory is
+    keyed by the kernels' source (chainchaos.engine.cache), so an edit there recompiles this.
+    """
+    N = q.shape[0]
+    L = (N + 1 + LANES) // LANES * LANES
+    Z = _aligned_zeros(len(ROWS) * (L + LANES))
+    U, DQ, P, DP, IM, F, K, B0, B1, B2 = _row_offsets(L)
+    Z[U + 1:U + N + 1] = q
+    Z[DQ + 1:DQ + N + 1] = dq
+    Z[P + 1:P + N + 1] = p
+    Z[DP + 1:DP + N + 1] = dp
+    Z[IM + 1:IM + N + 1] = inv_mass
+    for r, start in enumerate((B0, B1, B2)):
+        Z[start:start + N + 1] = bonds[r]
+    # the tangent flag literal: each case compiles to its own code without these branches
+    if tangent:
+        bad = _step_loop(model, True, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+                         gap_steps, diagnostics)
+    else:
+        bad = _step_loop(model, False, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+                         gap_steps, diagnostics)
+    q[:] = Z[U + 1:U + N + 1]
+    dq[:] = Z[DQ + 1:DQ + N + 1]
+    p[:] = Z[P + 1:P + N + 1]
+    dp[:] = Z[DP + 1:DP + N + 1]
+    f[:N + 1] = Z[F:F + N + 1]
+    k[:N + 1] = Z[K:K + N + 1]
+    return bad

@@ -1,0 +1,157 @@
+"""The observables a scene file can hold: a registry, one entry each.
+
+An :class:`Observable` gives its name (the NetCDF variable), its dimensions, what the run must
+provide for it (``needs``: the tangent map, gap counting, the linear modes), how it is computed
+from the sampled run (a :class:`SampledRun`, whose shared intermediates are computed once), its CF
+attributes and its axis label. ``simulate`` runs only what the requested observables need and
+writes each one's variable from here; ``panels.KIND_OBSERVABLES`` (the panel table) says which
+panels read which. Adding an observable is an entry here (and a panel kind that reads it).
+Entries with ``selectable=False`` are written along with another (``companions``), never asked
+for by name. The orbit sets of the scans, the search and the verdicts (``chainchaos.run.orbits``)
+record their per-orbit series from here too. Quantities are dimensionless (docs/conventions.md#observables).
+"""
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+from chainchaos.observe import formulas as obs
+from chainchaos.system.linear import modal_energies, normal_modes, participation_number
+from chainchaos.system.models import energy_density, get_model, open_bonds
+
+TANGENT, GAPS, MODES = "tangent", "gaps", "modes"
+
+
+class SampledRun:
+    """One scene's samples, (S, N) arrays over the sample times, and what several observables
+    derive from them, each computed once on first use."""
+
+    def __init__(self, model, chain, times, steps, Q, P, DQ, DP, log_growth, gap_steps, max_gaps, energy_error,
+                 deviation0):
+        self.model, self.chain, self.times, self.steps = model, chain, times, steps
+        self.Q, self.P, self.DQ, self.DP = Q, P, DQ, DP
+        self.log_growth, self.gap_steps, self.max_gaps = log_growth, gap_steps, max_gaps
+        self.energy_error, self.deviation0 = energy_error, deviation0
+
+    @cached_property
+    def energy_density(self) -> np.ndarray:
+        return energy_density(self.model, self.chain, self.Q, self.P)
+
+    @cached_property
+    def dvd(self) -> np.ndarray:
+        return obs.deviation_vector_density(self.DQ, self.DP)
+
+    @cached_property
+    def is_open(self) -> np.ndarray:
+        return open_bonds(self.model, self.chain, self.Q)
+
+    @cached_property
+    def modes(self) -> tuple[np.ndarray, np.ndarray]:
+        return normal_modes(self.chain)
+
+    @cached_property
+    def mode_energy(self) -> np.ndarray:
+        omega, U = self.modes
+        return modal_energies(self.chain, omega, U, self.Q, self.P)
+
+    @cached_property
+    def spectral_entropy(self) -> np.ndarray:
+        return obs.spectral_entropy(self.mode_energy)
+
+
+def _gap_fraction(run: SampledRun) -> np.ndarray:
+    """Fraction of the steps since the previous sample that each bond ended open (at t = 0: open
+    or not)."""
+    dsteps = np.diff(run.steps, prepend=0)
+    return np.where(dsteps[:, None] > 0, run.gap_steps / np.maximum(dsteps, 1)[:, None], run.is_open)
+
+
+@dataclass(frozen=True)
+class Observable:
+    name: str
+    dims: tuple[str, ...]
+    long_name: str
+    label: str  # axis label (matplotlib mathtext)
+    compute: Callable[[SampledRun], np.ndarray]
+    needs: frozenset = frozenset()
+    attrs: Callable[[SampledRun], dict] = field(default=lambda run: {})  # further CF attributes
+    dtype: type | None = None
+    companions: tuple[str, ...] = ()  # written whenever this one is
+    selectable: bool = True
+
+
+def _registry(*entries: Observable) -> dict[str, Observable]:
+    return {o.name: o for o in entries}
+
+
+#: Every variable a scene file can hold, in file order.
+REGISTRY: dict[str, Observable] = _registry(
+    Observable("energy_density", ("time", "site"), "normalised energy density h_n", r"$h_n$",
+               lambda run: run.energy_density),
+    Observable("participation", ("time",), "participation number P = 1/sum h_n^2", r"$P$",
+               lambda run: participation_number(run.energy_density, axis=-1)),
+    Observable("energy_centre", ("time",), "energy centre X = sum n h_n", r"$X$",
+               lambda run: obs.energy_centre(run.energy_density)),
+    Observable("mlce", ("time",), "finite-time maximum Lyapunov characteristic exponent Lambda(t)",
+               r"$\Lambda$ [$\omega_{\max}$]", lambda run: obs.finite_time_mlce(run.log_growth, run.times),
+               frozenset({TANGENT}), companions=("initial_deviation",)),
+    Observable("log_growth", ("time",), "logarithmic growth ln(|v(t)|/|v(0)|) = Lambda(t) t of the deviation vector",
+               r"$\ln(|v|/|v_0|)$", lambda run: run.log_growth, frozenset({TANGENT}),
+               companions=("initial_deviation",)),
+    Observable("dvd", ("time", "site"), "deviation vector density w_n", r"$w_n$", lambda run: run.dvd,
+               frozenset({TANGENT}), companions=("initial_deviation",)),
+    Observable("dvd_participation", ("time",), "participation number of the deviation vector density P_D",
+               r"$P_{\rm D}$", lambda run: participation_number(run.dvd, axis=-1), frozenset({TANGENT}),
+               companions=("initial_deviation",)),
+    Observable("initial_deviation", ("component",), "initial deviation vector (du_1..du_N, dp_1..dp_N)",
+               "component", lambda run: run.deviation0, frozenset({TANGENT}), selectable=False),
+    Observable("gap_open", ("time", "bond"), "bond open (delta_n + u_{n-1} - u_n < 0)", "open",
+               lambda run: run.is_open, frozenset({GAPS}), dtype=np.int8,
+               attrs=lambda run: {"flag_values": np.array([0, 1], dtype=np.int8), "flag_meanings": "closed open"}),
+    Observable("gap_fraction", ("time", "bond"), "fraction of steps the bond was open since the previous sample",
+               "fraction of time open", _gap_fraction, frozenset({GAPS})),
+    Observable("n_gaps", ("time",), "number of open gaps", "number of gaps", lambda run: run.is_open.sum(axis=-1),
+               frozenset({GAPS}), dtype=np.int32, companions=("n_gaps_max",)),
+    Observable("n_gaps_max", ("time",), "largest number of simultaneously open gaps since the previous sample",
+               "number of gaps", lambda run: run.max_gaps, frozenset({GAPS}), dtype=np.int32, selectable=False),
+    Observable("mode_energy", ("time", "mode"), "harmonic energy E_k of linear mode k", r"$E_k$",
+               lambda run: run.mode_energy, frozenset({MODES}), companions=("frequency",)),
+    Observable("spectral_entropy", ("time",), "spectral entropy S = -sum v_k ln v_k", r"$S$",
+               lambda run: run.spectral_entropy, frozenset({MODES}), companions=("frequency",)),
+    Observable("eta", ("time",), "normalised spectral entropy eta", r"$\eta$",
+               lambda run: obs.normalised_entropy(run.spectral_entropy, run.spectral_entropy[0], run.chain.N),
+               frozenset({MODES}), companions=("frequency",),
+               attrs=lambda run: {"equipartition_value": obs.equipartition_eta(run.spectral_entropy[0], run.chain.N)}),
+    Observable("frequency", ("mode",), "linear mode frequency omega_k / omega_max", r"$\omega_k$ [$\omega_{\max}$]",
+               lambda run: run.modes[0], frozenset({MODES}), selectable=False),
+    Observable("energy_error", ("time",), "relative energy error |H(t) - H(0)| / H(0)", r"$|\Delta H| / H$",
+               lambda run: run.energy_error),
+)
+
+#: The observables a scene may ask for, in file order.
+OBSERVABLES: tuple[str, ...] = tuple(name for name, o in REGISTRY.items() if o.selectable)
+
+
+def needing(need: str) -> frozenset[str]:
+    """The selectable observables that need ``need`` (TANGENT, GAPS or MODES)."""
+    return frozenset(name for name in OBSERVABLES if need in REGISTRY[name].needs)
+
+
+def variables(run: SampledRun, wanted) -> dict:
+    """The Dataset variables of the ``wanted`` observables and their companions, in file order:
+    name -> (dims, values, attributes)."""
+    written = set(wanted) | {c for name in wanted for c in REGISTRY[name].companions}
+    data = {}
+    for name, o in REGISTRY.items():
+        if name in written:
+            values = o.compute(run)
+            values = values.astype(o.dtype) if o.dtype is not None else values
+            data[name] = (o.dims, values, {"units": "1", "long_name": o.long_name, **o.attrs(run)})
+    return data
+
+
+def model_observables(model: str) -> tuple:
+    """Every observable ``model`` has: the gap observables only where bonds open (Hertz)."""
+    return OBSERVABLES if get_model(model).has_gaps else tuple(o for o in OBSERVABLES if o not in needing(GAPS))

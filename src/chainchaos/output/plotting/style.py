@@ -1,0 +1,147 @@
+"""The figure style of the paper: sizes, fonts, colours, axis labels, and byte-stable saving.
+
+Sizes follow a two-column journal: a single panel is one column (3.4 in) wide, a composite of
+several panels per row spans both columns (7.0 in). The model is nondimensional (docs/conventions.md#units),
+so the labels give times in units of 1/omega_max and frequencies in units of omega_max.
+"""
+
+from pathlib import Path
+
+import matplotlib
+
+from chainchaos.observe.registry import REGISTRY
+from chainchaos.output.io import atomic_output
+from chainchaos.system.models import MODELS, get_model, model_label
+
+# Figures are drawn on matplotlib.figure.Figure, never through pyplot, and only ever written to
+# files (PNG by Agg, PDF by matplotlib's PDF backend); a caller's pyplot gets Agg too.
+matplotlib.use("Agg")
+
+COLUMN_WIDTH = 3.4  # in, one column: a single panel
+PAGE_WIDTH = 7.0  # in, both columns: composites
+PANEL_HEIGHT = 2.55  # in, a single panel
+ROW_HEIGHT = {1: 2.55, 2: 2.45, 3: 2.1, 4: 1.8}  # in, a composite row by its number of panels
+DPI = 300
+
+RC = {
+    "font.family": "DejaVu Sans",  # shipped with matplotlib, so the files do not depend on the host
+    "mathtext.fontset": "dejavusans",
+    "font.size": 8,
+    "axes.labelsize": 8,
+    "axes.titlesize": 7,
+    "legend.fontsize": 6.5,
+    "xtick.labelsize": 7,
+    "ytick.labelsize": 7,
+    "axes.linewidth": 0.6,
+    "xtick.major.width": 0.6,
+    "ytick.major.width": 0.6,
+    "xtick.minor.width": 0.4,
+    "ytick.minor.width": 0.4,
+    "lines.linewidth": 1.0,
+    "axes.titlepad": 3.0,
+    "legend.frameon": False,
+    "legend.handlelength": 1.8,
+    "legend.columnspacing": 1.0,
+    "pdf.fonttype": 42,  # embedded TrueType: text stays text for the journal
+    "savefig.dpi": DPI,
+    "figure.dpi": 100,
+}
+
+# One colour map for every density map (energy density, DVD, modal energies); floor of its log scale.
+MAP_CMAP = "viridis"
+MAP_FLOOR = 1e-8
+GAP_CMAP = "viridis"  # open bonds light (yellow), as in the paper's Fig. 7
+
+HERTZ_RED = MODELS["hertz"].colour  # also of the chain's drawing (Fig. 1b)
+# Several energies of one model in a panel: lower energies solid and lighter, higher ones dashed.
+ENERGY_LINESTYLES = ("-", "--", "-.", ":")
+ENERGY_SHADES = (0.0, 0.35, 0.55, 0.7)  # fraction of white mixed in, by energy rank, highest first
+RAW_ALPHA = 0.22  # raw values drawn faintly behind a smoothed curve
+# DVD profile times, in order (the paper's Fig. 5: red, magenta, blue, black), on the map and profiles.
+PROFILE_COLOURS = ("#d62728", "#c71fc7", "#1f5fd6", "black")
+PROFILE_LINESTYLES = (":", "--", "-", "-.")
+
+TIME_LABEL = r"$t$ [$1/\omega_{\max}$]"
+SITE_LABEL = r"$n$ (site)"
+BOND_LABEL = r"$n$ (bond, sites $n-1$ to $n$)"
+MODE_LABEL = r"$k$ (mode)"
+RANK_LABEL = r"$k$ (rank)"
+FREQUENCY_LABEL = r"$\omega_k$ [$\omega_{\max}$]"
+# the axis labels of scene observables are those of their registry entries
+ENERGY_DENSITY_LABEL = REGISTRY["energy_density"].label
+DVD_LABEL = REGISTRY["dvd"].label
+MODE_ENERGY_LABEL = r"$v_k$"  # the modal energies normalised per sample
+P_LABEL = REGISTRY["participation"].label
+PD_LABEL = REGISTRY["dvd_participation"].label
+MEAN_P_LABEL = r"$\langle P \rangle$"
+MLCE_LABEL = REGISTRY["mlce"].label
+ETA_LABEL = REGISTRY["eta"].label
+GAP_FRACTION_LABEL = REGISTRY["gap_fraction"].label
+GAP_COUNT_LABEL = REGISTRY["n_gaps"].label
+
+PDF_METADATA = {"CreationDate": None, "ModDate": None, "Creator": "chainchaos"}
+PNG_METADATA = {"Software": "chainchaos"}  # matplotlib writes no timestamp into PNG files
+
+
+def context():
+    """The style as a context: plotting and saving run inside it, so importing the package leaves
+    the caller's rcParams alone."""
+    return matplotlib.rc_context(RC)
+
+
+def composite_size(rows: int, columns: int) -> tuple[float, float]:
+    """Figure size (in) of a composite: one column wide for a single column of panels, else two."""
+    width = COLUMN_WIDTH if columns == 1 else PAGE_WIDTH
+    return width, rows * ROW_HEIGHT.get(columns, ROW_HEIGHT[4])
+
+
+def model_colour(model: str) -> str:
+    """The model's colour (``chainchaos.system.models``): Hertz red, FPUT blue."""
+    return get_model(model).colour
+
+
+def scene_label(model: str, energy: float) -> str:
+    """E.g. ``Hertz, $H = 0.25$``."""
+    return f"{model_label(model)}, $H = {energy:g}$"
+
+
+def time_text(t: float) -> str:
+    """A time to three significant digits as mathtext (no dollars): 16.8, 10^{3}, 1.68\\times10^{4}."""
+    text = f"{t:.3g}"
+    if "e" not in text:
+        return text
+    mantissa, exponent = text.split("e")
+    power = f"10^{{{int(exponent)}}}"
+    return power if mantissa == "1" else rf"{mantissa}\times{power}"
+
+
+def save_figure(fig, path_stem, dpi: int = DPI) -> tuple[Path, Path]:
+    """Write ``<path_stem>.pdf`` and ``<path_stem>.png`` byte-stably and atomically.
+
+    Same figure, same bytes: a fixed ``dpi`` (of the PNG and of the PDF's rasterised maps), no
+    dates in the PDF, no timestamps in the PNG, and the layout computed once and then kept (see
+    ``_freeze_layout``). Each file is written to a temporary file in the target directory and
+    renamed into place, so an interrupted run leaves no complete-looking file. Returns the paths.
+    """
+    stem = Path(path_stem)
+    stem.parent.mkdir(parents=True, exist_ok=True)
+    paths = Path(f"{stem}.pdf"), Path(f"{stem}.png")
+    with context():
+        _freeze_layout(fig)
+        _write_atomically(fig, paths[0], "pdf", dpi, PDF_METADATA)
+        _write_atomically(fig, paths[1], "png", dpi, PNG_METADATA)
+    return paths
+
+
+def _freeze_layout(fig) -> None:
+    """Run the figure's layout engine once and keep its result. Constrained layout starts from the
+    current positions, so every draw would shift them slightly: a frozen layout gives the PDF and
+    the PNG the same positions and every later save the same bytes."""
+    if fig.get_layout_engine() is not None:
+        fig.draw_without_rendering()
+        fig.set_layout_engine("none")
+
+
+def _write_atomically(fig, path: Path, fmt: str, dpi: int, metadata: dict) -> None:
+    with atomic_output(path) as tmp:
+        fig.savefig(tmp, format=fmt, dpi=dpi, metadata=metadata)

@@ -1,0 +1,383 @@
+"""The paper's quantitative statements as data: one :class:`ClaimRow` per claim, in table order.
+
+Each row names the paper's statement and value, the measure that reads the stored results
+(:data:`chainchaos.paper.claims.measures.MEASURES`), the checks of the verdict, the time the statement
+needs and the texts of the claims table (templates, see :mod:`chainchaos.paper.claims.framework`). The
+only numbers here are the paper's values, printed in its text, and the times its statements are
+about; every threshold comes from the config block ``claims:``.
+
+Families of rows that differ only by scene (a packet stays localized, an orbit is chaotic) are
+built by the functions below, as ``statements._pair`` builds the statements; :func:`statement_rows`
+adds a row for every statement of ``statements.STATEMENTS`` that no row here rests on.
+"""
+
+from chainchaos.output.formatting import tex_parameter
+from chainchaos.paper import panels, statements
+from chainchaos.paper import verdicts as _verdicts
+from chainchaos.paper.claims.framework import CHAOS_CRITERION_TEXT, ENERGY_SCAN, Check, ClaimRow, literal
+from chainchaos.system.models import model_label
+
+T_PAPER = 1e5  # the paper's integration time: a statement about "the end" needs it
+
+CHAOS = literal(CHAOS_CRITERION_TEXT)
+CHAOS_TEXT = "slope {slope:math2}, growth excess {growth:math2}, $\\Lambda(t_\\mathrm{{end}}) = {mlce:tex}$"
+RELATIVE_P = "tolerance.participation_relative"
+
+HZ25, FP25 = panels.HZ[0.25].name, panels.FP[0.25].name
+HZ05, FP05 = panels.HZ[0.5].name, panels.FP[0.5].name
+HZ18, FP18 = panels.HZ[1.8].name, panels.FP[1.8].name
+HZ3 = panels.HZ[3.0].name
+FP29, FP4, FP87 = panels.FP[2.9].name, panels.FP[4.0].name, panels.FP[8.7381].name
+
+
+def _label(scene: str) -> str:
+    return model_label(panels.scenes()[scene].model)
+
+
+def _energy(scene: str) -> str:
+    return tex_parameter(panels.scenes()[scene].energy)
+
+
+def _statement_id(kind: str, scene: str) -> str:
+    """The id of a statement of statements.STATEMENTS about ``scene``, e.g. deloc-H1.8-hertz."""
+    s = panels.scenes()[scene]
+    return f"{kind}-H{tex_parameter(s.energy)}-{s.model}"
+
+
+def _final_p_of_h025(scene: str) -> ClaimRow:
+    return ClaimRow(
+        f"P-H0.25-{panels.scenes()[scene].model}", "Fig. 2(c), Sec. III A",
+        f"At $H = 0.25$ the {_label(scene)} packet keeps a constant $P \\approx 1.8$", "$1.8$",
+        "final_value", "1", "final $P$ within ${tol.participation_relative:param%}\\,\\%$ of 1.8", "{value:math}",
+        (Check("value", "near_relative", 1.8, RELATIVE_P),), (scene,), {"variable": "participation"},
+        variables=("participation",), t_required=1e2,
+        reason=("the paper plots a LOWESS-smoothed $P$ under an unstated energy density; the mean of the raw "
+                "$P$, which oscillates with the mode between about 1.2 and 2.8, is larger"))
+
+
+def _chaos(id: str, where: str, scene: str, chaotic: bool = True, extra: str = "", statements=None) -> ClaimRow:
+    """The orbit of ``scene`` is chaotic (or regular) at the end of the paper's run."""
+    state = "chaotic" if chaotic else "regular"
+    return ClaimRow(
+        id, where, f"At $H = {_energy(scene)}$ the {_label(scene)} orbit is {state}{extra}", state,
+        "chaos", "1", CHAOS if chaotic else f"not: {CHAOS}", CHAOS_TEXT,
+        (Check("chaotic", "==", chaotic),), (scene,), variables=("mlce",), t_required=T_PAPER,
+        refutable_early=not chaotic, statements=statements or (id,))
+
+
+def _dvd_participation_of_h025(scene: str) -> ClaimRow:
+    return ClaimRow(
+        f"PD-H0.25-{panels.scenes()[scene].model}", "Fig. 3(e,f), Sec. III A",
+        f"At $H = 0.25$ the {_label(scene)} DVD has $P_D \\approx 20$ up to $t \\approx 10^3$", "$20$",
+        "window_average", "1", "within ${tol.participation_relative:param%}\\,\\%$ of 20",
+        "mean $P_D$ over $10^2 \\le t \\le 10^3$: {value:math}",
+        (Check("value", "near_relative", 20, RELATIVE_P),), (scene,),
+        {"variable": "dvd_participation", "start": 1e2, "end": 1e3}, variables=("dvd_participation",),
+        t_required=1e3, reason="$P_D$ fluctuates strongly from sample to sample; its mean over the decade is lower")
+
+
+def _eta_of_h025(scene: str) -> ClaimRow:
+    return ClaimRow(
+        f"eta-H0.25-{panels.scenes()[scene].model}", "Fig. 8(a)/9(a), Sec. III C",
+        f"At $H = 0.25$ the {_label(scene)} $\\eta$ stays close to 1", "close to 1",
+        "final_value", "1", "final $\\eta \\ge {c.eta_near_one:param}$", "{value:math}",
+        (Check("value", ">=", "eta_near_one"),), (scene,), {"variable": "eta"}, variables=("eta",),
+        t_required=T_PAPER, refutable_early=True)
+
+
+def _localized(id: str, where: str, scene: str) -> ClaimRow:
+    """The packet of ``scene`` stays localized to the end of the paper's run."""
+    return ClaimRow(
+        id, where, f"At $H = {_energy(scene)}$ the {_label(scene)} packet stays localized", "localized",
+        "final_value", "1", "final $P \\le {c.localized_p_max:param}$", "final $P = {value:tex}$",
+        (Check("value", "<=", "localized_p_max"),), (scene,), {"variable": "participation"},
+        variables=("participation",), t_required=T_PAPER, refutable_early=True, statements=(id,))
+
+
+def _delocalized_and_chaotic(id: str, where: str, scene: str, extra: str = "") -> ClaimRow:
+    """The packet of ``scene`` spreads and its orbit is chaotic at the end of the paper's run."""
+    return ClaimRow(
+        id, where, f"At $H = {_energy(scene)}$ the {_label(scene)} packet is delocalized and chaotic{extra}",
+        "delocalized, chaotic", "participation_and_chaos", "1",
+        f"final $P \\ge {{c.delocalized_p_min:param}}$ and {CHAOS}", f"final $P = {{value:tex}}$, {CHAOS_TEXT}",
+        (Check("value", ">=", "delocalized_p_min"), Check("chaotic", "==", True)), (scene,),
+        variables=("participation", "mlce"), t_required=T_PAPER,
+        statements=(_statement_id("deloc", scene), _statement_id("chaos", scene)))
+
+
+def _chaos_onset(id: str, where: str, scene: str, statement: str, paper_t: float, paper_tex: str,
+                 t_required: float, statement_id: str) -> ClaimRow:
+    """The orbit of ``scene`` turns chaotic at about ``paper_t``."""
+    return ClaimRow(
+        id, where, statement, f"${paper_tex}$", "chaos_onset", "time",
+        "onset of chaos within a factor {tol.time_factor:param} of " + literal(f"${paper_tex}$"),
+        {"": "chaotic from $t = {value:tex}$ on", "never": "not chaotic at the end"},
+        (Check("value", "within_factor", paper_t, "tolerance.time_factor"),), (scene,), variables=("mlce",),
+        t_required=t_required, statements=(statement_id,))
+
+
+def _eta_plateau(scene: str, level: float, where: str) -> ClaimRow:
+    """The eta of ``scene`` has a plateau near ``level``."""
+    return ClaimRow(
+        f"eta-plateau-{scene}", f"{where}, Sec. III C",
+        f"At $H = {_energy(scene)}$ the {_label(scene)} $\\eta$ has a plateau near {tex_parameter(level)}",
+        f"${tex_parameter(level)}$", "plateau_median", "1",
+        "$|\\eta_\\mathrm{{plateau}} - {target:param}| \\le {tol.eta_plateau:param}$",
+        "median $\\eta$ over ${start:param} \\le t \\le {end:param}$: {value:math}",
+        (Check("value", "near", level, "tolerance.eta_plateau"),), (scene,), {"variable": "eta"}, target=level,
+        variables=("eta",), t_required=f"plateau_end[{scene}]",
+        reason=("follows", _statement_id("deloc", scene), "the entropy follows the packet, which stays localized"))
+
+
+def _eta_equipartition(scene: str, where: str) -> ClaimRow:
+    """The eta of ``scene`` ends close to its equipartition value."""
+    return ClaimRow(
+        f"eta-final-{scene}", f"{where}, Sec. III C",
+        f"At $H = {_energy(scene)}$ the {_label(scene)} $\\eta$ ends close to the equipartition value "
+        f"$\\langle\\eta\\rangle$", r"$\approx\langle\eta\rangle$", "eta_final", "1",
+        "$|\\eta_\\mathrm{{final}} - \\langle\\eta\\rangle| \\le {tol.eta_equipartition:param}$",
+        "final $\\eta = {value:tex}$, $\\langle\\eta\\rangle = {equipartition:tex}$",
+        (Check("excess", "near", 0.0, "tolerance.eta_equipartition"),), (scene,), variables=("eta",),
+        t_required=T_PAPER, reason=("follows", _statement_id("deloc", scene),
+                                    "a packet that stays localized does not reach equipartition"))
+
+
+def _scan_always(id: str, model: str, key: str, H: float) -> ClaimRow:
+    """Above about H the packet of ``model`` is always ``key`` on the energy scan."""
+    return ClaimRow(
+        id, "Sec. III B, IV", f"Above $H \\approx {tex_parameter(H)}$ the {model_label(model)} packet is always {key}",
+        f"$H^* \\approx {tex_parameter(H)}$", "scan_always", "energy",
+        "{scan_criterion[" + key + "]} at every scanned $H \\ge {H:param}$, and the lowest $H^*$ above which "
+        "this holds at every scanned energy within a factor {tol.threshold_factor:param} of {H:param}",
+        {"": "{key} at {count} of the {above} scanned $H \\ge {H:param}$; at every scanned $H \\ge H^* = {star:tex}$",
+         "nowhere": "{key} at {count} of the {above} scanned $H \\ge {H:param}$; not at the highest"},
+        (Check("holds_above", "==", True), Check("star", "within_factor", H, "tolerance.threshold_factor")),
+        (ENERGY_SCAN,), {"model": model, "key": key, "H": H}, variables=("delocalized", "chaotic", "valid"),
+        t_required=T_PAPER, reason=("scan_always_reason", model, key, H))
+
+
+CATALOGUE: tuple[ClaimRow, ...] = (
+    # ---------------- Fig. 1 and the chosen realization ----------------
+    ClaimRow("fig1-count", "Fig. 1(a), Sec. II A", r"For $\alpha \ge 4$ about 10 modes are strongly localized",
+             "about 10", "localized_mode_counts", "modes",
+             "every $\\alpha \\ge 4$ has $10 \\pm {tol.count}$ ranks with "
+             "$\\langle P\\rangle \\le {c.localized_mode_p_max:param}$",
+             "{lowest}--{highest} modes with $\\langle P\\rangle \\le {c.localized_mode_p_max:param}$ "
+             "($\\alpha = {alpha_low:param}$--${alpha_high:param}$)",
+             (Check("counts", "near", 10, "tolerance.count"),), args={"alpha_min": 4.0}),
+    ClaimRow("fig1-level", "Fig. 1(a), Sec. II A", r"Those modes have $\langle P\rangle \approx 2$", "$2$",
+             "localized_levels", "1", "$|\\langle P\\rangle - 2| \\le {tol.mode_participation:param}$ for every "
+             "$\\alpha \\ge 4$",
+             "${lowest:tex}$--${highest:tex}$ (mean of the {c.n_localized_modes} most localized ranks); chosen "
+             "chain, period-averaged: {period_averaged:math}",
+             (Check("levels", "near", 2.0, "tolerance.mode_participation"),), args={"alpha_min": 4.0},
+             reason=("convention: with the potential energy density of a mode (docs/conventions.md, Mode energy density) no bead holds more than "
+                     "half of an interior mode's energy, so $P \\ge 2$ and a mode on one bead has "
+                     "$2 \\le P \\le 8/3$; a mean of exactly 2 is out of reach. The paper does not define its "
+                     "energy density of a mode.")),
+    ClaimRow("fig1-limit", "Fig. 1(a), Sec. II A",
+             r"For $\alpha \ge 4$ the curve $\langle P\rangle(k)$ reaches a limiting curve", "limiting curve",
+             "limiting_curve", "1", "spread $\\le {tol.limiting_curve_relative:param%}\\,\\%$",
+             "largest rank-wise spread of the $\\alpha \\ge 4$ curves: {value:math%2}\\,\\%",
+             (Check("value", "<=", "tolerance.limiting_curve_relative"),), args={"alpha_min": 4.0}),
+    ClaimRow("fig1-extended", "Sec. III B, Fig. 1(a)",
+             r"The most extended mode of a disordered chain has $P \approx 26$", "$26$", "most_extended_mode", "1",
+             "within ${tol.participation_relative:param%}\\,\\%$ of 26",
+             "rank-1 $\\langle P\\rangle = {value:tex}$ ($\\alpha = {alpha:param}$); chosen chain's most extended "
+             "mode {chain_largest:math}",
+             (Check("value", "near_relative", 26.0, RELATIVE_P),)),
+    ClaimRow("mode34-P", "Fig. 1(b), Sec. II A", r"Mode 34 of the chosen chain is strongly localized, $P \approx 2.5$",
+             "$2.5$", "mode_participation", "1",
+             "$|P - 2.5| \\le {tol.mode_participation:param}$ (potential convention)",
+             "{value:math} (potential); {period_averaged:math} (period-averaged)",
+             (Check("value", "near", 2.5, "tolerance.mode_participation"),), args={"mode": 34},
+             reason=("convention: the paper's realization and its energy density of a mode are unpublished; under "
+                     "the potential convention (docs/conventions.md, Mode energy density) a mode whose neighbours move has "
+                     "$P \\gtrsim 8/3$, and the selection window is $2.2 \\le P \\le 2.8$; the period-averaged "
+                     "convention gives the other value shown")),
+    ClaimRow("mode34-site", "Fig. 1(b), Sec. II A", r"Mode 34 is centred on site $n = 21$", "$21$", "mode_peak", "site",
+             "the mode's energy maximum is on site 21 (a selection requirement, docs/conventions.md, Realization)",
+             "energy maximum at site ${value}$", (Check("value", "==", 21),), args={"mode": 34}),
+    ClaimRow("overlaps", "Sec. III A", r"The static overlaps next to site 21 are $\delta_{21,22} \approx 1.06$",
+             "$1.06$", "excited_overlaps", "length unit",
+             "both within ${tol.displacement:param}$ of 1.06 (the selection prefers them near 1.06)",
+             "$\\delta_{{21}} = {left:tex}$, $\\delta_{{22}} = {right:tex}$",
+             (Check("overlaps", "near", 1.06, "tolerance.displacement"),), args={"around": 1.06}),
+    ClaimRow("u0", "Sec. III A", r"At $H = 0.25$ the Hertz initial displacement is $u_{21}(0) \approx 1.01$",
+             "$1.01$", "initial_displacement", "length unit",
+             "$|u_{{21}}(0) - 1.01| \\le {tol.displacement:param}$", "{value:math4}",
+             (Check("value", "near", 1.01, "tolerance.displacement"),), (HZ25,),
+             reason=("units: in these units $u_{21}(0)$ depends only on the two overlaps next to bead 21, and "
+                     "overlaps of 1.06 give $u_{21}(0) \\approx 1.04$; 1.01 would need overlaps near 1.0 "
+                     "(docs/conventions.md, Units). The units are not tuned to hide this")),
+
+    # ---------------- H = 0.25 ----------------
+    *(_final_p_of_h025(scene) for scene in (HZ25, FP25)),
+    ClaimRow("P-H0.25-overlap", "Fig. 2(c), Sec. III A",
+             r"At $H = 0.25$ the $P(t)$ curves of the two models almost overlap", "overlap",
+             "relative_difference", "1", "relative difference $\\le {tol.participation_relative:param%}\\,\\%$",
+             "final $P$: Hertz {first:math}, FPUT {second:math}",
+             (Check("value", "<=", RELATIVE_P),), (HZ25, FP25), {"variable": "participation"},
+             variables=("participation",), t_required=1e2),
+    _chaos("regular-H0.25-hertz", "Fig. 2(d), Sec. III A", HZ25, False, ", $\\Lambda \\propto t^{-1}$"),
+    _chaos("regular-H0.25-fput", "Fig. 2(d), Sec. III A", FP25, False, ", $\\Lambda \\propto t^{-1}$"),
+    *(_dvd_participation_of_h025(scene) for scene in (HZ25, FP25)),
+    ClaimRow("PD-H0.25-drop", "Fig. 3(e,f), Sec. III A",
+             r"After $t \approx 10^3$ the Hertz $P_D$ drops, the FPUT one does not", "drop (Hertz only)",
+             "early_and_late", "1",
+             "Hertz ratio $< 1 - {tol.participation_relative:param}$ and FPUT ratio $\\ge$ that",
+             "final/early $P_D$: Hertz {first:math2}, FPUT {second:math2}",
+             (Check("first", "<", f"1 - {RELATIVE_P}"), Check("second", ">=", f"1 - {RELATIVE_P}")),
+             (HZ25, FP25), {"variable": "dvd_participation", "start": 1e2, "end": 1e3},
+             variables=("dvd_participation",), t_required=T_PAPER),
+    *(_eta_of_h025(scene) for scene in (HZ25, FP25)),
+
+    # ---------------- H = 0.5 ----------------
+    _localized("loc-H0.5-hertz", "Fig. 4(a,c), Sec. III B", HZ05),
+    _chaos("chaos-H0.5-hertz", "Fig. 4(d), Sec. III B", HZ05, True, " (localized chaos, in the last decade)",
+           statements=("chaos-H0.5-hertz", "chaos-late-H0.5-hertz")),
+    _localized("loc-H0.5-fput", "Fig. 4(c), Sec. III B", FP05),
+    _chaos("regular-H0.5-fput", "Fig. 4(d), Sec. III B", FP05, False),
+    ClaimRow("dvd-H0.5-site21", "Fig. 5(a,b), Sec. III B",
+             r"At $H = 0.5$ the Hertz DVD stays attached to site 21 in the last decade", "site 21", "dvd_at_site", "1",
+             "fraction $\\ge {c.dvd_site_fraction:param%}\\,\\%$",
+             "DVD maximum within {c.dvd_site_halfwidth} site of 21 in {value:math%2}\\,\\% of the final samples",
+             (Check("value", ">=", "dvd_site_fraction"),), (HZ05,), variables=("dvd",), t_required=T_PAPER),
+    ClaimRow("gaps-H0.5-one", "Fig. 7(a,c), Sec. III C", r"At $H = 0.5$ at most one gap is open at any instant",
+             r"$\le 1$", "max_gaps", "gaps", "largest number of simultaneously open gaps $\\le 1$",
+             "at most {value} open at once (checked every step)", (Check("value", "<=", 1),), (HZ05,),
+             variables=("n_gaps",), t_required=T_PAPER, refutable_early=True,
+             reason=("follows", "loc-H0.5-hertz", "the gaps follow the packet, which spreads on this chain")),
+    ClaimRow("gaps-H0.5-site21", "Fig. 7(a), Sec. III C", r"At $H = 0.5$ gaps open only beside site 21",
+             "bonds 21, 22", "gaps_beside_site", "bonds", "every bond that opens is one of the two bonds of bead 21",
+             "bonds ever open: {bonds:bonds}", (Check("opened", ">", 0), Check("distances", "==", 0)), (HZ05,),
+             variables=("gap_fraction",), t_required=T_PAPER, refutable_early=True,
+             reason=("follows", "loc-H0.5-hertz", "the gaps follow the packet, which spreads on this chain")),
+
+    # ---------------- H = 1.8 ----------------
+    ClaimRow("spread-H1.8-level", "Fig. 4(b,c), Sec. III B",
+             r"At $H = 1.8$ the Hertz packet is first localized with $P < 3$", r"$< 3$", "plateau_average", "1",
+             "mean $P < {c.spreading_p_threshold:param}$ over that window (before the paper's onset)",
+             "mean $P$ over ${start:param} \\le t \\le {end:param}$: {value:math}",
+             (Check("value", "<", "spreading_p_threshold"),), (HZ18,), {"variable": "participation"},
+             variables=("participation",), t_required=f"plateau_end[{HZ18}]",
+             statements=("spread-level-H1.8-hertz",),
+             reason=("the packet's early participation number is larger than the paper's; the paper's energy "
+                     "density and smoothing are not stated (see the $H = 0.25$ claims)")),
+    ClaimRow("spread-H1.8-onset", "Fig. 4(b,c), Sec. III B",
+             r"At $H = 1.8$ the Hertz packet starts to spread at $t \approx 2\times 10^2$", r"$2\times 10^{2}$",
+             "spreading_onset", "time", "onset within a factor {tol.time_factor:param} of $2\\times 10^2$",
+             {"": "smoothed $P$ stays above {c.spreading_factor:param} times its value at "
+                  "$t = {c.plateau_start:param}$ at $t = {value:tex}$",
+              "never": "the smoothed $P$ never doubles"},
+             (Check("value", "within_factor", 2e2, "tolerance.time_factor"),), (HZ18,),
+             variables=("participation",), t_required="2e2 * tolerance.time_factor", refutable_early=True,
+             statements=("spread-onset-H1.8-hertz",)),
+    ClaimRow("spread-H1.8-saturation", "Fig. 4(c), Sec. III B", r"At $H = 1.8$ the Hertz $P$ saturates near 26",
+             "$26$", "final_value", "1", "within ${tol.participation_relative:param%}\\,\\%$ of 26",
+             "final $P = {value:tex}$", (Check("value", "near_relative", 26, RELATIVE_P),), (HZ18,),
+             {"variable": "participation"}, variables=("participation",), t_required=4e4,
+             reason=("spread_of_values", "deloc-H1.8-hertz", "the final $P$")),
+    ClaimRow("spread-H1.8-until", "Fig. 4(c), Sec. III B",
+             r"At $H = 1.8$ the spreading goes on until $t \approx 4\times 10^3$", r"$4\times 10^{3}$",
+             "saturation_time", "time", "within a factor {tol.time_factor:param} of $4\\times 10^3$",
+             "smoothed $P$ reaches {c.saturation_fraction:param%}\\,\\% of its final value at $t = {value:tex}$",
+             (Check("value", "within_factor", 4e3, "tolerance.time_factor"),), (HZ18,),
+             variables=("participation",), t_required=4e4, statements=("spread-until-H1.8-hertz",)),
+    ClaimRow("mlce-H1.8", "Fig. 4(d), Sec. III B",
+             r"At $H = 1.8$ the Hertz $\Lambda$ levels off at $\Lambda \approx 10^{-3}$", r"$10^{-3}$",
+             "final_mlce", "1/time", "within a factor {tol.mlce_factor:param} of $10^{{-3}}$",
+             "$\\Lambda(t_\\mathrm{{end}}) = {value:tex}$",
+             (Check("value", "within_factor", 1e-3, "tolerance.mlce_factor"),), (HZ18,), variables=("mlce",),
+             t_required=1e4, statements=("mlce-H1.8-hertz",)),
+    _chaos_onset("chaos-H1.8-onset", "Fig. 4(d), Sec. III B", HZ18,
+                 r"At $H = 1.8$ the Hertz orbit is chaotic from $t \approx 2\times 10^2$ on",
+                 2e2, r"2\times 10^{2}", 2e3, "chaos-onset-H1.8-hertz"),
+    ClaimRow("gaps-H1.8-spread", "Fig. 7(b), Sec. III C",
+             r"At $H = 1.8$ gaps leave site 21 at $t \approx 3\times 10^2$, when $P$ starts to grow",
+             r"$3\times 10^{2}$", "gap_spread", "time", "within a factor {tol.time_factor:param} of $3\\times 10^2$",
+             {"": "first gap {c.gap_spread_distance} or more bonds from bead 21 by $t = {value:tex}$",
+              "with_onset": "first gap {c.gap_spread_distance} or more bonds from bead 21 by $t = {value:tex}$; "
+                            "spreading onset $t = {onset:tex}$",
+              "never": "no gap leaves bead 21"},
+             (Check("value", "within_factor", 3e2, "tolerance.time_factor"),), (HZ18,),
+             variables=("gap_fraction",), t_required="3e2 * tolerance.time_factor", refutable_early=True),
+    ClaimRow("gaps-H1.8-cover", "Fig. 7(b), Sec. III C", r"At $H = 1.8$ gaps eventually cover the whole lattice",
+             "whole lattice", "bond_coverage", "1",
+             "at least ${c.gap_coverage:param%}\\,\\%$ of the bonds open at some time",
+             "{value:math%2}\\,\\% of the bonds have opened", (Check("value", ">=", "gap_coverage"),), (HZ18,),
+             variables=("gap_fraction",), t_required=T_PAPER),
+
+    # ---------------- FPUT: regular up to 1.8, then alternation ----------------
+    ClaimRow("fput-regular-to-1.8", "Fig. 4(c,d), Sec. III B",
+             r"The FPUT packet stays localized and regular up to $H = 1.8$", "localized, regular",
+             "localized_and_regular", "1",
+             "final $P \\le {c.localized_p_max:param}$ and regular at $H = 0.25, 0.5, 1.8$", "{states:states}",
+             (Check("P", "<=", "localized_p_max"), Check("chaotic", "==", False)), (FP25, FP05, FP18),
+             variables=("participation", "mlce"), t_required=T_PAPER, refutable_early=True,
+             statements=tuple(_statement_id(kind, scene) for scene in (FP25, FP05, FP18)
+                              for kind in ("loc", "regular"))),
+    _delocalized_and_chaotic("fput-H2.9", "Fig. 6(a--d), Sec. III B", FP29, " (the first such energy)"),
+    _chaos_onset("chaos-H2.9-onset", "Fig. 6(d), Sec. III B", FP29,
+                 r"At $H = 2.9$ the FPUT orbit is chaotic for $t \gtrsim 4\times 10^3$",
+                 4e3, r"4\times 10^{3}", 4e4, "chaos-onset-H2.9-fput"),
+    _localized("loc-H4-fput", "Fig. 6(e,f), Sec. III B", FP4),
+    _chaos("chaos-H4-fput", "Sec. III B", FP4, True, " (FPUT is chaotic for all $H > 2.8$)"),
+    _delocalized_and_chaotic("fput-H8.7381", "Fig. 6(i--l), Sec. III B", FP87),
+
+    # ---------------- entropy ----------------
+    _eta_plateau(HZ18, 0.5, "Fig. 8(c)"),
+    _eta_plateau(HZ3, 0.5, "Fig. 8(d)"),
+    _eta_plateau(FP29, 0.7, "Fig. 9(b)"),
+    _eta_plateau(FP4, 0.82, "Fig. 9(c)"),
+    _eta_plateau(FP87, 0.8, "Fig. 9(d)"),
+    _eta_equipartition(HZ18, "Fig. 8(c)"),
+    _eta_equipartition(HZ3, "Fig. 8(d)"),
+    _eta_equipartition(FP29, "Fig. 9(b)"),
+    _eta_equipartition(FP87, "Fig. 9(d)"),
+    ClaimRow("eta-final-fput_H4", "Fig. 9(c,g), Sec. III C",
+             r"At $H = 4$ the FPUT $\eta$ is still far from equipartition at the end", r"$\gg\langle\eta\rangle$",
+             "eta_final", "1", "$\\eta_\\mathrm{{final}} - \\langle\\eta\\rangle > {tol.eta_plateau:param}$",
+             "final $\\eta = {value:tex}$, $\\langle\\eta\\rangle = {equipartition:tex}$",
+             (Check("excess", ">", "tolerance.eta_plateau"),), (FP4,), variables=("eta",), t_required=T_PAPER,
+             refutable_early=True,
+             reason=("follows", "loc-H4-fput", "a packet that spreads approaches equipartition")),
+
+    # ---------------- thresholds of Sec. III and IV, on the energy scan ----------------
+    _scan_always("scan-hertz-deloc", "hertz", "delocalized", 1.8),
+    _scan_always("scan-hertz-chaos", "hertz", "chaotic", 1.8),
+    _scan_always("scan-fput-chaos", "fput", "chaotic", 2.8),
+    ClaimRow("scan-fput-alternation", "Sec. III B, IV",
+             r"Above $H \approx 2.9$ the FPUT packet alternates between localized and delocalized states",
+             r"from $H \approx 2.9$", "scan_alternation", "energy",
+             "the lowest scanned $H$ with {scan_criterion[delocalized]} lies within a factor "
+             "{tol.threshold_factor:param} of 2.9, and above it the state changes at least twice (delocalized, "
+             "localized, delocalized)",
+             {"": "first delocalized at $H = {first:tex}$; above it localized at $H = $ {localized:energies} "
+                  "({switches} changes)",
+              "never": "never delocalized"},
+             (Check("first", "within_factor", 2.9, "tolerance.threshold_factor"), Check("switches", ">=", 2)),
+             (ENERGY_SCAN,), {"model": "fput"}, variables=("delocalized", "chaotic", "valid"), t_required=T_PAPER,
+             reason=("scan_alternation_reason", "fput", 2.9)),
+)
+
+
+def statement_rows(catalogue=CATALOGUE) -> tuple[ClaimRow, ...]:
+    """A row for every statement of ``statements.STATEMENTS`` that no row of ``catalogue`` rests on,
+    decided on its scene's ensemble verdicts alone (measured: the ensemble's median value)."""
+    used = {i for row in catalogue for i in row.statements}
+    rows = []
+    for st in statements.STATEMENTS:
+        if st.id in used:
+            continue
+        _, _, required, unit, criterion = _verdicts.STATEMENT_KINDS[st.kind]
+        yes_no = st.kind in ("chaotic", "regular", "regular_until")
+        rows.append(ClaimRow(
+            f"stmt-{st.id}", "Sec. III", st.text, st.kind.replace("_", " "), "ensemble_statement", unit,
+            literal(criterion),
+            "chaotic in {chaotic} of {orbits} orbits" if yes_no else "median over the ensemble: {median:math}",
+            scenes=(st.scene.name,), args={"statement": st.id}, t_required=required(st), statements=(st.id,)))
+    return tuple(rows)
+
+
+STATEMENT_ROWS = statement_rows()

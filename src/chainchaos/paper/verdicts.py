@@ -1,0 +1,208 @@
+"""The paper's qualitative statements (``statements.STATEMENTS``) decided on ensembles of orbits.
+
+A statement is decided per orbit by the function of its kind in :data:`STATEMENT_KINDS`, which
+reduces the orbit's sampled series (``orbits.SERIES``) to one measured value and a yes/no, with the
+windows and thresholds of :class:`chainchaos.paper.criteria.Criteria`. Over an ensemble of perturbed
+orbits of one scene (``orbits.Orbit.lane``) the outcome is the fraction of the decided orbits that
+satisfy it, and the scene's verdict is
+
+- ``holds`` when at least ``criteria.agreement`` of them do,
+- ``fails`` when at most 1 - ``agreement`` do,
+- ``undecided`` otherwise (the answer depends on the orbit, not only on the scene),
+- ``not testable`` when no orbit reached the time the statement needs. A run shorter than that can
+  still break a statement marked ``early`` (a packet already spread is not localized at the end).
+
+Times in units of 1/omega_max. ``t_paper`` is the paper's integration time, 1e5.
+"""
+
+import numpy as np
+import xarray as xr
+
+from chainchaos.observe.formulas import finite_time_mlce
+from chainchaos.observe.reductions import (
+    chaos_onset,
+    final_average,
+    is_chaotic,
+    saturation_time,
+    spreading_onset,
+    time_average,
+    within_factor,
+)
+from chainchaos.paper import statements
+from chainchaos.paper.criteria import Criteria
+
+T_PAPER = 1e5
+
+HOLDS, FAILS, UNDECIDED, UNTESTABLE = 1, 0, -1, -2
+VERDICT_NAMES = {HOLDS: "holds", FAILS: "fails", UNDECIDED: "undecided", UNTESTABLE: "not testable"}
+
+#: attributes of the coordinates of an ensemble (chainchaos.run.orbits: lane 0 is the scene's own orbit)
+LANE = {"units": "1", "long_name": "lane j: orbit of the ensemble, 0 the scene's own, j >= 1 perturbed"}
+STATEMENT = {"long_name": "id of the paper's statement (chainchaos.paper.statements.STATEMENTS)"}
+
+
+def _final_p(t, s, st, c):
+    return final_average(t, s["participation"], c.final_window_decades)
+
+
+def _chaotic(t, s, st, c):
+    """1.0 if the orbit is chaotic at the end of the run (or of the window ending at ``until``)."""
+    end = float(t[-1]) if st.until is None else min(float(st.until), float(t[-1]))
+    return float(is_chaotic(t, s["log_growth"], c.chaos_slope, c.chaos_growth_margin,
+                            c.chaos_window_decades, end))
+
+
+def _p_until(t, s, st, c):
+    return time_average(t, s["participation"], c.plateau_start, min(float(st.until), float(t[-1])))
+
+
+def _saturation(t, s, st, c):
+    return saturation_time(t, s["participation"], c.saturation_fraction, c.smoothing_decades,
+                           c.final_window_decades, c.onset_hold_decades)
+
+
+def _spreading_onset(t, s, st, c):
+    return spreading_onset(t, s["participation"], c.spreading_factor, c.smoothing_decades, c.plateau_start,
+                           c.onset_hold_decades)
+
+
+def _final_mlce(t, s, st, c):
+    return float(finite_time_mlce(s["log_growth"], t)[-1])
+
+
+def _chaos_onset(t, s, st, c):
+    return chaos_onset(t, s["log_growth"], c.chaos_slope, c.chaos_growth_margin, c.chaos_window_decades)
+
+
+def _eta_median(t, s, st, c):
+    sel = t >= c.plateau_start
+    return float(np.median(s["eta"][sel])) if sel.any() else float("nan")
+
+
+#: kind -> (measure(t, series, statement, criteria), passed(value, statement, criteria),
+#: time required(statement), unit, description of the criterion).
+STATEMENT_KINDS = {
+    "localized": (_final_p, lambda v, st, c: v <= c.localized_p_max, lambda st: T_PAPER, "1",
+                  "time-averaged $P$ over the last decade $\\le \\cc{crit.localizedpmax}$"),
+    "delocalized": (_final_p, lambda v, st, c: v >= c.delocalized_p_min, lambda st: T_PAPER, "1",
+                    "time-averaged $P$ over the last decade $\\ge \\cc{crit.delocalizedpmin}$"),
+    "chaotic": (_chaotic, lambda v, st, c: v == 1.0, lambda st: T_PAPER, "1",
+                "chaotic over the last decade (slope and growth criterion)"),
+    "regular": (_chaotic, lambda v, st, c: v == 0.0, lambda st: T_PAPER, "1",
+                "not chaotic over the last decade (slope and growth criterion)"),
+    "regular_until": (_chaotic, lambda v, st, c: v == 0.0, lambda st: st.until, "1",
+                      "not chaotic over the decade before the statement's end time"),
+    "participation_below_until": (_p_until, lambda v, st, c: v < st.value, lambda st: st.until, "1",
+                                  "time-averaged $P$ from $t = \\cc{crit.plateaustart}$ to the statement's end time below the paper's level"),
+    "saturation_near": (_saturation, lambda v, st, c: within_factor(v, st.value, c.tolerance.time_factor),
+                        lambda st: T_PAPER, "time",
+                        "smoothed $P$ stays above \\cc{crit.saturationfraction} of its final average from a "
+                        "time within a factor \\cc{tol.timefactor} of the paper's"),
+    "spreading_onset_near": (_spreading_onset,
+                             lambda v, st, c: within_factor(v, st.value, c.tolerance.time_factor),
+                             lambda st: T_PAPER, "time",
+                             "smoothed $P$ stays above \\cc{crit.spreadingfactor} times its value at "
+                             "$t = \\cc{crit.plateaustart}$ from a time within a factor \\cc{tol.timefactor} of the paper's"),
+    "mlce_near": (_final_mlce, lambda v, st, c: within_factor(v, st.value, c.tolerance.mlce_factor),
+                  lambda st: T_PAPER, "1/time",
+                  "$\\Lambda(t_\\mathrm{end})$ within a factor \\cc{tol.mlcefactor} of the paper's"),
+    "chaos_onset_near": (_chaos_onset, lambda v, st, c: within_factor(v, st.value, c.tolerance.time_factor),
+                         lambda st: T_PAPER, "time",
+                         "onset of chaos (the criterion holding to the end) within a factor "
+                         "\\cc{tol.timefactor} of the paper's time"),
+    "eta_near": (_eta_median, lambda v, st, c: abs(v - st.value) <= c.tolerance.eta_plateau, lambda st: T_PAPER,
+                 "1", "median $\\eta$ from $t = \\cc{crit.plateaustart}$ to the end within \\cc{tol.etaplateau} of "
+                 "the paper's level"),
+}
+
+
+def outcome(statement: statements.Statement, t, series: dict, criteria: Criteria, valid: bool = True) -> tuple[float, float]:
+    """(measured value, outcome) of one orbit: outcome 1.0 satisfied, 0.0 violated, NaN undecidable
+    (an invalid run, or a run shorter than the statement needs that does not already break it)."""
+    measure, passed, required, *_ = STATEMENT_KINDS[statement.kind]
+    t = np.asarray(t, dtype=float)
+    if not valid:
+        return float("nan"), float("nan")
+    with np.errstate(invalid="ignore", divide="ignore"):
+        value = float(measure(t, series, statement, criteria))
+    if not np.isfinite(value) and not statement.kind.endswith("_near"):
+        return value, float("nan")
+    ok = bool(passed(value, statement, criteria))
+    if t[-1] < required(statement) * (1 - 1e-9):
+        return value, (0.0 if (statement.early and not ok) else float("nan"))
+    return value, float(ok)
+
+
+def verdict_code(fraction: float, agreement: float) -> int:
+    """HOLDS when at least ``agreement`` of the orbits satisfy a statement, FAILS when at most
+    1 - ``agreement`` do, UNDECIDED between, UNTESTABLE for NaN (no orbit decided it)."""
+    if not np.isfinite(fraction):
+        return UNTESTABLE
+    if fraction >= agreement - 1e-12:
+        return HOLDS
+    if fraction <= 1.0 - agreement + 1e-12:
+        return FAILS
+    return UNDECIDED
+
+
+def ensemble_verdict(outcomes, agreement: float) -> tuple[float, int, int]:
+    """(fraction satisfied among the decided orbits, number decided, verdict code)."""
+    x = np.asarray(outcomes, dtype=float)
+    decided = np.isfinite(x)
+    n = int(decided.sum())
+    frac = float(x[decided].mean()) if n else float("nan")
+    return frac, n, verdict_code(frac, agreement)
+
+
+def evaluate(scene_statements, t, runs: list[dict], criteria: Criteria) -> dict[str, np.ndarray]:
+    """Outcomes and measured values of ``scene_statements`` (one scene's) over ``runs`` (its orbits, as
+    returned by ``orbits.integrate``): arrays (statement, lane)."""
+    S, L = len(scene_statements), len(runs)
+    value, out = np.full((S, L), np.nan), np.full((S, L), np.nan)
+    for i, st in enumerate(scene_statements):
+        for j, r in enumerate(runs):
+            value[i, j], out[i, j] = outcome(st, t, r, criteria, r["valid"])
+    return {"value": value, "outcome": out}
+
+
+def verdict_dataset(scene_name: str, t, runs: list[dict], criteria: Criteria, attrs: dict) -> xr.Dataset:
+    """One scene's ensemble: the series of every lane and, per statement, every lane's outcome,
+    the fraction satisfied and the verdict."""
+    from chainchaos.observe.registry import REGISTRY
+    from chainchaos.run.orbits import SERIES
+
+    of_scene = statements.statements_of_scene(scene_name)
+    ev = evaluate(of_scene, t, runs, criteria)
+    verdicts = [ensemble_verdict(row, criteria.agreement) for row in ev["outcome"]]
+    one = {"units": "1"}
+    data = {
+        key: (("lane", "time"), np.stack([r[key] for r in runs]), {**one, "long_name": REGISTRY[key].long_name})
+        for key in SERIES
+    }
+    data.update({
+        "u0": ("lane", np.array([r["u0"] for r in runs]), {**one, "long_name": "initial displacement of the excited bead"}),
+        "valid": ("lane", np.array([r["valid"] for r in runs], dtype=np.int8),
+                  {**one, "long_name": "1 if the run stayed finite with energy error <= max_energy_error"}),
+        "max_gaps": ("lane", np.array([r["max_gaps"] for r in runs], dtype=np.int32),
+                     {**one, "long_name": "largest number of simultaneously open gaps (-1: FPUT)"}),
+        "measured": (("statement", "lane"), ev["value"], {"long_name": "measured value of the statement per lane"}),
+        "outcome": (("statement", "lane"), ev["outcome"],
+                    {**one, "long_name": "1 satisfied, 0 violated, NaN undecidable (per lane)"}),
+        "fraction": ("statement", np.array([v[0] for v in verdicts]),
+                     {**one, "long_name": "fraction of the decided lanes that satisfy the statement"}),
+        "n_decided": ("statement", np.array([v[1] for v in verdicts], dtype=np.int32),
+                      {**one, "long_name": "lanes whose run decides the statement"}),
+        "verdict": ("statement", np.array([v[2] for v in verdicts], dtype=np.int8),
+                    {"long_name": "ensemble verdict", "flag_values": np.array([-2, -1, 0, 1], dtype=np.int8),
+                     "flag_meanings": "not_testable undecided fails holds"}),
+        "kind": ("statement", np.array([st.kind for st in of_scene], dtype=object)),
+        "text": ("statement", np.array([st.text for st in of_scene], dtype=object)),
+    })
+    ds = xr.Dataset(data, coords={"statement": ("statement", [st.id for st in of_scene], STATEMENT),
+                                  "lane": ("lane", np.arange(len(runs)), LANE), "time": np.asarray(t, dtype=float)})
+    ds.time.attrs.update(units="1", long_name="time",
+                         comment="nondimensional time, unit 1/omega_max of the homogeneous linear chain")
+    ds.attrs.update(attrs)
+    ds.attrs.update(scene=scene_name, agreement=float(criteria.agreement),
+                    title=f"chainchaos ensemble verdicts of scene {scene_name}")
+    return ds

@@ -1,0 +1,128 @@
+"""The integration driver: a problem's lanes advanced through a sampling schedule, with monitors.
+
+:func:`sample` starts the engine of a :class:`~chainchaos.system.problem.Problem` (the batch engine for
+several lanes, the single-trajectory one for one) from given states, advances it from sample to
+sample of a schedule of step indices, and records at every sample each lane's state and deviation
+vector, ln|v| (renormalised in the engine every ``check_every`` steps), the gap counts of the
+interval (reset at every sample) and the relative energy error. After every sample it calls its
+monitors, ``monitor(samples, i)``: the energy guard of the scenes (:class:`EnergyGuard`), a
+progress report (:func:`progress`). Scenes (``chainchaos.run.scenes``) and orbit sets
+(``chainchaos.run.orbits``: scans, realization search, ensemble verdicts) are short loops on it; lane
+j of the record, as a ``registry.SampledRun``, feeds the observable registry.
+"""
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from chainchaos.engine import exactmath
+from chainchaos.errors import SimulationError
+from chainchaos.observe.registry import SampledRun
+from chainchaos.system.models import open_bonds
+
+
+def sample_steps(t_final: float, dt: float, per_decade: int, t_first: float) -> np.ndarray:
+    """Step indices of the samples: 0, then log-spaced times from t_first to t_final with
+    ``per_decade`` per decade, which include every power of ten, rounded to the step grid.
+
+    The times are t_j = 10^(e_0 + j / per_decade) with e_0 = floor(log10(max(t_first, dt))), up
+    to the first t_j >= t_final, from the C library's scalar log10 and pow (chainchaos.engine.exactmath),
+    not NumPy's vectorised ones, whose last bits depend on the CPU."""
+    first = math.floor(math.log10(max(t_first, dt)))
+    count = math.ceil((math.log10(t_final) - first) * per_decade) + 1
+    exponents = first + np.arange(count) / per_decade
+    steps = np.rint(exactmath.exp10(exponents) / dt).astype(np.int64)
+    n_final = int(np.rint(t_final / dt))
+    steps = np.unique(np.concatenate(([0], steps[(steps >= 1) & (steps < n_final)], [n_final])))
+    return steps
+
+
+@dataclass
+class Samples:
+    """The record of a problem's lanes on the sample steps, lane first: states (B, S, N), ln|v|,
+    energy error and largest number of open gaps (B, S), gap counts (B, S, N+1); ``bad`` (B,) is
+    the step at which a lane turned non-finite (-1: never), ``H0`` (B,) the initial energies."""
+
+    problem: object
+    steps: np.ndarray
+    Q: np.ndarray
+    P: np.ndarray
+    DQ: np.ndarray
+    DP: np.ndarray
+    log_growth: np.ndarray
+    gap_steps: np.ndarray
+    max_gaps: np.ndarray
+    energy_error: np.ndarray
+    H0: np.ndarray
+    bad: np.ndarray
+
+    @property
+    def times(self) -> np.ndarray:
+        return self.steps * self.problem.dt
+
+    def run(self, j: int, deviation0=None) -> SampledRun:
+        """Lane j as the sampled run the observable registry reads."""
+        return SampledRun(self.problem.model, self.problem.chains[j], self.times, self.steps, self.Q[j], self.P[j],
+                          self.DQ[j], self.DP[j], self.log_growth[j], self.gap_steps[j], self.max_gaps[j],
+                          self.energy_error[j], deviation0)
+
+
+def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto") -> Samples:
+    """Integrate the lanes of ``problem`` from q0, p0, dq0, dp0 ((N, B) each) on the engine of
+    ``kind`` (``Problem.engine``) and record them at the step indices ``steps`` (increasing, from
+    0); call every monitor after every sample."""
+    engine = problem.engine(q0, p0, dq0, dp0, kind)
+    N, B, S = problem.N, problem.lanes, len(steps)
+    Q, P, DQ, DP = (np.empty((B, S, N)) for _ in range(4))
+    samples = Samples(problem, np.asarray(steps), Q, P, DQ, DP, np.zeros((B, S)),
+                      np.zeros((B, S, N + 1), dtype=np.int64), np.zeros((B, S), dtype=np.int64), np.zeros((B, S)),
+                      np.zeros(B), engine.bad)
+    Q[:, 0], P[:, 0], DQ[:, 0], DP[:, 0] = engine.q.T, engine.p.T, engine.dq.T, engine.dp.T
+    samples.H0[:] = problem.energies(Q[:, 0], P[:, 0])
+    if problem.track_gaps:
+        samples.max_gaps[:, 0] = [open_bonds(problem.model, c, Q[j, 0]).sum() for j, c in enumerate(problem.chains)]
+    for monitor in monitors:
+        monitor(samples, 0)
+    for i in range(1, S):
+        engine.gap_steps[:] = 0
+        engine.max_gaps[:] = 0
+        engine.advance(int(steps[i] - steps[i - 1]))
+        Q[:, i], P[:, i], DQ[:, i], DP[:, i] = engine.q.T, engine.p.T, engine.dq.T, engine.dp.T
+        samples.log_growth[:, i] = engine.log_growth
+        samples.gap_steps[:, i] = engine.gap_steps.T
+        samples.max_gaps[:, i] = engine.max_gaps
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+            samples.energy_error[:, i] = np.abs(problem.energies(Q[:, i], P[:, i]) - samples.H0) / np.abs(samples.H0)
+        for monitor in monitors:
+            monitor(samples, i)
+    return samples
+
+
+class EnergyGuard:
+    """A monitor that stops the run with SimulationError, naming the lane, at a non-finite state or
+    at a relative energy error above the lane's limit (docs/conventions.md#guards)."""
+
+    def __init__(self, names, limits):
+        self.names, self.limits = list(names), list(limits)
+
+    def __call__(self, samples: Samples, i: int) -> None:
+        for j, name in enumerate(self.names):
+            if samples.bad[j] >= 0:
+                raise SimulationError(name, samples.bad[j] * samples.problem.dt,
+                                      "non-finite state (the orbit escaped to infinity or the step is unstable)",
+                                      float("nan"))
+        for j, (name, limit) in enumerate(zip(self.names, self.limits)):
+            if not samples.energy_error[j, i] <= limit:
+                raise SimulationError(name, samples.times[i], "relative energy error", samples.energy_error[j, i],
+                                      f"{limit:g}")
+
+
+def progress(report):
+    """A monitor that calls ``report(t, fraction done)`` after every sample but the first."""
+
+    def monitor(samples: Samples, i: int) -> None:
+        if i > 0:
+            report(samples.times[i], samples.steps[i] / samples.steps[-1])
+
+    return monitor

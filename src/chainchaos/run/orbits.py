@@ -1,0 +1,155 @@
+"""Many orbits integrated together on the batch engine and sampled on one schedule.
+
+The driver of everything that runs more than one trajectory and reduces each to a few series:
+the energy scan and the disorder statistics (``chainchaos.studies.scan.runs``), the realization search
+(``chainchaos.studies.search.stages``) and the ensemble verdicts (``chainchaos.paper.verdicts``). An :class:`Orbit` is a
+model, an energy, a chain, the excited bead and a lane number: lane 0 is the scene's own orbit
+(bead ``site`` displaced by u0 with H = energy, deviation vector from ``deviation_seed``), lane
+j >= 1 the same with u0 (1 + perturbation xi_j), xi_j uniform in [-1, 1] from
+``default_rng([perturbation_seed, j])``, and the deviation vector from ``deviation_seed + j``. An
+ensemble of lanes asks whether a verdict survives changes at the level of the last bits of the
+initial state, which is what separates a property of the scene from one of a single orbit.
+
+Orbits of one model share a batch (``chainchaos.engine.batch``, any mix of chains, energies and lanes)
+or run one after the other on ``integrators.advance`` (``engine: single``); both give identical
+numbers. At every sample the series of :data:`SERIES` are recorded per orbit.
+"""
+
+from dataclasses import dataclass, field, fields
+
+import numpy as np
+
+from chainchaos.errors import ParameterError, require
+from chainchaos.observe.registry import REGISTRY
+from chainchaos.run import driver
+from chainchaos.run.settings import RunSettings
+from chainchaos.system.initial import initial_deviation, initial_displacement
+from chainchaos.system.models import MODELS, get_model
+
+#: Per-orbit series on the sample times, observables of the registry (``scene_observables``), with
+#: their value at samples where the state is not measured (no initial state, or non-finite);
+#: None: kept as the engine recorded it.
+SERIES = {"participation": np.nan, "log_growth": None, "eta": np.nan, "energy_error": np.inf}
+
+
+@dataclass(frozen=True)
+class Orbit:
+    """One trajectory: a model, an energy, a chain, the excited bead (1-based) and a lane."""
+
+    model: str
+    energy: float
+    chain: object = field(repr=False)
+    site: int
+    lane: int = 0
+
+
+@dataclass(kw_only=True)
+class OrbitSettings(RunSettings):
+    """Integration and sampling of a set of orbits (:class:`RunSettings`), their perturbations
+    and the engine they run on.
+
+    Samples: those of :meth:`RunSettings.sample_steps` plus ``final_samples`` evenly spaced over
+    the last decade, so that time averages over it see the fast oscillations of a packet evenly."""
+
+    samples_per_decade: int = 10
+    t_first_sample: float = 1.0
+    final_samples: int = 0
+    perturbation: float = 1e-9
+    perturbation_seed: int = 0
+    batch_size: int = 32
+    engine: str = "batch"
+
+    def __post_init__(self):
+        super().__post_init__()
+        require(self.engine in ("batch", "single"), "engine", self.engine, "'batch' or 'single'")
+        require(int(self.batch_size) >= 1, "batch_size", self.batch_size, ">= 1")
+        require(int(self.final_samples) >= 0, "final_samples", self.final_samples, "an integer >= 0")
+        require(np.isfinite(self.perturbation) and 0 <= self.perturbation < 1e-3, "perturbation",
+                self.perturbation, "0 <= perturbation < 1e-3 (a relative change of u0)")
+
+    @classmethod
+    def from_config(cls, block: dict):
+        names = {f.name for f in fields(cls)}
+        return cls(**{k: v for k, v in block.items() if k in names})
+
+
+def sample_schedule(settings: OrbitSettings) -> np.ndarray:
+    """Step indices of the samples: the log-spaced ones of :meth:`RunSettings.sample_steps` and
+    ``final_samples`` evenly spaced ones over the last decade."""
+    steps = settings.sample_steps()
+    if settings.final_samples:
+        n_final = steps[-1]
+        dense = np.rint(np.linspace(0.1, 1.0, int(settings.final_samples) + 1) * n_final).astype(np.int64)
+        steps = np.union1d(steps, dense)
+    return steps
+
+
+def lane_factor(lane: int, settings: OrbitSettings) -> float:
+    """1 + perturbation xi_lane, the factor on u0 of a lane (exactly 1 for lane 0)."""
+    if lane == 0:
+        return 1.0
+    xi = np.random.default_rng([int(settings.perturbation_seed), int(lane)]).uniform(-1.0, 1.0)
+    return 1.0 + settings.perturbation * xi
+
+
+def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None) -> tuple[np.ndarray, list[dict]]:
+    """Integrate every orbit with its tangent map (and gap counting where bonds open) and sample it.
+
+    Returns the sample times and, per orbit in input order, a dict with the :data:`SERIES` arrays
+    and ``u0``, ``max_gaps`` (-1 for a model without gaps) and ``valid`` (the initial state exists, the run
+    stayed finite and its energy error stayed <= ``max_energy_error``)."""
+    results = [None] * len(orbits)
+    times = sample_schedule(settings) * settings.dt
+    for name in MODELS:
+        index = [i for i, o in enumerate(orbits) if o.model == name]
+        for start in range(0, len(index), int(settings.batch_size)):
+            chunk = index[start:start + int(settings.batch_size)]
+            for i, r in zip(chunk, _integrate_model(name, [orbits[i] for i in chunk], settings)):
+                results[i] = r
+            if progress is not None:
+                progress(sum(r is not None for r in results), len(orbits))
+    unknown = sorted({o.model for o, r in zip(orbits, results) if r is None})
+    require(not unknown, "model", unknown, f"one of {sorted(MODELS)}")
+    return times, results
+
+
+def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings) -> list[dict]:
+    model = get_model(name)
+    problem = settings.problem(model, [o.chain for o in orbits], tangent=True, track_gaps=model.has_gaps)
+    N, B = problem.N, problem.lanes
+    Q0, P0, DQ0, DP0 = (np.zeros((N, B)) for _ in range(4))
+    u0s, ok0 = np.full(B, np.nan), np.zeros(B, dtype=bool)
+    for j, (o, c) in enumerate(zip(orbits, problem.chains)):
+        try:
+            u0s[j] = initial_displacement(model, c, float(o.energy), int(o.site)) * lane_factor(o.lane, settings)
+            Q0[o.site - 1, j] = u0s[j]
+            ok0[j] = True
+        except ParameterError:
+            pass
+        DQ0[:, j], DP0[:, j] = initial_deviation(N, settings.deviation_seed + o.lane)
+    samples = driver.sample(problem, Q0, P0, DQ0, DP0, sample_schedule(settings), kind=settings.engine)
+
+    out = []
+    for j in range(B):
+        run = samples.run(j)
+        # a sample is measured where the initial state existed and the state is still finite
+        measured = ok0[j] & np.all(np.isfinite(run.Q), axis=-1) & np.all(np.isfinite(run.P), axis=-1)
+        series = _series(run, measured)
+        out.append({
+            **series,
+            "u0": float(u0s[j]),
+            "max_gaps": int(run.max_gaps.max()) if model.has_gaps else -1,
+            "valid": bool(ok0[j] and samples.bad[j] < 0
+                          and np.all(series["energy_error"] <= settings.max_energy_error)),
+        })
+    return out
+
+
+def _series(run, measured: np.ndarray) -> dict:
+    """The :data:`SERIES` of one lane's run, each with its fill value where ``measured`` is False."""
+    out = {}
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        for key, fill in SERIES.items():
+            values = REGISTRY[key].compute(run)
+            out[key] = values if fill is None else np.where(measured, values, fill)
+    return out

@@ -1,0 +1,152 @@
+"""Integrate one scene (model, energy) and return its observables as an xarray Dataset.
+
+Only the requested observables are computed (``chainchaos.observe.registry``, the registry of
+what a scene file can hold): the tangent dynamics runs only for those that need it, gap
+bookkeeping only for the gap observables, and modal energies only for the modal ones. The
+relative energy error is always recorded: it is the guard of every run.
+"""
+
+from dataclasses import asdict, dataclass
+
+import numpy as np
+import xarray as xr
+
+from chainchaos.engine.integrators import get_scheme
+from chainchaos.errors import require, require_finite_positive
+from chainchaos.observe.registry import GAPS, OBSERVABLES, TANGENT, SampledRun, model_observables, needing, variables
+from chainchaos.output.provenance import provenance_attrs
+from chainchaos.run import driver
+from chainchaos.run.settings import RunSettings
+from chainchaos.system.initial import initial_deviation, initial_state
+from chainchaos.system.models import MODELS, get_model
+
+
+@dataclass(kw_only=True)
+class SceneParameters(RunSettings):
+    """A scene: a model at an energy, its excited bead (1-based), the observables its file holds
+    and its name, integrated and sampled by the :class:`RunSettings` it extends."""
+
+    model: str
+    energy: float
+    observables: tuple | None = None  # None: every observable of the model (model_observables)
+    excited_site: int = 21
+    name: str = ""
+
+    def __post_init__(self):
+        super().__post_init__()
+        require_finite_positive(self, "energy")
+        if self.observables is None:
+            self.observables = model_observables(self.model)
+        unknown = [o for o in self.observables if o not in OBSERVABLES]
+        require(not unknown, "observables", unknown, f"names among {list(OBSERVABLES)}")
+        if not get_model(self.model).has_gaps:
+            gaps = sorted(needing(GAPS) & set(self.observables))
+            require(not gaps, "observables", gaps,
+                    f"gap observables only with a model whose bonds open: {[m for m in MODELS if MODELS[m].has_gaps]}")
+        self.observables = tuple(o for o in OBSERVABLES if o in set(self.observables) | {"energy_error"})
+        if not self.name:
+            self.name = f"{self.model}_H{self.energy:g}"
+
+
+def scene_parameters(config: dict, scene, name: str, observables) -> SceneParameters:
+    """A scene of the paper (``panels.Scene``) as the config runs it: the ``simulation``
+    block, the scene's own overrides (``scenes: {name: ...}``) and the observables its panels use."""
+    params = {**config["simulation"], **config.get("scenes", {}).get(name, {})}
+    return SceneParameters(**params, model=scene.model, energy=scene.energy, observables=tuple(observables), name=name)
+
+
+#: The settings that scenes integrated together in one batch must share: one step, one sampling
+#: schedule, one force law. Energies, excited beads, deviation vectors and observables may differ.
+BATCH_KEYS = ("model", "integrator", "dt", "t_final", "samples_per_decade", "t_first_sample", "check_every",
+              "k4_sign")
+
+
+def batch_key(params: SceneParameters) -> tuple:
+    return tuple(getattr(params, key) for key in BATCH_KEYS)
+
+
+def scene_batches(scenes: dict[str, SceneParameters], lanes: int) -> dict[str, list[str]]:
+    """The scenes (by name, in order) that run together: those sharing ``BATCH_KEYS``, at most
+    ``lanes`` at a time (one SIMD block of the batch engine), named ``<model>-<n>``."""
+    require(int(lanes) >= 1, "lanes", lanes, "an integer >= 1")
+    groups: dict[tuple, list[str]] = {}
+    for name, params in scenes.items():
+        groups.setdefault(batch_key(params), []).append(name)
+    batches, count = {}, {}
+    for key, names in groups.items():
+        for start in range(0, len(names), int(lanes)):
+            model = key[0]
+            count[model] = count.get(model, 0) + 1
+            batches[f"{model}-{count[model]}"] = names[start:start + int(lanes)]
+    return batches
+
+
+def simulate(chain, params: SceneParameters, progress=None) -> xr.Dataset:
+    """Integrate one scene and return its Dataset (data contract: docs/conventions.md#scene-file).
+
+    Raises SimulationError naming the scene, the time and the value when the state becomes
+    non-finite or the relative energy error exceeds ``params.max_energy_error``.
+    """
+    return simulate_scenes(chain, [params], progress)[0]
+
+
+def simulate_scenes(chain, scenes: list[SceneParameters], progress=None) -> list[xr.Dataset]:
+    """Integrate scenes that share ``BATCH_KEYS`` together, one lane each, and return their
+    Datasets in order. Several scenes run on the batch engine, a single one on
+    ``integrators.advance``; every lane's numbers are those of the scene integrated alone.
+
+    The tangent map runs when any scene needs it and gap counting when any counts gaps (neither
+    changes the orbit); each Dataset holds only its own scene's observables. A non-finite state or
+    an energy error above a scene's ``max_energy_error`` raises SimulationError naming that scene.
+    """
+    scenes = list(scenes)
+    require(len(scenes) >= 1, "scenes", len(scenes), "at least one scene")
+    keys = {batch_key(s) for s in scenes}
+    require(len(keys) == 1, "scenes", [s.name for s in scenes],
+            f"scenes that share {list(BATCH_KEYS)}")
+    first = scenes[0]
+    model = get_model(first.model)
+    wanted = set().union(*(set(s.observables) for s in scenes))
+    problem = first.problem(model, [chain] * len(scenes), tangent=bool(wanted & needing(TANGENT)),
+                            track_gaps=bool(wanted & needing(GAPS)))
+    chain = problem.chains[0]
+    N, B = chain.N, len(scenes)
+    Q0, P0, DQ0, DP0 = (np.zeros((N, B)) for _ in range(4))
+    u0, deviation0 = np.zeros(B), np.zeros((B, 2 * N))
+    for j, params in enumerate(scenes):
+        Q0[:, j], P0[:, j], u0[j] = initial_state(model, chain, params.energy, params.excited_site)
+        DQ0[:, j], DP0[:, j] = initial_deviation(N, params.deviation_seed)
+        deviation0[j] = np.concatenate([DQ0[:, j], DP0[:, j]])
+    if not problem.tangent:
+        DQ0[:], DP0[:] = 0.0, 0.0
+    monitors = [driver.EnergyGuard([s.name for s in scenes], [s.max_energy_error for s in scenes])]
+    if progress is not None:
+        monitors.append(driver.progress(progress))
+    samples = driver.sample(problem, Q0, P0, DQ0, DP0, first.sample_steps(), monitors)
+    return [_dataset(chain, params, samples.run(j, deviation0[j]), u0[j], samples.H0[j])
+            for j, params in enumerate(scenes)]
+
+
+def _dataset(chain, params, run: SampledRun, u0, H0) -> xr.Dataset:
+    N, times, energy_error = chain.N, run.times, run.energy_error
+    data = variables(run, params.observables)
+    ds = xr.Dataset(data, coords={"time": times, "site": np.arange(1, N + 1), "bond": np.arange(1, N + 2),
+                                  "mode": np.arange(1, N + 1)})
+    ds.time.attrs.update(units="1", long_name="time",
+                         comment="nondimensional time, unit 1/omega_max of the homogeneous linear chain")
+    ds.site.attrs.update(units="1", long_name="bead index n")
+    ds.bond.attrs.update(units="1", long_name="bond index (bond n joins beads n-1 and n)")
+    ds.mode.attrs.update(units="1", long_name="mode number, by increasing frequency")
+    parameters = {k: (list(v) if isinstance(v, tuple) else v) for k, v in asdict(params).items()}
+    parameters["chain_seed"] = chain.seed
+    ds.attrs.update(provenance_attrs(parameters))
+    ds.attrs.update(
+        title=f"chainchaos scene {params.name}", scene=params.name, model=params.model,
+        energy=float(params.energy), total_energy=H0, u0=float(u0), dt=float(params.dt),
+        integrator=params.integrator, integrator_order=get_scheme(params.integrator).order,
+        t_final=float(times[-1]), K4_sign=float(params.k4_sign), excited_site=int(params.excited_site),
+        seed=-1 if chain.seed is None else int(chain.seed), deviation_seed=int(params.deviation_seed),
+        alpha=float(chain.alpha), observables=" ".join(params.observables),
+        final_energy_error=float(energy_error[-1]), max_energy_error=float(energy_error.max()),
+    )
+    return ds

@@ -1,0 +1,53 @@
+"""How an integration runs and is sampled: the settings that scenes and orbit sets share.
+
+:class:`RunSettings` is validated once, when it is built; a scene
+(:class:`~chainchaos.run.scenes.SceneParameters`) and a set of orbits
+(:class:`~chainchaos.run.orbits.OrbitSettings`) extend it with what only they have. Times are in
+units of 1/omega_max of the homogeneous linear chain (docs/conventions.md#units).
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from chainchaos.engine.integrators import get_scheme
+from chainchaos.errors import require, require_finite_positive
+from chainchaos.run.driver import sample_steps
+from chainchaos.system.problem import Problem, check_step
+
+
+@dataclass(kw_only=True)
+class RunSettings:
+    """The scheme and step, the run's length, the sampling schedule (``samples_per_decade``
+    log-spaced samples from ``t_first_sample``, :func:`~chainchaos.run.driver.sample_steps`), the
+    steps between finiteness checks and deviation-vector renormalisations, the sign of the FPUT
+    quartic term, the seed of the initial deviation vector and the energy-error bound."""
+
+    t_final: float
+    dt: float
+    integrator: str = "SRKN6b"
+    samples_per_decade: int = 40
+    t_first_sample: float = 0.1
+    check_every: int = 1000
+    k4_sign: float = 1.0
+    deviation_seed: int = 0
+    max_energy_error: float = 1e-2
+
+    def __post_init__(self):
+        get_scheme(self.integrator)
+        require_finite_positive(self, "t_final", "t_first_sample", "max_energy_error")
+        check_step(self.dt, self.t_final)
+        require(self.k4_sign in (1, -1), "k4_sign", self.k4_sign, "+1 (paper) or -1 (Taylor expansion)")
+        for key in ("samples_per_decade", "check_every"):
+            value = getattr(self, key)
+            require(isinstance(value, (int, np.integer)) and value >= 1, key, value, "an integer >= 1")
+
+    def sample_steps(self) -> np.ndarray:
+        """Step indices of the log-spaced samples, from 0 to the last step."""
+        return sample_steps(self.t_final, self.dt, self.samples_per_decade, self.t_first_sample)
+
+    def problem(self, model, chains, tangent: bool, track_gaps: bool) -> Problem:
+        """The :class:`Problem` of ``model`` on ``chains`` (one per lane, taken with this run's
+        sign of K4) at this run's scheme, step and check interval."""
+        return Problem(model, [c.with_k4_sign(self.k4_sign) for c in chains], self.integrator, self.dt,
+                       tangent=tangent, track_gaps=track_gaps, check_every=self.check_every)

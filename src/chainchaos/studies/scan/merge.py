@@ -1,0 +1,162 @@
+"""The groups of a scan merged into one file: the energy scan on its (model, energy) grid, the
+disorder statistics with the fraction of realizations delocalized and chaotic per energy (Wilson
+95% intervals) and the quantiles of the onset times."""
+
+
+import numpy as np
+import xarray as xr
+
+from chainchaos.engine import exactmath
+from chainchaos.output.provenance import provenance_attrs
+from chainchaos.paper import panels
+from chainchaos.studies.scan.runs import (
+    EXCITATION,
+    REALIZATION,
+    SCALARS,
+    SELECTION_RULE,
+    SERIES,
+    criteria_attrs,
+    energy_grid,
+    selection_kwargs,
+    settings_for,
+)
+from chainchaos.system.chain import GENERATOR
+
+
+def wilson_interval(k, n, z: float = 1.959963984540054):
+    """Wilson score interval of a binomial proportion k/n (95% by default); NaN where n = 0."""
+    k, n = np.asarray(k, float), np.asarray(n, float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        phat = k / n
+        denom = 1 + z**2 / n
+        centre = (phat + z**2 / (2 * n)) / denom
+        half = z * np.sqrt(phat * (1 - phat) / n + z**2 / (4 * n**2)) / denom
+    return np.clip(centre - half, 0, 1), np.clip(centre + half, 0, 1)
+
+
+def _grid_array(groups, key, shape, index_fn, fill):
+    dtype = groups[0][key].dtype
+    out = np.full(shape, fill, dtype=float if np.issubdtype(dtype, np.floating) else dtype)
+    for ds in groups:
+        for t in range(ds.sizes["trajectory"]):
+            out[index_fn(ds, t)] = ds[key].values[t]
+    return out
+
+
+def merge_energy_scan(groups: list[xr.Dataset], scan_cfg: dict, chain=None) -> xr.Dataset:
+    """The energy scan of all groups on the grid (model, energy), series on (model, energy, time)."""
+    block = scan_cfg["energy_scan"]
+    grid = energy_grid(block)
+    models = list(block.get("models", panels.models()))
+    settings = settings_for("energy_scan", scan_cfg)
+    mi = {m: i for i, m in enumerate(models)}
+
+    def idx(ds, t):
+        return mi[str(ds["model"].values[t])], int(ds["energy_index"].values[t])
+
+    data = {}
+    shape = (len(models), grid.size)
+    for key, (long_name, dtype) in SCALARS.items():
+        fill = np.nan if dtype == "f8" else -1
+        data[key] = (("model", "energy"), _grid_array(groups, key, shape, idx, fill),
+                     {**groups[0][key].attrs})
+    times = groups[0]["time"].values
+    for key in SERIES:
+        arr = np.full(shape + (times.size,), np.nan)
+        for ds in groups:
+            for t in range(ds.sizes["trajectory"]):
+                arr[idx(ds, t)] = ds[key].values[t]
+        data[key] = (("model", "energy", "time"), arr, {**groups[0][key].attrs})
+    ds = xr.Dataset(data, coords={"model": models, "energy": grid, "time": times})
+    ds.energy.attrs.update(units="1", long_name="total energy H (units of the reference contact energy scale)")
+    ds.time.attrs.update(groups[0].time.attrs)
+    ds.attrs.update(provenance_attrs({"kind": "energy_scan", "scan": scan_cfg}))
+    ds.attrs.update(criteria_attrs(settings))
+    ds.attrs.update(title="Energy scan: delocalization and chaos of a single-site excitation",
+                    integrator=settings.integrator, dt=float(settings.dt), t_final=float(settings.t_final),
+                    K4_sign=float(settings.k4_sign), excited_site=int(block.get("site", 21)),
+                    seed=int(groups[0].attrs.get("seed", -1)), n_groups=len(groups))
+    if chain is not None:
+        ds.attrs.update(alpha=float(chain.alpha))
+    return ds
+
+
+def probability_at(disorder: xr.Dataset, model: str, key: str, H: float) -> float:
+    """Fraction of the realizations of the disorder statistics that are ``key`` ("delocalized"
+    or "chaotic") at energy H, interpolated linearly in ln H on their grid; NaN outside it."""
+    E = disorder.energy.values
+    if not (np.isfinite(H) and E[0] <= H <= E[-1]):
+        return float("nan")
+    p = disorder[f"probability_{key}"].sel(model=model).values
+    return float(np.interp(exactmath.ln(H), exactmath.log(E), p))
+
+
+def merge_disorder(groups: list[xr.Dataset], scan_cfg: dict) -> xr.Dataset:
+    """Disorder statistics on (model, energy, realization) with probabilities of delocalization and
+    chaos per (model, energy), Wilson 95% bands, and onset-time quantiles over the valid runs."""
+    block = scan_cfg["disorder"]
+    grid = energy_grid(block)
+    models = list(block.get("models", panels.models()))
+    R = int(block["realizations"])
+    settings = settings_for("disorder", scan_cfg)
+    mi = {m: i for i, m in enumerate(models)}
+
+    def idx(ds, t):
+        return (mi[str(ds["model"].values[t])], int(ds["energy_index"].values[t]), int(ds["realization"].values[t]))
+
+    shape = (len(models), grid.size, R)
+    data = {}
+    for key, (long_name, dtype) in SCALARS.items():
+        fill = np.nan if dtype == "f8" else -1
+        data[key] = (("model", "energy", "realization"), _grid_array(groups, key, shape, idx, fill),
+                     {**groups[0][key].attrs})
+    for key in ("excited_mode", "excited_site", "excited_mode_participation", "selection_fallback"):
+        # a property of the realization (the same for every model and energy)
+        dtype = groups[0][key].dtype
+        arr = np.full(R, np.nan if np.issubdtype(dtype, np.floating) else -1, dtype=dtype)
+        for g in groups:
+            arr[g["realization"].values] = g[key].values
+        data[key] = ("realization", arr, EXCITATION[key])
+    valid = data["valid"][1] == 1
+    n = valid.sum(axis=-1)
+    quantiles = np.array([0.1, 0.25, 0.5, 0.75, 0.9])
+    for what in ("delocalized", "chaotic"):
+        k = ((data[what][1] == 1) & valid).sum(axis=-1)
+        lo, hi = wilson_interval(k, n)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            prob = np.where(n > 0, k / np.maximum(n, 1), np.nan)
+        data[f"probability_{what}"] = (("model", "energy"), prob,
+                                        {"units": "1", "long_name": f"fraction of valid realizations {what}"})
+        data[f"probability_{what}_lower"] = (("model", "energy"), lo,
+                                              {"units": "1", "long_name": "Wilson 95% interval, lower bound"})
+        data[f"probability_{what}_upper"] = (("model", "energy"), hi,
+                                              {"units": "1", "long_name": "Wilson 95% interval, upper bound"})
+        data[f"count_{what}"] = (("model", "energy"), k.astype(np.int32),
+                                 {"units": "1", "long_name": f"number of valid realizations {what}"})
+    data["count_valid"] = (("model", "energy"), n.astype(np.int32), {"units": "1", "long_name": "valid realizations"})
+    for what, key, flag in (("delocalization", "delocalization_onset", "delocalized"),
+                            ("chaos", "chaos_onset", "chaotic")):
+        # over the valid runs classified delocalized (chaotic) at t_final only
+        onset = np.where(valid & (data[flag][1] == 1), data[key][1], np.nan)
+        q = np.full((len(models), grid.size, quantiles.size), np.nan)
+        for a in range(len(models)):
+            for e in range(grid.size):
+                x = onset[a, e][np.isfinite(onset[a, e])]
+                if x.size:
+                    q[a, e] = np.quantile(x, quantiles)
+        data[f"{what}_onset_quantiles"] = (("model", "energy", "quantile"), q, {
+            "units": "1", "long_name": f"quantiles of the {what} onset time over the valid realizations classified {flag}"})
+    ds = xr.Dataset(data, coords={"model": models, "energy": grid, "realization": np.arange(R),
+                                  "quantile": quantiles})
+    ds.energy.attrs.update(units="1", long_name="total energy H")
+    ds.realization.attrs.update(REALIZATION)
+    ds["quantile"].attrs.update(units="1", long_name="probability of the quantile")
+    ds.attrs.update(provenance_attrs({"kind": "disorder", "scan": scan_cfg}))
+    ds.attrs.update(criteria_attrs(settings))
+    ds.attrs.update(title="Disorder statistics of delocalization and chaos", generator=GENERATOR,
+                    alpha=float(block.get("alpha", 5.0)), first_seed=int(block.get("first_seed", 0)),
+                    integrator=settings.integrator, dt=float(settings.dt), t_final=float(settings.t_final),
+                    K4_sign=float(settings.k4_sign), n_groups=len(groups),
+                    selection_rule=SELECTION_RULE, **{f"selection_{k}": v for k, v in selection_kwargs(scan_cfg).items()},
+                    confidence_interval="Wilson score interval, 95%")
+    return ds

@@ -1,0 +1,323 @@
+"""Energy scans and disorder statistics of delocalization and chaos (issue 7).
+
+Many short trajectories, each reduced to a handful of numbers:
+
+- ``participation_final``: the time average of the participation number P over the last decade
+  (t >= t_final / 10; ``reductions.final_average`` on the log-spaced samples plus
+  ``final_samples`` evenly spaced ones);
+- ``mlce_final``: the finite-time mLCE Lambda(t_final), and ``log_growth_final`` = Lambda t =
+  ln(|v(t)|/|v(0)|) at t_final;
+- ``eta_final``: the time average of the normalised spectral entropy eta over the last decade;
+- ``max_gaps``: the largest number of simultaneously open Hertz bonds over the run (FPUT: -1);
+- ``delocalization_onset``: the first sample time from which P(t) stays above ``p_delocalized``
+  for ``onset_hold_decades`` (``reductions.sustained_onset``; NaN if never);
+- ``chaos_onset``: the onset of chaos (``reductions.chaos_onset``; NaN if not chaotic at the end).
+
+Criteria (config values, stated in every output file):
+
+- delocalized: ``participation_final > p_delocalized`` (default 10: the initial excitation has
+  P ~ 1-3, an equipartitioned chain of N = 40 beads P ~ 20-27).
+- chaotic: the paper's reading of Lambda(t) over the last decade (``reductions.is_chaotic``): its
+  log-log slope exceeds ``chaos_slope`` (a regular orbit's Lambda ~ ln(t)/t has slope near -1, a
+  chaotic one levels off) and ln|v| grew by more than ln 10 + ``chaos_growth_margin`` (faster than
+  the linear growth a regular orbit allows). A chaotic orbit with mLCE lambda is seen once
+  lambda t_final is of order 10, so a short scan (quick scale, t = 1e3) reports only strong chaos.
+
+Trajectories are integrated by ``orbits.integrate`` (the batch engine, ``batch_size`` at a time,
+or one at a time with ``engine: single``: identical numbers). A trajectory whose state turns
+non-finite or whose relative energy error exceeds ``max_energy_error`` is kept with ``valid = 0``
+and left out of the statistics.
+
+Excitation of a realization (``select_excitation``): among the ``high_frequency_modes`` highest
+linear modes, those whose energy-density maximum lies within ``centre_window`` sites of the chain
+centre (N+1)/2; the one with the smallest participation number is chosen, and its maximum bead is
+excited alone (u = u0 at that bead, p = 0), as in the paper. If no high mode peaks near the centre,
+the most localized high mode anywhere is taken and ``selection_fallback`` is set.
+"""
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+import xarray as xr
+
+from chainchaos.engine import exactmath
+from chainchaos.errors import require, require_finite_positive
+from chainchaos.observe.reductions import chaos_onset, final_average, is_chaotic, sustained_onset
+from chainchaos.observe.registry import REGISTRY
+from chainchaos.output.provenance import provenance_attrs
+from chainchaos.paper import panels
+from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
+from chainchaos.system.chain import random_chain
+from chainchaos.system.linear import mode_energy_density, normal_modes, participation_number
+
+SELECTION_RULE = ("among the high_frequency_modes highest linear modes, those whose energy-density maximum "
+                  "lies within centre_window sites of the chain centre (N+1)/2; the one with the smallest "
+                  "participation number is chosen and its maximum bead alone is displaced (p = 0)")
+
+@dataclass(kw_only=True)
+class ScanSettings(OrbitSettings):
+    """Integration, sampling (``orbits.OrbitSettings``) and classification of a scan."""
+
+    p_delocalized: float = 10.0
+    chaos_slope: float = -0.5
+    chaos_growth_margin: float = 2.0
+    onset_hold_decades: float = 0.5
+
+    def __post_init__(self):
+        super().__post_init__()
+        require_finite_positive(self, "p_delocalized")
+        require(np.isfinite(self.chaos_slope) and self.chaos_slope <= 0, "chaos_slope", self.chaos_slope, "<= 0")
+        for key in ("chaos_growth_margin", "onset_hold_decades"):
+            require(np.isfinite(getattr(self, key)) and getattr(self, key) >= 0, key, getattr(self, key), ">= 0")
+
+
+#: One run of a scan: an orbit (lane 0) of a model, an energy, a chain and the excited bead.
+Trajectory = Orbit
+
+
+# ----------------------------------------------------------------------------------------------
+# Realizations: the excitation rule
+# ----------------------------------------------------------------------------------------------
+
+def select_excitation(chain, high_frequency_modes: int = 14, centre_window: int = 5,
+                      convention: str = "potential") -> dict:
+    """The most localized high-frequency mode near the centre of ``chain`` and its maximum bead.
+
+    Candidates are the ``high_frequency_modes`` highest modes (k > N - high_frequency_modes)
+    whose energy-density maximum bead n satisfies |n - (N+1)/2| <= ``centre_window``; the one with
+    the smallest participation number wins (P from ``linear.mode_energy_density``, ``convention``).
+    Returns mode (1-based), site (1-based bead of the maximum), participation, fallback (True if
+    no candidate peaked near the centre and the most localized high mode anywhere was taken).
+    """
+    N = chain.N
+    require(1 <= high_frequency_modes <= N, "high_frequency_modes", high_frequency_modes, f"1..{N}")
+    require(centre_window >= 0, "centre_window", centre_window, ">= 0")
+    omega, U = normal_modes(chain)
+    h = mode_energy_density(chain, omega, U, convention)
+    P = participation_number(h)
+    peak = np.argmax(h, axis=0) + 1
+    high = np.arange(N - high_frequency_modes, N)
+    near = high[np.abs(peak[high] - (N + 1) / 2.0) <= centre_window]
+    fallback = near.size == 0
+    pool = high if fallback else near
+    k = int(pool[np.argmin(P[pool])])
+    return {"mode": k + 1, "site": int(peak[k]), "participation": float(P[k]), "fallback": bool(fallback),
+            "frequency": float(omega[k])}
+
+
+# ----------------------------------------------------------------------------------------------
+# Running trajectories
+# ----------------------------------------------------------------------------------------------
+
+def run_trajectories(trajectories: list[Orbit], settings: ScanSettings, progress=None) -> list[dict]:
+    """Integrate every trajectory (``orbits.integrate``) and reduce it to the scan observables
+    (module docstring). Returns one dict per trajectory, in the input order."""
+    times, runs = integrate(trajectories, settings, progress)
+    out = []
+    with np.errstate(invalid="ignore", divide="ignore"):
+        for r in runs:
+            P, g = r["participation"], r["log_growth"]
+            P_fin = final_average(times, P)
+            out.append({
+                "participation_final": P_fin,
+                "participation_last": float(P[-1]),
+                "mlce_final": float(g[-1] / times[-1]),
+                "log_growth_final": float(g[-1]),
+                "eta_final": final_average(times, r["eta"]),
+                "max_gaps": r["max_gaps"],
+                "delocalized": bool(P_fin > settings.p_delocalized),
+                "chaotic": is_chaotic(times, g, settings.chaos_slope, settings.chaos_growth_margin),
+                "delocalization_onset": sustained_onset(times, P, settings.p_delocalized,
+                                                        settings.onset_hold_decades),
+                "chaos_onset": chaos_onset(times, g, settings.chaos_slope, settings.chaos_growth_margin),
+                "energy_error_max": float(np.max(r["energy_error"])),
+                "u0": r["u0"],
+                "valid": r["valid"],
+                "times": times,
+                "participation": P,
+                "log_growth": g,
+                "eta": r["eta"],
+            })
+    return out
+
+
+# ----------------------------------------------------------------------------------------------
+# Configuration: grids, groups of trajectories per job
+# ----------------------------------------------------------------------------------------------
+
+def energy_grid(block: dict) -> np.ndarray:
+    """Energies of a scan block: ``n_energies`` values from ``energy_min`` to ``energy_max``,
+    log-spaced (``spacing: log``, default) or linear; rounded to 6 significant digits so that
+    they print and compare cleanly."""
+    n, lo, hi = int(block["n_energies"]), float(block["energy_min"]), float(block["energy_max"])
+    require(n >= 1, "n_energies", n, ">= 1")
+    require(0 < lo <= hi, "energy_min", lo, f"0 < energy_min <= energy_max = {hi}")
+    if block.get("spacing", "log") == "log":  # scalar libm logs and powers: the same grid on every CPU
+        grid = exactmath.exp10(np.linspace(math.log10(lo), math.log10(hi), n))
+        grid[0], grid[-1] = lo, hi
+    else:
+        grid = np.linspace(lo, hi, n)
+    return np.array([float(f"{e:.6g}") for e in grid])
+
+
+def items(kind: str, scan_cfg: dict) -> list[tuple]:
+    """Every trajectory of a scan kind, in the fixed order the groups cut: (model, energy index)
+    for ``energy_scan``, (model, realization index, energy index) for ``disorder``."""
+    block = scan_cfg[kind]
+    models = list(block.get("models", panels.models()))
+    n_e = len(energy_grid(block))
+    if kind == "energy_scan":
+        return [(m, e) for m in models for e in range(n_e)]
+    require(kind == "disorder", "scan kind", kind, "'energy_scan' or 'disorder'")
+    return [(m, r, e) for m in models for r in range(int(block["realizations"])) for e in range(n_e)]
+
+
+def n_groups(kind: str, scan_cfg: dict) -> int:
+    """Number of jobs of a scan kind: ceil(trajectories / trajectories_per_job)."""
+    per = int(scan_cfg[kind]["trajectories_per_job"])
+    return max(1, -(-len(items(kind, scan_cfg)) // per))
+
+
+def group_items(kind: str, scan_cfg: dict, group: int) -> list[tuple]:
+    per = int(scan_cfg[kind]["trajectories_per_job"])
+    all_items = items(kind, scan_cfg)
+    require(0 <= group < n_groups(kind, scan_cfg), "group", group, f"0..{n_groups(kind, scan_cfg) - 1}")
+    return all_items[group * per:(group + 1) * per]
+
+
+def settings_for(kind: str, scan_cfg: dict) -> ScanSettings:
+    """The ``scan.settings`` block overridden by the kind's own keys (t_final, dt, ...)."""
+    merged = {**scan_cfg.get("settings", {}), **scan_cfg[kind]}
+    return ScanSettings.from_config(merged)
+
+
+def realization_chain(scan_cfg: dict, r: int, N: int = 40):
+    block = scan_cfg["disorder"]
+    return random_chain(int(block.get("first_seed", 0)) + r, float(block.get("alpha", 5.0)), N,
+                        float(block.get("wall_radius", 1.0)))
+
+
+def selection_kwargs(scan_cfg: dict) -> dict:
+    sel = scan_cfg["disorder"].get("selection", {})
+    return {"high_frequency_modes": int(sel.get("high_frequency_modes", 14)),
+            "centre_window": int(sel.get("centre_window", 5)),
+            "convention": sel.get("convention", "potential")}
+
+
+# ----------------------------------------------------------------------------------------------
+# Group datasets and their merge
+# ----------------------------------------------------------------------------------------------
+
+SCALARS = {
+    "participation_final": ("time average of the participation number P over the last decade", "f8"),
+    "mlce_final": ("finite-time mLCE Lambda(t_final)", "f8"),
+    "log_growth_final": ("Lambda(t_final) t_final = ln(|v(t_final)|/|v(0)|)", "f8"),
+    "eta_final": ("time average of the normalised spectral entropy eta over the last decade", "f8"),
+    "max_gaps": ("largest number of simultaneously open gaps over the run (-1: a model without gaps)", "i4"),
+    "delocalized": ("1 if participation_final > p_delocalized", "i1"),
+    "chaotic": ("1 if chaotic over the last decade (chaos_criterion)", "i1"),
+    "delocalization_onset": ("first time from which P(t) > p_delocalized for onset_hold_decades (NaN: never)", "f8"),
+    "chaos_onset": ("onset of chaos: from it on the chaos criterion holds to the end (NaN: never)", "f8"),
+    "energy_error_max": ("largest relative energy error |H(t) - H(0)|/H(0) at the samples", "f8"),
+    "u0": ("initial displacement of the excited bead", "f8"),
+    "valid": ("1 if the run stayed finite with energy error <= max_energy_error", "i1"),
+}
+#: The per-trajectory series a group file keeps (``orbits.SERIES``; long names from the registry).
+SERIES = ("participation", "log_growth", "eta")
+GROUP_TITLES = {"energy_scan": "Energy scan", "disorder": "Disorder statistics"}
+ENERGY_INDEX = {"units": "1", "long_name": "index of the energy on the scan's grid"}
+REALIZATION = {"units": "1", "long_name": "realization r: random_chain(first_seed + r, alpha)"}
+#: the excitation select_excitation picks in each realization: variable -> (its key, dtype)
+EXCITATION_PICKS = {"excited_mode": ("mode", np.int32), "excited_site": ("site", np.int32),
+                    "excited_mode_participation": ("participation", np.float64),
+                    "selection_fallback": ("fallback", np.int8)}
+EXCITATION = {
+    "excited_mode": {"units": "1", "long_name": "excited linear mode k (1-based, by increasing frequency)"},
+    "excited_site": {"units": "1", "long_name": "excited bead n: the maximum of the mode's energy density"},
+    "excited_mode_participation": {"units": "1", "long_name": "participation number of the excited mode"},
+    "selection_fallback": {"units": "1", "long_name": "1 if no candidate mode peaked near the centre and "
+                                                      "the most localized high mode anywhere was taken"},
+}
+
+
+def criteria_attrs(settings: ScanSettings) -> dict:
+    return {
+        "p_delocalized": float(settings.p_delocalized),
+        "chaos_slope": float(settings.chaos_slope),
+        "chaos_growth_margin": float(settings.chaos_growth_margin),
+        "onset_hold_decades": float(settings.onset_hold_decades),
+        "delocalization_criterion": (f"delocalized if the time average of P over the last decade "
+                                     f"(t >= t_final/10) exceeds p_delocalized = {settings.p_delocalized:g}"),
+        "chaos_criterion": (f"chaotic if over the last decade the log-log slope of Lambda(t) exceeds "
+                            f"chaos_slope = {settings.chaos_slope:g} and ln|v| grew by more than ln 10 + "
+                            f"chaos_growth_margin = {settings.chaos_growth_margin:g}: Lambda has left the "
+                            f"t^-1 law of a regular orbit and levels off"),
+    }
+
+
+def _group_dataset(kind, its, results, settings, extra_vars, attrs, series=False):
+    n = len(its)
+    data = {}
+    for key, (long_name, dtype) in SCALARS.items():
+        data[key] = ("trajectory", np.array([r[key] for r in results]).astype(dtype),
+                     {"units": "1", "long_name": long_name})
+    data["model"] = ("trajectory", np.array([i[0] for i in its], dtype=object), {"long_name": "model"})
+    data.update(extra_vars)
+    coords = {"trajectory": ("trajectory", np.arange(n), {"units": "1", "long_name": "trajectory index in the group"})}
+    if series and results:
+        coords["time"] = results[0]["times"]
+        for key in SERIES:
+            data[key] = (("trajectory", "time"), np.stack([r[key] for r in results]),
+                         {"units": "1", "long_name": REGISTRY[key].long_name})
+    ds = xr.Dataset(data, coords=coords)
+    if "time" in ds.coords:
+        ds.time.attrs.update(units="1", long_name="time",
+                             comment="nondimensional time, unit 1/omega_max of the homogeneous linear chain")
+    ds.attrs.update(provenance_attrs({"kind": kind, **asdict(settings)}))
+    ds.attrs.update(criteria_attrs(settings))
+    ds.attrs.update(title=f"{GROUP_TITLES[kind]}: one job's group of trajectories",
+                    integrator=settings.integrator, dt=float(settings.dt), t_final=float(settings.t_final),
+                    K4_sign=float(settings.k4_sign), deviation_seed=int(settings.deviation_seed))
+    ds.attrs.update(attrs)
+    return ds
+
+
+def energy_scan_group(chain, scan_cfg: dict, group: int, progress=None) -> xr.Dataset:
+    """Run one job's share of the energy scan on ``chain`` (excited at ``energy_scan.site``)."""
+    settings = settings_for("energy_scan", scan_cfg)
+    block = scan_cfg["energy_scan"]
+    grid = energy_grid(block)
+    site = int(block.get("site", 21))
+    its = group_items("energy_scan", scan_cfg, group)
+    trajs = [Trajectory(m, float(grid[e]), chain, site) for m, e in its]
+    results = run_trajectories(trajs, settings, progress)
+    extra = {"energy_index": ("trajectory", np.array([e for _, e in its], dtype=np.int32), ENERGY_INDEX),
+             "energy": ("trajectory", np.array([grid[e] for _, e in its]), {"units": "1", "long_name": "total energy H"})}
+    return _group_dataset("energy_scan", its, results, settings, extra,
+                          {"group": int(group), "excited_site": site,
+                           "seed": -1 if chain.seed is None else int(chain.seed)}, series=True)
+
+
+def disorder_group(scan_cfg: dict, group: int, N: int = 40, progress=None) -> xr.Dataset:
+    """Run one job's share of the disorder statistics: realization r is random_chain(first_seed
+    + r, alpha), excited at the bead chosen by ``select_excitation``."""
+    settings = settings_for("disorder", scan_cfg)
+    grid = energy_grid(scan_cfg["disorder"])
+    its = group_items("disorder", scan_cfg, group)
+    sel_kw = selection_kwargs(scan_cfg)
+    chains, picks = {}, {}
+    for _, r, _ in its:
+        if r not in chains:
+            chains[r] = realization_chain(scan_cfg, r, N)
+            picks[r] = select_excitation(chains[r], **sel_kw)
+    trajs = [Trajectory(m, float(grid[e]), chains[r], picks[r]["site"]) for m, r, e in its]
+    results = run_trajectories(trajs, settings, progress)
+    extra = {
+        "energy_index": ("trajectory", np.array([e for *_, e in its], dtype=np.int32), ENERGY_INDEX),
+        "realization": ("trajectory", np.array([r for _, r, _ in its], dtype=np.int32), REALIZATION),
+        "energy": ("trajectory", np.array([grid[e] for *_, e in its]), {"units": "1", "long_name": "total energy H"}),
+        **{key: ("trajectory", np.array([picks[r][pick] for _, r, _ in its], dtype=dtype), EXCITATION[key])
+           for key, (pick, dtype) in EXCITATION_PICKS.items()},
+    }
+    return _group_dataset("disorder", its, results, settings, extra, {"group": int(group)})

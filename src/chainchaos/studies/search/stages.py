@@ -1,0 +1,279 @@
+"""The realization chosen by the paper's published dynamics, not only by its linear modes.
+
+The paper's alpha = 5 chain is unpublished. Its linear properties (mode 34 localized at bead 21,
+overlaps near 1.06) leave many chains, and they differ in what the paper's scenes do. The search:
+
+0. **Linear rule** (``selection.candidates``): the chains of seeds 0..n_seeds-1 that pass the
+   linear rule, ordered by their overlap score; the first ``candidates`` of them are searched.
+1. **Filter**: every candidate's scenes (``statements.statement_scenes``), one orbit each, to
+   ``filter_t_final``. A statement marked ``early`` that such a run already breaks (a packet
+   already spread, an orbit already chaotic) cannot hold at t = 1e5. The ``survivors`` candidates
+   with the fewest broken statements go on (ties: linear-rule order).
+2. **Score**: each survivor's scenes with ``lanes`` perturbed orbits to ``t_final``; per statement
+   the fraction of the lanes that satisfy it (``verdicts``). A chain's score is the sum of these
+   fractions over the statements: the expected number of the paper's statements one of its orbits
+   satisfies. The highest score wins (ties: more statements that hold on the ensemble, then
+   linear-rule order).
+
+With ``pinned_seed`` the search is skipped: stage 2 re-scores that one chain, and the chain file
+says it was pinned. All orbits run on the batch engine (``orbits.integrate``); a coarser step than
+the scenes' is used (``settings.dt``), which the pipeline checks by comparing the chosen chain's
+fractions with the ensemble verdicts at the verdicts' step.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+
+from chainchaos.errors import require
+from chainchaos.paper import statements
+from chainchaos.paper.criteria import Criteria
+from chainchaos.paper.verdicts import HOLDS, LANE, STATEMENT, ensemble_verdict, evaluate
+from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
+from chainchaos.studies.search.selection import SelectionCriteria, candidate_row
+from chainchaos.studies.search.selection import candidates as linear_candidates
+from chainchaos.system.chain import random_chain
+
+
+@dataclass(frozen=True)
+class SearchPlan:
+    """The sizes of a search (config block ``search:``)."""
+
+    candidates: int = 32
+    candidates_per_job: int = 8
+    survivors: int = 4
+    lanes: int = 4
+    filter_t_final: float = 1e4
+    pinned_seed: int | None = None
+
+    def __post_init__(self):
+        for key in ("candidates", "candidates_per_job", "survivors", "lanes"):
+            value = getattr(self, key)
+            require(isinstance(value, int) and value >= 1, key, value, "an integer >= 1")
+        require(self.filter_t_final > 0, "filter_t_final", self.filter_t_final, "> 0")
+        require(self.pinned_seed is None or (isinstance(self.pinned_seed, int) and self.pinned_seed >= 0),
+                "pinned_seed", self.pinned_seed, "empty (search) or an integer seed >= 0")
+
+    @classmethod
+    def from_config(cls, block: dict) -> "SearchPlan":
+        keys = ("candidates", "candidates_per_job", "survivors", "lanes", "filter_t_final", "pinned_seed")
+        return cls(**{k: block[k] for k in keys if k in block})
+
+    @property
+    def pinned(self) -> bool:
+        return self.pinned_seed is not None
+
+    @property
+    def n_filter_jobs(self) -> int:
+        return 0 if self.pinned else -(-self.candidates // self.candidates_per_job)
+
+    @property
+    def n_score_jobs(self) -> int:
+        return 1 if self.pinned else min(self.survivors, self.candidates)
+
+
+def _statement_orbits(chains: list, site: int, lanes: int) -> list[Orbit]:
+    """Every (chain, statement scene, lane), chain-major."""
+    return [Orbit(s.model, s.energy, chain, site, lane) for chain in chains
+            for s in statements.statement_scenes().values() for lane in range(lanes)]
+
+
+def _outcomes(chains: list, site: int, lanes: int, settings: OrbitSettings, criteria: Criteria, progress=None):
+    """Outcomes (chain, statement, lane) and measured values of every statement on every chain."""
+    orbits = _statement_orbits(chains, site, lanes)
+    t, runs = integrate(orbits, settings, progress)
+    names = list(statements.statement_scenes())
+    C, L = len(chains), lanes
+    ids = [st.id for st in statements.STATEMENTS]
+    out = np.full((C, len(ids), L), np.nan)
+    value = np.full((C, len(ids), L), np.nan)
+    for c in range(C):
+        for k, name in enumerate(names):
+            first = (c * len(names) + k) * L
+            of_scene = statements.statements_of_scene(name)
+            ev = evaluate(of_scene, t, runs[first:first + L], criteria)
+            for i, st in enumerate(of_scene):
+                out[c, ids.index(st.id)] = ev["outcome"][i]
+                value[c, ids.index(st.id)] = ev["value"][i]
+    energy_error = np.array([[np.nanmax(r["energy_error"]) for r in runs[c * len(names) * L:(c + 1) * len(names) * L]]
+                             for c in range(C)])
+    return out, value, np.max(energy_error, axis=1) if C else np.zeros(0)
+
+
+def candidates(selection: SelectionCriteria, plan: SearchPlan) -> xr.Dataset:
+    """Stage 0, once per search: the candidates (the first ``plan.candidates`` chains passing the
+    linear rule, or the pinned seed) with their linear-rule data, and in the attribute
+    ``n_qualifying`` how many of the scanned seeds pass the rule. Later stages read this."""
+    qualifying = linear_candidates(selection)
+    rows = [candidate_row(plan.pinned_seed, selection)] if plan.pinned else qualifying[:plan.candidates]
+    ds = xr.Dataset(_seed_dataset(rows), coords={"candidate": _candidates(np.arange(len(rows)))})
+    ds.attrs.update(title="Realization search, stage 0: the candidate chains of the linear rule",
+                    n_qualifying=len(qualifying), seeds_scanned=int(selection.n_seeds), pinned=int(plan.pinned))
+    return ds
+
+
+def candidate_rows(ds: xr.Dataset) -> list[dict]:
+    """The rows of :func:`candidates`' Dataset as dicts (seed, score, mode_participation, ...)."""
+    return [{"seed": int(ds["seed"].values[i]), "score": float(ds["linear_score"].values[i]),
+             "mode_participation": float(ds["mode_participation"].values[i]),
+             "overlap_left": float(ds["overlap_left"].values[i]), "overlap_right": float(ds["overlap_right"].values[i])}
+            for i in range(ds.sizes["candidate"])]
+
+
+def _candidates(index: np.ndarray) -> tuple:
+    return ("candidate", index, {"units": "1", "long_name": "candidate index, in the linear rule's order"})
+
+
+def _statements(of) -> tuple:
+    return ("statement", [st.id for st in of], STATEMENT)
+
+
+def _seed_dataset(rows: list[dict]) -> dict:
+    one = {"units": "1"}
+    return {
+        "seed": ("candidate", np.array([r["seed"] for r in rows], dtype=np.int64),
+                 {**one, "long_name": "seed of numpy.random.default_rng drawing the radii"}),
+        "linear_score": ("candidate", np.array([r["score"] for r in rows]),
+                         {**one, "long_name": "|delta_site - target| + |delta_site+1 - target| (linear rule)"}),
+        "mode_participation": ("candidate", np.array([r["mode_participation"] for r in rows]),
+                               {**one, "long_name": "participation number of the selection mode"}),
+        "overlap_left": ("candidate", np.array([r["overlap_left"] for r in rows]),
+                         {**one, "long_name": "static overlap delta of the excited bead's left bond"}),
+        "overlap_right": ("candidate", np.array([r["overlap_right"] for r in rows]),
+                          {**one, "long_name": "static overlap delta of the excited bead's right bond"}),
+    }
+
+
+def filter_group(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSettings, criteria: Criteria,
+                 rows: list[dict], group: int, site: int, progress=None) -> xr.Dataset:
+    """Stage 1 for the candidates of one job (``rows``: :func:`candidate_rows`): one orbit per
+    scene to ``plan.filter_t_final``."""
+    require(0 <= group < max(plan.n_filter_jobs, 1), "group", group, f"0..{plan.n_filter_jobs - 1}")
+    rows = rows[group * plan.candidates_per_job:(group + 1) * plan.candidates_per_job]
+    short = OrbitSettings(**{**vars(settings), "t_final": float(plan.filter_t_final)})
+    chains = [random_chain(r["seed"], selection.alpha, selection.N) for r in rows]
+    out, value, err = _outcomes(chains, site, 1, short, criteria, progress)
+    data = _seed_dataset(rows)
+    data.update({
+        "outcome": (("candidate", "statement"), out[:, :, 0] if rows else np.zeros((0, len(statements.STATEMENTS))),
+                    {"units": "1", "long_name": "1 satisfied, 0 already violated, NaN not decided by the short run"}),
+        "measured": (("candidate", "statement"), value[:, :, 0] if rows else np.zeros((0, len(statements.STATEMENTS))),
+                     {"long_name": "measured value of the statement (one orbit, short run)"}),
+        "energy_error_max": ("candidate", err, {"units": "1", "long_name": "largest relative energy error"}),
+    })
+    ds = xr.Dataset(data, coords={"candidate": _candidates(np.arange(group * plan.candidates_per_job,
+                                                                     group * plan.candidates_per_job + len(rows))),
+                                  "statement": _statements(statements.STATEMENTS)})
+    ds.attrs.update(title="Realization search, stage 1: one orbit per scene of a job's candidates",
+                    stage="filter", t_final=float(plan.filter_t_final), dt=float(settings.dt), group=int(group))
+    return ds
+
+
+def survivors(filter_groups: list[xr.Dataset], plan: SearchPlan) -> np.ndarray:
+    """Candidate indices that go on to stage 2: the fewest statements broken by the short run,
+    then linear-rule order."""
+    if plan.pinned:
+        return np.array([0])
+    ds = xr.concat(filter_groups, dim="candidate") if len(filter_groups) > 1 else filter_groups[0]
+    broken = (ds["outcome"].values == 0).sum(axis=1)
+    order = np.lexsort((ds["candidate"].values, broken))
+    return ds["candidate"].values[order][:plan.n_score_jobs]
+
+
+def score_candidate(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSettings, criteria: Criteria,
+                    rows: list[dict], candidate: int, site: int, progress=None) -> xr.Dataset:
+    """Stage 2 for one candidate (index into ``rows``): ``plan.lanes`` perturbed orbits per scene
+    to ``settings.t_final``; per statement the lanes' outcomes, fraction and verdict."""
+    row = rows[candidate]
+    chain = random_chain(row["seed"], selection.alpha, selection.N)
+    out, value, err = _outcomes([chain], site, plan.lanes, settings, criteria, progress)
+    verdicts = [ensemble_verdict(o, criteria.agreement) for o in out[0]]
+    data = _seed_dataset([row])
+    data = {k: ((), v[1][0], v[2]) for k, v in data.items()}
+    data.update({
+        "outcome": (("statement", "lane"), out[0], {"units": "1", "long_name": "1 satisfied, 0 violated, NaN undecidable"}),
+        "measured": (("statement", "lane"), value[0], {"long_name": "measured value of the statement per lane"}),
+        "fraction": ("statement", np.array([v[0] for v in verdicts]),
+                     {"units": "1", "long_name": "fraction of the decided lanes that satisfy the statement"}),
+        "verdict": ("statement", np.array([v[2] for v in verdicts], dtype=np.int8),
+                    {"long_name": "ensemble verdict", "flag_values": np.array([-2, -1, 0, 1], dtype=np.int8),
+                     "flag_meanings": "not_testable undecided fails holds"}),
+        "energy_error_max": ((), float(err[0]), {"units": "1", "long_name": "largest relative energy error"}),
+    })
+    ds = xr.Dataset(data, coords={"statement": _statements(statements.STATEMENTS),
+                                  "lane": ("lane", np.arange(plan.lanes), LANE)})
+    ds.attrs.update(title=f"Realization search, stage 2: the ensemble of candidate {candidate}",
+                    stage="score", candidate=int(candidate), t_final=float(settings.t_final), dt=float(settings.dt),
+                    lanes=int(plan.lanes))
+    return ds
+
+
+def chain_score(fraction: np.ndarray) -> float:
+    """Expected number of statements satisfied by one orbit: the sum of the fractions (an
+    undecidable statement counts 0)."""
+    return float(np.nansum(fraction))
+
+
+def merge(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSettings, criteria: Criteria,
+          found: xr.Dataset, filter_groups: list[xr.Dataset], scores: list[xr.Dataset]) -> xr.Dataset:
+    """The search as one Dataset: the candidates (``found``, from :func:`candidates`), every
+    candidate's stage-1 outcomes, the survivors' stage-2 fractions and verdicts, scores, and the
+    chosen seed (attribute ``chosen_seed``)."""
+    rows = candidate_rows(found)
+    C, S = len(rows), len(statements.STATEMENTS)
+    data = _seed_dataset(rows)
+    filt = np.full((C, S), np.nan)
+    for g in filter_groups:
+        filt[g["candidate"].values] = g["outcome"].values
+    frac = np.full((C, S), np.nan)
+    verdict = np.full((C, S), -3, dtype=np.int8)
+    median = np.full((C, S), np.nan)
+    score = np.full(C, np.nan)
+    holds = np.zeros(C, dtype=np.int32)
+    err = np.full(C, np.nan)
+    for s in scores:
+        c = int(s.attrs["candidate"])
+        frac[c], verdict[c] = s["fraction"].values, s["verdict"].values
+        values = s["measured"].values
+        finite = np.isfinite(values)
+        median[c] = [np.median(v[f]) if f.any() else np.nan for v, f in zip(values, finite)]
+        score[c] = chain_score(s["fraction"].values)
+        holds[c] = int((s["verdict"].values == HOLDS).sum())
+        err[c] = float(s["energy_error_max"].values)
+    scored = np.flatnonzero(np.isfinite(score))
+    require(scored.size > 0, "search", "no scored candidate", "at least one stage-2 result")
+    best = scored[np.lexsort((scored, -holds[scored], -score[scored]))][0]
+    listed = statements.STATEMENTS
+    data.update({
+        "filter_outcome": (("candidate", "statement"), filt, {
+            "units": "1", "long_name": "stage 1: 1 satisfied, 0 already violated, NaN not decided by the short run"}),
+        "filter_broken": ("candidate", (filt == 0).sum(axis=1).astype(np.int32),
+                          {"units": "1", "long_name": "stage 1: statements already violated"}),
+        "scored": ("candidate", np.isfinite(score).astype(np.int8), {"units": "1", "long_name": "1 if scored in stage 2"}),
+        "fraction": (("candidate", "statement"), frac, {
+            "units": "1", "long_name": "stage 2: fraction of the lanes that satisfy the statement"}),
+        "verdict": (("candidate", "statement"), verdict, {
+            "long_name": "stage 2 ensemble verdict", "flag_values": np.array([-3, -2, -1, 0, 1], dtype=np.int8),
+            "flag_meanings": "not_scored not_testable undecided fails holds"}),
+        "measured_median": (("candidate", "statement"), median, {
+            "long_name": "stage 2: median over the lanes of the statement's measured value"}),
+        "score": ("candidate", score, {"units": "1", "long_name": "sum over statements of the fraction satisfied"}),
+        "statements_held": ("candidate", holds, {"units": "1", "long_name": "statements that hold on the ensemble"}),
+        "energy_error_max": ("candidate", err, {"units": "1", "long_name": "largest relative energy error (stage 2)"}),
+        "scene": ("statement", np.array([st.scene.name for st in listed], dtype=object)),
+        "kind": ("statement", np.array([st.kind for st in listed], dtype=object)),
+        "text": ("statement", np.array([st.text for st in listed], dtype=object)),
+    })
+    ds = xr.Dataset(data, coords={"candidate": _candidates(np.arange(C)), "statement": _statements(listed)})
+    ds.attrs.update(
+        title="Realization search: the paper's statements on candidate chains",
+        pinned=int(plan.pinned), chosen_candidate=int(best), chosen_seed=int(rows[best]["seed"]),
+        chosen_score=float(score[best]), n_candidates=int(C), n_scored=int(scored.size),
+        n_statements=int(S), filter_t_final=float(plan.filter_t_final), t_final=float(settings.t_final),
+        dt=float(settings.dt), integrator=settings.integrator, lanes=int(plan.lanes),
+        perturbation=float(settings.perturbation), agreement=float(criteria.agreement),
+        seeds_scanned=int(selection.n_seeds), alpha=float(selection.alpha),
+        n_qualifying=int(found.attrs["n_qualifying"]),
+    )
+    return ds

@@ -1,0 +1,201 @@
+"""Disordered chains of spherical beads (docs/conventions.md#disorder) in the nondimensional units
+of docs/conventions.md#units.
+
+Radii R_n are uniform in [R_min, alpha R_min]; the reference radius is the mean
+R_ref = (alpha + 1) R_min / 2 and r_n = R_n / R_ref. Units: mass = reference bead mass,
+length = reference static overlap, time such that the homogeneous linear chain has
+omega_max = sqrt(4 K2 / m) = 1. Then
+
+    m_n = r_n^3,  A_n = (1/6) sqrt(2 r_{n-1} r_n / (r_{n-1} + r_n)),  F0 = 1/6,
+    delta_n = (F0 / A_n)^(2/3),
+    K2 = (3/2) A delta^(1/2),  K3 = -(3/8) A delta^(-1/2),  K4 = s (1/16) A delta^(-3/2),
+
+with s = +1 the paper's sign of K4 and s = -1 the exact Taylor expansion of the Hertz force.
+Bond n (n = 1..N+1) joins beads n-1 and n; beads 0 and N+1 are fixed walls of radius
+``wall_radius`` (1 by default, i.e. the reference bead).
+
+With the bond's mean h_n = 2 r_{n-1} r_n / (r_{n-1} + r_n), every bond parameter is a power of it:
+
+    A = sqrt(h / 36),  delta = h^(-1/3),  K2 = h^(1/3) / 4,  K3 = -h^(2/3) / 16,  K4 = s h / 96,
+
+so each parameter, and the mass r^3, is computed as the double nearest to its exact value for the
+given double radii (exact integer arithmetic, chainchaos.engine.exactmath): the same on every machine.
+"""
+
+import copy
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from chainchaos.engine.exactmath import rational, root
+from chainchaos.errors import require
+
+F0 = 1.0 / 6.0
+GENERATOR = "numpy.random.default_rng (PCG64)"
+
+
+def bead_mass(r: float) -> float:
+    """m = r^3, the double nearest to the exact cube of the double r > 0."""
+    num, den = float(r).as_integer_ratio()
+    return rational(num**3, den**3)
+
+
+def bond_parameters(r_left: float, r_right: float) -> tuple[float, float, float, float, float]:
+    """(A, delta, K2, K3, K4 with s = +1) of the bond between beads of radii r_left, r_right > 0,
+    each the double nearest to its exact value: with h = 2 r_l r_r / (r_l + r_r) = P / Q,
+    A = sqrt(h / 36), delta = h^(-1/3), K2 = h^(1/3) / 4, K3 = -h^(2/3) / 16, K4 = h / 96."""
+    nl, dl = float(r_left).as_integer_ratio()
+    nr, dr = float(r_right).as_integer_ratio()
+    P, Q = 2 * nl * nr, nl * dr + nr * dl  # h = P / Q exactly (dl, dr are powers of two)
+    return (root(P, 36 * Q, 2), root(Q, P, 3), root(P, 64 * Q, 3), -root(P * P, 4096 * Q * Q, 3),
+            rational(P, 96 * Q))
+
+
+@dataclass(frozen=True)
+class Chain:
+    """A chain of N beads with reduced radii ``radius`` (r_n = R_n / R_ref, n = 1..N).
+
+    mass (N,), A, delta, K2, K3 and K4 (N+1 bonds) are computed once, correctly rounded (module
+    docstring); K4 carries the sign ``k4_sign``."""
+
+    radius: np.ndarray
+    alpha: float
+    seed: int | None = None
+    wall_radius: float = 1.0
+    k4_sign: float = 1.0
+    mass: np.ndarray = field(init=False, repr=False)
+    A: np.ndarray = field(init=False, repr=False)
+    delta: np.ndarray = field(init=False, repr=False)
+    K2: np.ndarray = field(init=False, repr=False)
+    K3: np.ndarray = field(init=False, repr=False)
+    K4: np.ndarray = field(init=False, repr=False)
+
+    def __post_init__(self):
+        r = np.ascontiguousarray(self.radius, dtype=float)
+        require(r.ndim == 1 and r.size >= 2, "N", r.size, "N >= 2 beads")
+        require(bool(np.all(np.isfinite(r)) and np.all(r > 0)), "radius", r.tolist(), "finite radii > 0")
+        require(np.isfinite(self.alpha) and self.alpha >= 1, "alpha", self.alpha, "alpha >= 1")
+        require(np.isfinite(self.wall_radius) and self.wall_radius > 0, "wall_radius", self.wall_radius, "> 0")
+        require(self.k4_sign in (1.0, -1.0), "K4_sign", self.k4_sign, "+1 (paper) or -1 (Taylor expansion)")
+        radii = r.tolist()
+        ext = [float(self.wall_radius), *radii, float(self.wall_radius)]
+        bonds = np.array([bond_parameters(left, right) for left, right in zip(ext[:-1], ext[1:])])
+        object.__setattr__(self, "radius", r)
+        object.__setattr__(self, "mass", np.array([bead_mass(x) for x in radii]))
+        for name, column in zip(("A", "delta", "K2", "K3", "K4"), bonds.T):
+            object.__setattr__(self, name, np.ascontiguousarray(column))
+        object.__setattr__(self, "K4", self.k4_sign * self.K4)
+
+    @property
+    def N(self) -> int:
+        return self.radius.size
+
+    def with_k4_sign(self, sign: float) -> "Chain":
+        """The same chain with K4 of sign ``sign`` (+1 the paper's, -1 the Taylor expansion)."""
+        sign = float(sign)
+        require(sign in (1.0, -1.0), "K4_sign", sign, "+1 (paper) or -1 (Taylor expansion)")
+        other = copy.copy(self)
+        object.__setattr__(other, "k4_sign", sign)
+        object.__setattr__(other, "K4", self.K4 if sign == self.k4_sign else -self.K4)
+        return other
+
+
+def random_radii(seed: int, alpha: float, N: int) -> np.ndarray:
+    """Reduced radii r_n = R_n / R_ref with R_n = default_rng(seed).uniform(1, alpha, N)."""
+    require(isinstance(seed, (int, np.integer)) and seed >= 0, "seed", seed, "an integer >= 0")
+    require(isinstance(N, (int, np.integer)) and N >= 2, "N", N, "an integer >= 2")
+    require(np.isfinite(alpha) and alpha >= 1, "alpha", alpha, "alpha >= 1")
+    radii = np.random.default_rng(int(seed)).uniform(1.0, alpha, int(N))
+    return radii / ((alpha + 1.0) / 2.0)
+
+
+def random_chain(seed: int, alpha: float, N: int = 40, wall_radius: float = 1.0) -> Chain:
+    """The realization of disorder strength ``alpha`` drawn with ``seed`` (docs/conventions.md#disorder)."""
+    return Chain(random_radii(seed, alpha, N), float(alpha), int(seed), wall_radius)
+
+
+def chain_from_radii(radii, reference_radius: float | None = None, wall_radius: float = 1.0,
+                     alpha: float | None = None) -> Chain:
+    """A chain from radii in any unit: r_n = R_n / ``reference_radius``.
+
+    A random chain's R_ref is the mean (1 + alpha) / 2 of the distribution its radii were drawn
+    from, which the radii alone do not give: by default R_ref is their (min + max) / 2 and
+    ``alpha`` their max / min (the paper's definition). Reduced radii read from a chain file are
+    already in units of R_ref: ``reference_radius=1`` and the file's alpha give back that chain.
+    """
+    R = np.asarray(radii, dtype=float)
+    require(R.ndim == 1 and R.size >= 2, "N", R.size, "N >= 2 radii")
+    require(bool(np.all(np.isfinite(R)) and np.all(R > 0)), "radius", R.tolist(), "finite radii > 0")
+    ref = (R.max() + R.min()) / 2.0 if reference_radius is None else float(reference_radius)
+    require(np.isfinite(ref) and ref > 0, "reference_radius", ref, "a finite number > 0")
+    spread = float(R.max() / R.min())
+    if alpha is not None:
+        # the radii were drawn from [R_min, alpha R_min]: their spread is at most alpha (to rounding)
+        require(np.isfinite(alpha) and alpha >= spread * (1 - 1e-12), "alpha", alpha,
+                f"a number >= max/min of the radii = {spread:.17g}")
+    return Chain(R / ref, spread if alpha is None else float(alpha), None, wall_radius)
+
+
+class PrecompressedChain(Chain):
+    """A chain whose precompression force is ``precompression`` times the reference F0, in the
+    units of the reference chain (see :func:`sonic_vacuum_chain`)."""
+
+    precompression: float = 1.0
+
+    def __init__(self, radius, alpha, seed=None, wall_radius=1.0, k4_sign=1.0, precompression=1.0):
+        object.__setattr__(self, "precompression", float(precompression))
+        super().__init__(radius, alpha, seed, wall_radius, k4_sign)
+
+    def __post_init__(self):
+        super().__post_init__()
+        require(np.isfinite(self.precompression) and self.precompression > 0, "precompression",
+                self.precompression, "a factor > 0")
+        # delta ~ F0^(2/3); the expansion coefficients follow from A and the new delta:
+        # K2 = (3/2) A delta^(1/2), K3 = -(3/8) A delta^(-1/2), K4 = s (1/16) A delta^(-3/2)
+        delta = self.delta * self.precompression ** (2.0 / 3.0)
+        root = np.sqrt(delta)
+        object.__setattr__(self, "delta", delta)
+        object.__setattr__(self, "K2", 1.5 * self.A * root)
+        object.__setattr__(self, "K3", -0.375 * self.A / root)
+        object.__setattr__(self, "K4", self.k4_sign * self.A / (16.0 * delta * root))
+
+    def with_k4_sign(self, sign: float) -> "PrecompressedChain":
+        return PrecompressedChain(self.radius, self.alpha, self.seed, self.wall_radius, float(sign),
+                                  self.precompression)
+
+
+def sonic_vacuum_chain(chain, factor: float = 1e-6) -> PrecompressedChain:
+    """The same beads with the precompression force reduced to ``factor`` F0 (near sonic vacuum).
+
+    Approach: keep the units of the reference chain (docs/conventions.md#units: mass = reference bead
+    mass, length = the reference static overlap delta_ref *at the original* F0, time =
+    1/omega_max of the original homogeneous chain). In those units the Hertz coefficients A_n
+    and the masses do not depend on F0; F0 enters only through delta_n = (F0/A_n)^(2/3), so
+    delta_n -> factor^(2/3) delta_n (1e-4 delta_n for factor 1e-6). The linear stiffness
+    K2 ~ delta^(1/2) drops by factor^(1/3) and every linear frequency by factor^(1/6) (0.1 for
+    1e-6): the time unit is still 1/omega_max of the *original* homogeneous chain, and the weakly
+    compressed chain's own omega_max is factor^(1/6) in it. Contacts open as soon as a
+    displacement exceeds ~1e-4, i.e. at any energy of interest.
+
+    Hertz scaling: u -> factor^(2/3) u, t -> factor^(-1/6) t, H -> factor^(5/3) H maps the
+    reference chain onto this one, so a run at energy H and step dt here is the reference chain
+    at energy H factor^(-5/3) (1e10 H) and step factor^(1/6) dt: the near-sonic-vacuum limit is
+    the extreme-energy limit of the reference chain.
+    """
+    require(np.isfinite(factor) and factor > 0, "precompression factor", factor, "a factor > 0")
+    return PrecompressedChain(chain.radius, chain.alpha, chain.seed, chain.wall_radius, chain.k4_sign,
+                              float(factor) * getattr(chain, "precompression", 1.0))
+
+
+def chain_at_alpha(chain, alpha: float) -> Chain:
+    """The same disorder draws at another disorder strength ``alpha``: each bead keeps its
+    uniform variate U_n = (R_n/R_min - 1)/(alpha_0 - 1), so R_n/R_min = 1 + (alpha - 1) U_n and
+    r_n = R_n / R_ref with R_ref = (alpha + 1) R_min / 2 (docs/conventions.md#disorder). ``chain`` itself
+    when alpha equals its own."""
+    require(np.isfinite(alpha) and alpha > 1, "alpha", alpha, "alpha > 1")
+    if float(alpha) == float(chain.alpha):
+        return chain
+    require(chain.alpha > 1, "chain alpha", chain.alpha, "alpha > 1 (a disordered chain)")
+    U = (chain.radius * (chain.alpha + 1.0) / 2.0 - 1.0) / (chain.alpha - 1.0)
+    radius = (1.0 + (alpha - 1.0) * U) / ((alpha + 1.0) / 2.0)
+    return Chain(radius, float(alpha), chain.seed, chain.wall_radius, chain.k4_sign)

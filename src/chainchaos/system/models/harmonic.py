@@ -1,0 +1,34 @@
+"""The harmonic chain: the common linear limit of every model, f = K2 D, V = K2 D^2 / 2.
+
+Its dynamics is a superposition of the chain's linear modes (``chainchaos.system.linear``): regular,
+with Lambda(t) t bounded, the reference case of the chaos tests (docs/conventions.md).
+"""
+
+from numba import njit
+
+from chainchaos.system.models.base import Model
+
+
+@njit(cache=True, inline="always")
+def force(P, left, right):
+    """P = (K2,)."""
+    return (left - right) * P[0]
+
+
+@njit(cache=True, inline="always")
+def force_stiffness(P, left, right):
+    return (left - right) * P[0], P[0]
+
+
+@njit(cache=True, inline="always")
+def potential(P, left, right):
+    y = -(left - right)
+    return y * y * (0.5 * P[0])
+
+
+def parameters(chain):
+    return (chain.K2,)
+
+
+MODEL = Model("harmonic", "harmonic", "#616161", ("K2",), parameters, force, force_stiffness, potential,
+              description="f = K2 D")

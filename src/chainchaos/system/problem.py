@@ -1,0 +1,103 @@
+"""The problem every integration algorithm reuses: model, chains, scheme, step and what runs beside.
+
+A :class:`Problem` holds what stays fixed while states change (the split of scipy.integrate and
+DynamicalSystems.jl between a problem and the algorithms that solve it): the force law (a model of
+``chainchaos.system.models``), one chain per lane, the splitting scheme (``integrators.SCHEMES``) and its
+step dt (units of 1/omega_max, docs/conventions.md#units), and what runs beside the orbit: the
+tangent map with its renormalisation every ``check_every`` steps, and the counting of open gaps.
+The engine (``batch.Batch``: SIMD blocks, or the single-trajectory engine lane by lane), the
+sampling driver (``chainchaos.run.driver``), the measured runs of ``chainchaos.studies.numerics`` and the batch
+benchmark all start from one.
+"""
+
+from dataclasses import dataclass
+from functools import cached_property
+
+import numpy as np
+
+from chainchaos.engine.integrators import get_scheme
+from chainchaos.errors import require
+from chainchaos.system.models import get_model, total_energy
+
+#: The engines a problem runs on (:meth:`Problem.engine`).
+ENGINES = ("auto", "batch", "single")
+
+
+def check_step(dt: float, t_final: float | None = None) -> None:
+    """A step is a finite number > 0 (and, given the run's length, at most ``t_final``)."""
+    require(isinstance(dt, (int, float, np.floating)) and np.isfinite(dt) and dt > 0, "dt", dt, "a finite step > 0")
+    if t_final is not None:
+        require(dt <= t_final, "dt", dt, f"dt <= t_final = {t_final}")
+
+
+@dataclass(frozen=True, eq=False)
+class Problem:
+    """A model on one chain per lane, integrated by ``integrator`` at step ``dt``."""
+
+    model: object
+    chains: tuple
+    integrator: str = "SRKN6b"
+    dt: float = 5e-4
+    tangent: bool = True
+    track_gaps: bool = False
+    check_every: int = 1000
+
+    def __post_init__(self):
+        object.__setattr__(self, "model", get_model(self.model))
+        object.__setattr__(self, "chains", tuple(self.chains))
+        get_scheme(self.integrator)
+        require(len(self.chains) >= 1, "chains", len(self.chains), "at least one chain")
+        Ns = sorted({c.N for c in self.chains})
+        require(len(Ns) == 1, "N", Ns, "one N per problem")
+        check_step(self.dt)
+        require(int(self.check_every) >= 1, "check_every", self.check_every, "an integer >= 1")
+        require(not self.track_gaps or self.model.has_gaps, "track_gaps", self.track_gaps,
+                f"gap counting only for a model whose bonds open, not {self.model.name!r}")
+        object.__setattr__(self, "dt", float(self.dt))
+        object.__setattr__(self, "check_every", int(self.check_every))
+        object.__setattr__(self, "tangent", bool(self.tangent))
+        object.__setattr__(self, "track_gaps", bool(self.track_gaps))
+
+    @property
+    def N(self) -> int:
+        return self.chains[0].N
+
+    @property
+    def lanes(self) -> int:
+        return len(self.chains)
+
+    @property
+    def scheme(self):
+        return get_scheme(self.integrator)
+
+    @cached_property
+    def lane_parameters(self) -> tuple[np.ndarray, np.ndarray]:
+        """inv_mass (N, B) and the model's bond parameters (MAX_BOND_PARAMETERS, N+1, B), C-contiguous."""
+        inv_mass = np.ascontiguousarray(np.stack([1.0 / c.mass for c in self.chains], axis=1))
+        bonds = np.ascontiguousarray(np.stack([self.model.bond_parameters(c) for c in self.chains], axis=2))
+        return inv_mass, bonds
+
+    def lane(self, j: int) -> tuple[np.ndarray, np.ndarray]:
+        """Lane j's inverse masses (N,) and bond parameters (MAX_BOND_PARAMETERS, N+1), contiguous:
+        the arguments of the single-trajectory engine."""
+        inv_mass, bonds = self.lane_parameters
+        return np.ascontiguousarray(inv_mass[:, j]), np.ascontiguousarray(bonds[:, :, j])
+
+    def energies(self, Q: np.ndarray, P: np.ndarray) -> np.ndarray:
+        """H of every lane's state, Q and P lane-first (B, N) (docs/conventions.md#hamiltonian)."""
+        return np.array([float(total_energy(self.model, c, Q[j], P[j])) for j, c in enumerate(self.chains)])
+
+    def engine(self, q, p, dq=None, dp=None, kind: str = "auto"):
+        """The engine of this problem from the states q, p (and deviations dq, dp), each (N, B):
+        ``kind`` "batch" (every lane in SIMD blocks of the batch engine, the last block padded),
+        "single" (the single-trajectory engine, lane after lane) or "auto" (blocks, and a
+        remainder of up to ``batch.SERIAL_REMAINDER`` lanes beyond them on the single engine);
+        every kind gives the same numbers."""
+        from chainchaos.engine.batch import SERIAL_REMAINDER, Batch
+        from chainchaos.engine.simd import LANES
+
+        require(kind in ENGINES, "engine", kind, f"one of {ENGINES}")
+        remainder = self.lanes % LANES
+        serial = {"batch": 0, "single": self.lanes,
+                  "auto": remainder if remainder <= SERIAL_REMAINDER else 0}[kind]
+        return Batch(self, q, p, dq, dp, serial_lanes=serial)

@@ -1,0 +1,217 @@
+"""Command line: ``chainchaos chain | ensemble | simulate | bench``."""
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from chainchaos.errors import ChainFileError, ParameterError, SimulationError
+
+DEFAULT_ALPHA = 5.0
+
+
+def _checked(convert, kind: str, ok, allowed: str):
+    """argparse type: ``convert(text)`` (e.g. a ``kind`` "a number") for which ``ok`` holds; an
+    error names the text and what is ``allowed``."""
+
+    def parse(text: str):
+        try:
+            value = convert(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not {kind}; allowed is {allowed}")
+        if not ok(value):
+            raise argparse.ArgumentTypeError(f"{text!r}: allowed is {allowed}")
+        return value
+
+    return parse
+
+
+def _number(minimum: float = 0.0, strict: bool = True):
+    """argparse type: a finite number > minimum (>= minimum when not ``strict``)."""
+    return _checked(float, "a number", lambda v: np.isfinite(v) and (v > minimum if strict else v >= minimum),
+                    f"a finite number {'>' if strict else '>='} {minimum:g}")
+
+
+def _integer(minimum: int):
+    """argparse type: an integer >= minimum."""
+    return _checked(int, "an integer", lambda v: v >= minimum, f"an integer >= {minimum}")
+
+
+_positive_float = _number(0.0)
+
+
+def _output(text: str) -> str:
+    """argparse type: a file path to write (not an existing directory, nor below a file)."""
+    path = Path(text)
+    if not text or path.is_dir():
+        raise argparse.ArgumentTypeError(f"{text!r} is {'a directory' if text else 'empty'}; allowed is a file path")
+    parent = next((p for p in path.absolute().parents if p.exists()), None)
+    if parent is not None and not parent.is_dir():
+        raise argparse.ArgumentTypeError(f"{text!r}: {str(parent)!r} is a file, not a directory")
+    return text
+
+
+def _read(option: str, read, path):
+    """``read(path)`` with a ChainFileError naming the option that gave the file."""
+    try:
+        return read(path)
+    except ChainFileError as err:
+        raise ChainFileError(f"option {option}: {err}") from err
+
+
+def _alpha(args) -> float:
+    return DEFAULT_ALPHA if args.alpha is None else args.alpha
+
+
+def _cmd_chain(args) -> None:
+    from chainchaos.output.io import chain_dataset, read_radii, write_netcdf
+    from chainchaos.studies.search.selection import SelectionCriteria, select_realization
+    from chainchaos.system.chain import chain_from_radii, random_chain
+
+    extra = {}
+    if args.reference_radius is not None and not args.radii:
+        raise ParameterError("reference_radius", args.reference_radius, "only together with --radii")
+    if args.radii:
+        chain = chain_from_radii(_read("--radii", read_radii, args.radii), args.reference_radius,
+                                 args.wall_radius, args.alpha)
+    elif args.search:
+        chain, extra = select_realization(SelectionCriteria(alpha=_alpha(args), N=args.N, n_seeds=args.n_seeds))
+        print(f"selected seed {extra['selection_seed']} among {extra['selection_candidates']} candidates "
+              f"(score {extra['selection_score']:.4g})", file=sys.stderr)
+    else:
+        chain = random_chain(args.seed, _alpha(args), args.N, args.wall_radius)
+    write_netcdf(chain_dataset(chain, extra), args.out)
+    print(args.out)
+
+
+def _cmd_ensemble(args) -> None:
+    from chainchaos.output.io import ensemble_dataset, write_netcdf
+
+    write_netcdf(ensemble_dataset(args.alpha, args.realizations, args.N, args.first_seed, args.convention), args.out)
+    print(args.out)
+
+
+def _cmd_simulate(args) -> None:
+    from chainchaos.output.io import read_chain, write_netcdf
+    from chainchaos.run.progress import ProgressReporter
+    from chainchaos.run.scenes import SceneParameters, simulate
+
+    observables = None if "all" in args.observables else tuple(args.observables)
+    params = SceneParameters(model=args.model, energy=args.energy, t_final=args.t_final, dt=args.dt,
+                             integrator=args.integrator, observables=observables,
+                             excited_site=args.site, k4_sign=args.k4_sign, deviation_seed=args.deviation_seed,
+                             samples_per_decade=args.samples_per_decade,
+                             max_energy_error=args.max_energy_error)
+    chain = _read("--chain", read_chain, args.chain)
+    ds = simulate(chain, params, progress=ProgressReporter(params.name, params.t_final))
+    write_netcdf(ds, args.out)
+    print(args.out)
+
+
+def _cmd_bench(args) -> None:
+    from chainchaos.studies.numerics.bench import kernel_report
+
+    report = kernel_report(args.model, args.integrator, args.N, args.steps, args.repeats)
+    print(json.dumps(report, indent=2) if args.json else
+          "\n".join(f"{key}: {value:.4g}" if isinstance(value, float) else f"{key}: {value}"
+                    for key, value in report.items()))
+
+
+def build_parser() -> argparse.ArgumentParser:
+    from chainchaos.engine.integrators import SCHEMES
+    from chainchaos.observe.registry import OBSERVABLES
+    from chainchaos.system.linear import CONVENTIONS
+    from chainchaos.system.models import MODELS
+
+    parser = argparse.ArgumentParser(prog="chainchaos", description=__import__("chainchaos").__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    p = sub.add_parser("chain", help="write a chain file (NetCDF)",
+                       description="Write a chain file from --seed/--alpha, from --radii FILE (one radius "
+                                   "per line, any unit), or by the linear rule of the realization search "
+                                   "(docs/conventions.md#realization). The radii of a chain file are in units "
+                                   "of its R_ref: written one per line and read back with --radii FILE "
+                                   "--reference-radius 1 --alpha ALPHA they give the same chain.")
+    source = p.add_mutually_exclusive_group()
+    source.add_argument("--radii", metavar="FILE", help="text file with one radius per line")
+    source.add_argument("--search", action="store_true", help="scan seeds for the paper-like realization")
+    p.add_argument("--seed", type=_integer(0), default=0, help="seed of numpy.random.default_rng (default 0)")
+    p.add_argument("--alpha", type=_number(1.0, strict=False), default=None,
+                   help=f"disorder strength max R / min R (default {DEFAULT_ALPHA:g}; with --radii: max/min "
+                        "of the file's radii)")
+    p.add_argument("--reference-radius", type=_positive_float, metavar="R",
+                   help="with --radii: the radius R_ref that becomes 1, in the file's unit (default (min + max)/2 "
+                        "of the file's radii; 1 for radii taken from a chain file)")
+    p.add_argument("--N", type=_integer(2), default=40, help="number of beads (default 40)")
+    p.add_argument("--n-seeds", type=_integer(1), default=10000, help="seeds scanned by --search (default 10000)")
+    p.add_argument("--wall-radius", type=_positive_float, default=1.0,
+                   help="reduced radius of the wall beads (default 1)")
+    p.add_argument("--out", required=True, type=_output, help="output NetCDF file")
+    p.set_defaults(func=_cmd_chain)
+
+    p = sub.add_parser("ensemble", help="participation-number statistics over realizations (Fig. 1a)")
+    p.add_argument("--alpha", type=_number(1.0, strict=False), nargs="+", required=True,
+                   help="disorder strengths (each >= 1)")
+    p.add_argument("--realizations", type=_integer(2), default=1000, help="realizations per alpha (default 1000)")
+    p.add_argument("--N", type=_integer(2), default=40, help="number of beads (default 40)")
+    p.add_argument("--first-seed", type=_integer(0), default=0, help="seed of the first realization (default 0)")
+    p.add_argument("--convention", choices=CONVENTIONS, default="potential",
+                   help="participation-number convention (default potential)")
+    p.add_argument("--out", required=True, type=_output, help="output NetCDF file")
+    p.set_defaults(func=_cmd_ensemble)
+
+    p = sub.add_parser("simulate", help="integrate one scene from a chain file",
+                       description="Integrate one scene (model, energy) and write its observables as NetCDF. "
+                                   "Progress goes to stderr.")
+    p.add_argument("--chain", required=True, help="chain file written by 'chainchaos chain'")
+    p.add_argument("--model", required=True, choices=sorted(MODELS))
+    p.add_argument("--energy", required=True, type=_positive_float, help="total energy H")
+    p.add_argument("--t-final", required=True, type=_positive_float, help="final time (units 1/omega_max)")
+    p.add_argument("--dt", type=_positive_float, default=5e-4, help="time step (default 5e-4, the paper's)")
+    p.add_argument("--integrator", choices=sorted(SCHEMES), default="SRKN6b", help="splitting scheme")
+    p.add_argument("--observables", nargs="+", default=["all"], choices=["all", *OBSERVABLES],
+                   metavar="NAME", help=f"observables to compute: {', '.join(OBSERVABLES)} (default all the "
+                                        f"model has; the gap observables only for hertz)")
+    p.add_argument("--site", type=_integer(1), default=21, help="excited bead, 1..N (default 21)")
+    p.add_argument("--k4-sign", type=float, choices=[1.0, -1.0], default=1.0,
+                   help="sign of K4: +1 the paper's, -1 the Taylor expansion of Hertz (default +1)")
+    p.add_argument("--deviation-seed", type=_integer(0), default=0, help="seed of the initial deviation vector")
+    p.add_argument("--samples-per-decade", type=_integer(1), default=40, help="log-spaced samples per decade")
+    p.add_argument("--max-energy-error", type=_positive_float, default=1e-2,
+                   help="stop when the relative energy error exceeds this (default 1e-2)")
+    p.add_argument("--out", required=True, type=_output, help="output NetCDF file")
+    p.set_defaults(func=_cmd_simulate)
+
+    p = sub.add_parser("bench", help="nanoseconds per step of the kernel, with and without tangent dynamics")
+    p.add_argument("--model", choices=sorted(MODELS), default="hertz")
+    p.add_argument("--integrator", choices=sorted(SCHEMES), default="SRKN6b")
+    p.add_argument("--N", type=_integer(2), default=40, help="number of beads (default 40)")
+    p.add_argument("--steps", type=_integer(1), default=10000, help="steps per timing (default 10000)")
+    p.add_argument("--repeats", type=_integer(1), default=50, help="timings; the best is reported (default 50)")
+    p.add_argument("--json", action="store_true", help="print JSON")
+    p.set_defaults(func=_cmd_bench)
+    return parser
+
+
+#: Option of a parameter whose name differs from the option's (ParameterError.name -> dest).
+OPTION_OF_PARAMETER = {"excited_site": "site", "K4_sign": "k4_sign", "n_realizations": "realizations",
+                       "n_steps": "steps", "radius": "radii"}
+
+
+def main(argv=None) -> int:
+    args = build_parser().parse_args(argv)
+    try:
+        args.func(args)
+    except (ParameterError, ChainFileError, SimulationError) as err:
+        dest = OPTION_OF_PARAMETER.get(getattr(err, "name", ""), getattr(err, "name", ""))
+        option = f"option --{dest.replace('_', '-')}: " if dest and hasattr(args, dest) else ""
+        print(f"chainchaos {args.command}: error: {option}{err}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,210 @@
+"""config/README.md, generated from config/schema.yaml: every config key, its type, allowed values,
+default and description.
+
+The schema is the single place a key is described: a test checks that every key has a
+description and that the committed config/README.md is what this module writes, so the two cannot
+drift. After a change to the schema run ``python -m chainchaos.workflow.config_docs`` (``--check``: only
+compare). Needs PyYAML (installed with Snakemake, the workflow extra).
+"""
+
+import argparse
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[3]
+SCHEMA = Path("config/schema.yaml")
+README = Path("config/README.md")
+
+# JSON-schema keywords shown as constraints, with how each reads.
+CONSTRAINTS = {
+    "minimum": ">= {}",
+    "exclusiveMinimum": "> {}",
+    "maximum": "<= {}",
+    "exclusiveMaximum": "< {}",
+    "minItems": "{} or more items",
+    "pattern": "matches `{}`",
+}
+
+
+@dataclass
+class Key:
+    path: str  # dotted, "<scene name>" for a free-form name, "[]" for an array's items
+    schema: dict
+    required: bool
+    same_as: str = ""  # path of an earlier key with the very same schema (a YAML anchor)
+
+
+def registries() -> dict[str, list]:
+    """The names a key marked ``x-registry: <registry>`` in the schema may take: the models of
+    ``chainchaos.system.models`` and the schemes of ``chainchaos.engine.integrators``, so that a new model or
+    scheme is allowed without an edit to the schema."""
+    from chainchaos.engine.integrators import SCHEMES
+    from chainchaos.system.models import MODELS
+
+    return {"models": list(MODELS), "schemes": list(SCHEMES)}
+
+
+def _fill_registry_enums(node, names: dict[str, list]) -> None:
+    """Give every schema node marked ``x-registry`` its registry's names as ``enum`` (with null
+    where the node's type allows it), in place: Snakemake's own validation, which reads the file,
+    ignores the marker, and check_config, which reads this, names the allowed values."""
+    if isinstance(node, dict):
+        if "x-registry" in node:
+            nullable = "null" in (node["type"] if isinstance(node.get("type"), list) else [node.get("type")])
+            node["enum"] = names[node["x-registry"]] + ([None] if nullable else [])
+        for value in node.values():
+            _fill_registry_enums(value, names)
+    elif isinstance(node, list):
+        for value in node:
+            _fill_registry_enums(value, names)
+
+
+def load_schema(path: Path = ROOT / SCHEMA) -> dict:
+    import yaml
+
+    schema = yaml.safe_load(path.read_text())
+    _fill_registry_enums(schema, registries())
+    return schema
+
+
+def _children(schema: dict, path: str):
+    """(path, schema, required) of the keys one level below ``schema`` at ``path``."""
+    prefix = f"{path}." if path else ""
+    required = set(schema.get("required", ()))
+    for name, sub in schema.get("properties", {}).items():
+        yield f"{prefix}{name}", sub, name in required
+    extra = schema.get("additionalProperties")
+    if isinstance(extra, dict) and ("properties" in extra or "type" in extra):
+        yield f"{prefix}<{_free_name(path)}>", extra, False
+    items = schema.get("items")
+    if isinstance(items, dict) and "properties" in items:
+        yield from _children(items, f"{path}[]")
+
+
+def _free_name(path: str) -> str:
+    """What the free-form keys of an object at ``path`` name."""
+    return "scene name" if path.split(".")[-1] in ("scenes", "plateau_end") else "name"
+
+
+def keys(schema: dict) -> list[Key]:
+    """Every key of the schema, depth first in schema order. A key whose schema is the same
+    object as an earlier one with the same name (a YAML anchor or merge) records that key's path."""
+    seen: dict[tuple[str, int], str] = {}
+    out: list[Key] = []
+
+    def walk(node: dict, path: str) -> None:
+        for child, sub, required in _children(node, path):
+            name = child.rsplit(".", 1)[-1]
+            first = seen.setdefault((name, id(sub)), child)
+            out.append(Key(child, sub, required, "" if first == child else first))
+            if first == child:
+                walk(sub, child)
+
+    walk(schema, "")
+    return out
+
+
+def undescribed(schema: dict) -> list[str]:
+    """Paths of the keys that have no description."""
+    return [k.path for k in keys(schema) if not k.same_as and not k.schema.get("description")]
+
+
+def _value(v) -> str:
+    if v is None:
+        return "empty"
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (dict, list)):
+        import json
+
+        return json.dumps(v)
+    return str(v)
+
+
+def _type(schema: dict) -> str:
+    types = schema.get("type", "")
+    types = [types] if isinstance(types, str) else list(types)
+    text = " or ".join("empty" if t == "null" else t for t in types if t)
+    if "enum" in schema:
+        text += ": " + ", ".join(f"`{_value(v)}`" for v in schema["enum"])
+    limits = [fmt.format(schema[k]) for k, fmt in CONSTRAINTS.items() if k in schema]
+    items = schema.get("items")
+    if isinstance(items, dict) and "properties" not in items:
+        text += f" of {_type(items)}"
+        return text + (f", {', '.join(limits)}" if limits else "")
+    return text + (f" ({', '.join(limits)})" if limits else "")
+
+
+def allowed(schema: dict) -> str:
+    """What a key with this schema allows, in words: its type, values and limits (the config
+    README's column, for error messages)."""
+    return _type(schema).replace("`", "'")
+
+
+def _cell(text: str) -> str:
+    return " ".join(str(text).split()).replace("|", "\\|")
+
+
+def _row(key: Key) -> str:
+    s = key.schema
+    default = f"`{_value(s['default'])}`" if "default" in s else ("required" if key.required else "")
+    description = s.get("description", "")
+    if key.same_as:
+        description = f"as `{key.same_as}`" + (f": {description}" if description else "")
+    return f"| `{key.path}` | {_cell(_type(s))} | {_cell(default)} | {_cell(description)} |"
+
+
+HEADER = """# Configuration keys
+
+<!-- Generated from config/schema.yaml by `python -m chainchaos.workflow.config_docs`; do not edit by hand. -->
+
+The pipeline reads `config/config.yaml` (paper scale); `--configfile config/quick.yaml` layers the
+quick scale over it, and `--config key=value` overrides single keys. `config/schema.yaml`
+validates the merged config before any rule runs: a key not listed here, or a value outside what is
+allowed, stops the run with a message naming the key. Times are in units of `1/omega_max`.
+
+*Default*: the value the schema fills in when the key is absent; *required*: the key must be given
+(config/config.yaml gives every required key). `<scene name>` stands for a scene such as
+`hertz_H0.25`; `[]` for each item of a list.
+"""
+
+
+def render(schema: dict | None = None) -> str:
+    """The text of config/README.md."""
+    schema = load_schema() if schema is None else schema
+    all_keys = keys(schema)
+    lines = [HEADER]
+    for top in schema["properties"]:
+        block = [k for k in all_keys if k.path == top or k.path.startswith(f"{top}.")]
+        lines += [f"## `{top}`", ""]
+        lines += ["| key | type, allowed values | default | description |", "| --- | --- | --- | --- |"]
+        lines += [_row(k) for k in block]
+        lines.append("")
+    return "\n".join(lines)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(prog="python -m chainchaos.workflow.config_docs",
+                                     description="Write (or --check) config/README.md from config/schema.yaml.")
+    parser.add_argument("--check", action="store_true", help="only compare; exit 1 if the file differs")
+    args = parser.parse_args(argv)
+    schema = load_schema()
+    missing = undescribed(schema)
+    if missing:
+        print("config/schema.yaml: keys without a description: " + ", ".join(missing), file=sys.stderr)
+        return 1
+    text = render(schema)
+    target = ROOT / README
+    if target.is_file() and target.read_text() == text:
+        return 0
+    if args.check:
+        print(f"{README} is out of date: run python -m chainchaos.workflow.config_docs", file=sys.stderr)
+        return 1
+    target.write_text(text)
+    print(f"wrote {README}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

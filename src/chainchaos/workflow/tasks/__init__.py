@@ -1,0 +1,75 @@
+"""One function per workflow rule: what the rule's script runs, with its inputs, outputs and params.
+
+Every script in workflow/scripts is two lines (``from chainchaos.workflow.tasks import run_rule;
+run_rule(snakemake)``), named like its rule: :func:`run_rule` sends stderr to the rule's log and
+calls the rule's task, a function ``rule(inputs, outputs, params, wildcards)`` of dicts. The task of
+a rule in ``workflow/rules/X.smk`` lives in ``chainchaos.workflow.tasks.X`` (``TASKS``: all of them). A task
+reads its inputs, calls the package and writes its outputs atomically (``write_netcdf``,
+``write_text``, ``atomic_output``); the physics is elsewhere. The ``chainchaos`` command is the command line.
+"""
+
+import contextlib
+import functools
+import importlib
+import re
+import sys
+import traceback
+from pathlib import Path
+
+from chainchaos.errors import BuildError
+
+#: The task modules, one per rule file of the workflow (workflow/rules/<name>.smk).
+FAMILIES = ("search", "chain", "simulate", "scan", "numerics", "figures", "manuscript")
+
+
+def family_tasks(family: str) -> dict:
+    """The tasks of one task module, by rule name."""
+    return {task.__name__: task for task in importlib.import_module(f"chainchaos.workflow.tasks.{family}").TASKS}
+
+
+@functools.cache
+def _all_tasks() -> dict:
+    return {rule: task for family in FAMILIES for rule, task in family_tasks(family).items()}
+
+
+def __getattr__(name):
+    """``TASKS``, every task by rule name, imported on first use: a job imports only its own task
+    module (a plotting job then loads no integrator, a simulation no plotting library)."""
+    if name == "TASKS":
+        return _all_tasks()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def _task(smk):
+    """The task of the rule of a workflow script: that of the module named like the rule file
+    that defines the rule (``workflow/rules/<family>.smk``, beside the scripts' directory), or,
+    without a workflow around it, looked up among all tasks."""
+    rule_files = Path(smk.scriptdir).parent / "rules" if getattr(smk, "scriptdir", None) else None
+    if rule_files is not None and rule_files.is_dir():
+        for path in sorted(rule_files.glob("*.smk")):
+            if path.stem in FAMILIES and re.search(rf"^rule {re.escape(smk.rule)}:", path.read_text(), re.M):
+                return family_tasks(path.stem)[smk.rule]
+    return _all_tasks()[smk.rule]
+
+#: Errors whose message tells the reader what to do (install TeX, ...): shown without a traceback.
+READER_ERRORS = (BuildError,)
+
+
+def run_rule(smk) -> None:
+    """Run ``TASKS[smk.rule]`` with stderr in the rule's log (the first ``log:`` file).
+
+    A failure's traceback goes to the log, which Snakemake shows for a failed job; a
+    :data:`READER_ERRORS` error ends the job with its message alone (exit status 1).
+    """
+    task = _task(smk)
+    with open(smk.log[0], "w") as log, contextlib.redirect_stderr(log):
+        try:
+            task(dict(smk.input.items()), dict(smk.output.items()), dict(smk.params.items()),
+                 dict(smk.wildcards.items()))
+        except READER_ERRORS as error:
+            message = f"{smk.rule}: {error}"
+            print(message, file=sys.stderr)
+            raise SystemExit(message) from None  # Python prints the message to the job's stderr
+        except BaseException:
+            traceback.print_exc()
+            raise

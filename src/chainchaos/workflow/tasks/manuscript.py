@@ -1,0 +1,82 @@
+"""Tasks of workflow/rules/manuscript.smk: the paper's claims measured on the results, and the
+manuscript built from them (chainchaos.output.manuscript)."""
+
+import sys
+
+import xarray as xr
+
+from chainchaos.output import manuscript
+from chainchaos.output.io import atomic_output, read_chain, write_text
+from chainchaos.paper.claims.evaluation import evaluate_claims as measure_claims
+from chainchaos.paper.claims.quantities import taylor_sign_barrier
+from chainchaos.paper.claims.writers import (
+    claim_macros,
+    claims_notes_tex,
+    claims_table_tex,
+    macros_tex,
+    run_macros,
+    scan_macros,
+    scene_macros,
+    scenes_table_tex,
+    write_csv,
+)
+from chainchaos.paper.criteria import Criteria
+from chainchaos.studies.search import report as search_report
+
+#: The inputs of evaluate_claims that are not scene files (and the prefix of the ensemble verdicts).
+PRODUCTS = ("chain", "ensemble", "energy_scan", "disorder", "search")
+VERDICT_PREFIX = "verdict_"
+
+
+def evaluate_claims(inputs, outputs, params, wildcards) -> None:
+    """Measure the paper's claims on the results and write claims.csv, claims_table.tex,
+    claims_notes.tex, scenes_table.tex, search_table.tex and macros.tex (every number the
+    manuscript prints, as \\cc{key}). Inputs: the products named in :data:`PRODUCTS`, the
+    ensemble verdicts ``verdict_<scene>`` and the scene files by scene name (``code`` only triggers
+    reruns); params: the config blocks ``claims`` and ``simulation``."""
+    files = {k: v for k, v in inputs.items() if k != "code"}
+    products = {name: xr.load_dataset(files.pop(name)) for name in PRODUCTS}
+    chain, ensemble, energy_scan, disorder, search = (products[name] for name in PRODUCTS)
+    verdicts = {name[len(VERDICT_PREFIX):]: xr.load_dataset(files.pop(name))
+                for name in sorted(files) if name.startswith(VERDICT_PREFIX)}
+    scenes = {name: xr.load_dataset(path) for name, path in files.items()}
+    criteria = Criteria.from_config(params.get("claims"))
+    simulation = params.get("simulation", {})
+    site = int(simulation.get("excited_site", 21))
+    claims = measure_claims(scenes, chain, ensemble, criteria, excited_site=site, energy_scan=energy_scan,
+                            verdicts=verdicts, search=search, disorder=disorder)
+
+    barrier = taylor_sign_barrier(read_chain(inputs["chain"], k4_sign=-1.0), site)
+    macros = run_macros(scenes, chain, ensemble, simulation, criteria, barrier)
+    macros.update(scan_macros(energy_scan, disorder))
+    for name, ds in scenes.items():
+        macros.update(scene_macros(name, ds, criteria))
+    macros.update(claim_macros(claims))
+    macros.update(search_report.search_macros(search, verdicts, energy_scan, disorder, criteria.agreement))
+    paper_scale = macros["run.scale"] == "paper"
+
+    with atomic_output(outputs["csv"]) as tmp:
+        write_csv(claims, tmp)
+    write_text(claims_table_tex(claims), outputs["table"])
+    write_text(claims_notes_tex(claims), outputs["notes"])
+    write_text(scenes_table_tex(scenes), outputs["scenes"])
+    write_text(search_report.search_table_tex(search, verdicts), outputs["search"])
+    write_text(macros_tex(macros)
+               + "\\newif\\ifpaperscale\n" + ("\\paperscaletrue\n" if paper_scale else "\\paperscalefalse\n")
+               + "\\newif\\ifsearchpinned\n"
+               + ("\\searchpinnedtrue\n" if int(search.attrs["pinned"]) else "\\searchpinnedfalse\n"),
+               outputs["macros"])
+    for claim in claims:
+        print(f"{claim.id:28s} {claim.verdict:28s} {claim.measured}", file=sys.stderr)
+
+
+def build_manuscript(inputs, outputs, params, wildcards) -> None:
+    """latexmk in the build directory on a copy of manuscript/ms.tex and of its inputs; a
+    :class:`~chainchaos.errors.BuildError` (TeX missing, a LaTeX error) names what to do."""
+    figures = {k: v for k, v in inputs.items() if k.startswith("fig")}
+    numerics = {k[len("numerics_"):]: v for k, v in inputs.items() if k.startswith("numerics_")}
+    manuscript.build(inputs["tex"], {k: inputs[k] for k in manuscript.GENERATED}, figures, numerics, outputs["pdf"],
+                     params["build_dir"])
+
+
+TASKS = (evaluate_claims, build_manuscript)

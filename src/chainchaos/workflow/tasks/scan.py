@@ -1,0 +1,95 @@
+"""Tasks of workflow/rules/scan.smk: the energy scan and the disorder statistics, in groups of
+trajectories merged onto their grid, their figures and the threshold table."""
+
+import sys
+import time
+from pathlib import Path
+
+import xarray as xr
+
+from chainchaos.output.io import read_chain, write_netcdf, write_text
+from chainchaos.studies.scan import merge, runs, thresholds
+
+
+def _run_group(kind: str, group: int, compute, out) -> None:
+    """``compute(progress)``, one group's Dataset, written with its wall time per trajectory."""
+    start = time.perf_counter()
+
+    def progress(done, total):
+        print(f"[{kind} group {group}] {done}/{total} trajectories, {time.perf_counter() - start:.1f} s",
+              file=sys.stderr, flush=True)
+
+    ds = compute(progress)
+    n = ds.sizes["trajectory"]
+    elapsed = time.perf_counter() - start
+    ds.attrs.update(wall_time_s=elapsed, seconds_per_trajectory=elapsed / max(n, 1))
+    print(f"[{kind} group {group}] done: {n} trajectories in {elapsed:.1f} s "
+          f"({elapsed / max(n, 1):.3f} s each); invalid: {int((ds['valid'] == 0).sum())}", file=sys.stderr)
+    write_netcdf(ds, out)
+
+
+def scan_energy_group(inputs, outputs, params, wildcards) -> None:
+    """One group of (model, energy) trajectories on the chosen chain."""
+    group = int(wildcards["group"])
+    _run_group("energy_scan", group,
+               lambda progress: runs.energy_scan_group(read_chain(inputs["chain"]), params["scan"], group, progress),
+               outputs["group"])
+
+
+def scan_disorder_group(inputs, outputs, params, wildcards) -> None:
+    """One group of (model, realization, energy) trajectories on alpha = 5 realizations."""
+    group = int(wildcards["group"])
+    _run_group("disorder", group, lambda progress: runs.disorder_group(params["scan"], group, params["N"], progress),
+               outputs["group"])
+
+
+def _write_merged(kind: str, ds: xr.Dataset, groups: list, out) -> None:
+    """The merged Dataset, with the groups' mean wall time per trajectory."""
+    seconds = [g.attrs.get("seconds_per_trajectory") for g in groups if "seconds_per_trajectory" in g.attrs]
+    if seconds:
+        ds.attrs["mean_seconds_per_trajectory"] = float(sum(seconds) / len(seconds))
+    print(f"{kind}: merged {len(groups)} groups, {int((ds['valid'] == 1).sum())} valid runs", file=sys.stderr)
+    write_netcdf(ds, out)
+
+
+def merge_energy_scan(inputs, outputs, params, wildcards) -> None:
+    """The energy scan's group files on the (model, energy) grid."""
+    groups = [xr.load_dataset(f) for f in inputs["groups"]]
+    ds = merge.merge_energy_scan(groups, params["scan"], read_chain(inputs["chain"]))
+    _write_merged("energy_scan", ds, groups, outputs["merged"])
+
+
+def merge_disorder(inputs, outputs, params, wildcards) -> None:
+    """The disorder statistics' group files on the (model, realization, energy) grid."""
+    groups = [xr.load_dataset(f) for f in inputs["groups"]]
+    _write_merged("disorder", merge.merge_disorder(groups, params["scan"]), groups, outputs["merged"])
+
+
+def plot_energy_scan(inputs, outputs, params, wildcards) -> None:
+    """The energy-scan figure (PDF and PNG)."""
+    from chainchaos.output.plotting.style import save_figure  # matplotlib: only in the plotting jobs
+    from chainchaos.studies.scan import plots as scan_plots
+
+    fig = scan_plots.energy_scan_figure(xr.load_dataset(inputs["data"]))
+    save_figure(fig, Path(outputs["pdf"]).with_suffix(""), dpi=params["dpi"])
+
+
+def plot_disorder_statistics(inputs, outputs, params, wildcards) -> None:
+    """The disorder-statistics figure (PDF and PNG)."""
+    from chainchaos.output.plotting.style import save_figure  # matplotlib: only in the plotting jobs
+    from chainchaos.studies.scan import plots as scan_plots
+
+    fig = scan_plots.disorder_figure(xr.load_dataset(inputs["data"]))
+    save_figure(fig, Path(outputs["pdf"]).with_suffix(""), dpi=params["dpi"])
+
+
+def scan_thresholds(inputs, outputs, params, wildcards) -> None:
+    """The energies where the chain delocalizes and where it is chaotic (CSV and LaTeX table)."""
+    ds = xr.load_dataset(inputs["data"])
+    rows = thresholds.thresholds_table(ds)
+    write_text(thresholds.thresholds_csv(rows, ds), outputs["csv"])
+    write_text(thresholds.thresholds_tex(rows, ds), outputs["tex"])
+
+
+TASKS = (scan_energy_group, scan_disorder_group, merge_energy_scan, merge_disorder,
+         plot_energy_scan, plot_disorder_statistics, scan_thresholds)

@@ -1,0 +1,117 @@
+"""Tasks of workflow/rules/search.smk: the realization search, its figure, and the ensemble verdicts
+of the chosen chain."""
+
+import sys
+import time
+
+import xarray as xr
+
+from chainchaos.output.io import read_chain, write_netcdf
+from chainchaos.output.provenance import provenance_attrs
+from chainchaos.paper import statements
+from chainchaos.paper.criteria import Criteria
+from chainchaos.paper.verdicts import verdict_dataset
+from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
+from chainchaos.studies.search import stages as search
+from chainchaos.studies.search.selection import SelectionCriteria
+from chainchaos.studies.search.stages import SearchPlan
+from chainchaos.workflow.tasks.chain import selection_criteria
+
+
+def _progress(label: str):
+    start = time.perf_counter()
+
+    def report(done, total):
+        print(f"[{label}] {done}/{total} orbits, {time.perf_counter() - start:.1f} s", file=sys.stderr, flush=True)
+
+    return report
+
+
+def _search_parts(params: dict):
+    block = params["search"]
+    return (selection_criteria(params), SearchPlan.from_config(block), OrbitSettings.from_config(block["settings"]),
+            Criteria.from_config(params.get("claims")), int(params["site"]))
+
+
+def _write_search_product(ds, params: dict, selection: SelectionCriteria, path) -> None:
+    ds.attrs.update(provenance_attrs({"search": params["search"], "selection": vars(selection)}))
+    write_netcdf(ds, path)
+
+
+def _as_list(value) -> list:
+    if value is None:
+        return []
+    return [value] if isinstance(value, str) else list(value)
+
+
+def search_candidates(inputs, outputs, params, wildcards) -> None:
+    """Stage 0 of the realization search: the candidates, by the linear rule (or the pinned seed)."""
+    selection, plan, *_ = _search_parts(params)
+    ds = search.candidates(selection, plan)
+    print(f"{ds.attrs['n_qualifying']} of {selection.n_seeds} seeds pass the linear rule; "
+          f"{ds.sizes['candidate']} candidates", file=sys.stderr)
+    _write_search_product(ds, params, selection, outputs["result"])
+
+
+def search_filter(inputs, outputs, params, wildcards) -> None:
+    """Stage 1 of the realization search for one group of candidates."""
+    selection, plan, settings, criteria, site = _search_parts(params)
+    rows = search.candidate_rows(xr.load_dataset(inputs["candidates"]))
+    group = int(wildcards["group"])
+    ds = search.filter_group(selection, plan, settings, criteria, rows, group, site, _progress(f"filter {group}"))
+    _write_search_product(ds, params, selection, outputs["result"])
+
+
+def search_score(inputs, outputs, params, wildcards) -> None:
+    """Stage 2 of the realization search for the survivor of the given rank."""
+    selection, plan, settings, criteria, site = _search_parts(params)
+    rows = search.candidate_rows(xr.load_dataset(inputs["candidates"]))
+    filters = [xr.load_dataset(p) for p in _as_list(inputs.get("filters"))]
+    rank = int(wildcards["rank"])
+    candidate = int(search.survivors(filters, plan)[rank])
+    print(f"survivor {rank}: candidate {candidate}", file=sys.stderr)
+    ds = search.score_candidate(selection, plan, settings, criteria, rows, candidate, site,
+                                _progress(f"score {rank}"))
+    _write_search_product(ds, params, selection, outputs["result"])
+
+
+def search_merge(inputs, outputs, params, wildcards) -> None:
+    """The search's candidates, scores and choice as one file."""
+    selection, plan, settings, criteria, site = _search_parts(params)
+    found = xr.load_dataset(inputs["candidates"])
+    filters = [xr.load_dataset(p) for p in _as_list(inputs.get("filters"))]
+    scores = [xr.load_dataset(p) for p in _as_list(inputs["scores"])]
+    ds = search.merge(selection, plan, settings, criteria, found, filters, scores)
+    print(f"chose seed {ds.attrs['chosen_seed']} (score {ds.attrs['chosen_score']:.3f} of "
+          f"{ds.attrs['n_statements']})", file=sys.stderr)
+    _write_search_product(ds, params, selection, outputs["result"])
+
+
+def plot_search(inputs, outputs, params, wildcards) -> None:
+    """The search figure: how many candidates satisfy each statement, and every candidate."""
+    from chainchaos.studies.search.plots import plot_search as draw  # matplotlib: only in the plotting jobs
+
+    draw(xr.load_dataset(inputs["search"]), outputs["pdf"], outputs["png"], int(params.get("dpi", 200)))
+
+
+def ensemble_verdicts(inputs, outputs, params, wildcards) -> None:
+    """One scene's ensemble of perturbed orbits on the chosen chain, and its statements' verdicts."""
+    name = wildcards["scene"]
+    scene = statements.statement_scenes()[name]
+    block = params["verdicts"]
+    settings = OrbitSettings.from_config(block["settings"])
+    criteria = Criteria.from_config(params.get("claims"))
+    chain = read_chain(inputs["chain"])
+    orbits = [Orbit(scene.model, scene.energy, chain, int(params["site"]), lane) for lane in range(int(block["lanes"]))]
+    t, runs = integrate(orbits, settings, _progress(f"verdicts {name}"))
+    attrs = provenance_attrs({"verdicts": block, "scene": name})
+    attrs.update(model=scene.model, energy=float(scene.energy), dt=float(settings.dt),
+                 t_final=float(settings.t_final), integrator=settings.integrator, lanes=int(block["lanes"]),
+                 perturbation=float(settings.perturbation), seed=-1 if chain.seed is None else int(chain.seed))
+    ds = verdict_dataset(name, t, runs, criteria, attrs)
+    for st, frac, v in zip(ds.statement.values, ds["fraction"].values, ds["verdict"].values):
+        print(f"{st:28s} fraction {frac:.3f} verdict {v}", file=sys.stderr)
+    write_netcdf(ds, outputs["result"])
+
+
+TASKS = (search_candidates, search_filter, search_score, search_merge, plot_search, ensemble_verdicts)

@@ -1,0 +1,87 @@
+"""The package's folders are its layers: every module imports in a fresh interpreter, no module
+imports itself back through others (at module level or inside a function), and nothing but the
+package's entry points lives outside the layer folders."""
+
+import ast
+import subprocess
+import sys
+from graphlib import CycleError, TopologicalSorter
+from pathlib import Path
+
+import chainchaos
+
+PACKAGE = Path(chainchaos.__file__).resolve().parent
+LAYERS = {"system", "engine", "observe", "run", "paper", "studies", "output", "workflow"}
+TOP_LEVEL_MODULES = {"__init__.py", "errors.py"}
+
+
+def module_name(path: Path) -> str:
+    parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+MODULES = {module_name(p): p for p in sorted(PACKAGE.rglob("*.py"))}
+
+
+def imported_modules(path: Path) -> set[str]:
+    """The package's modules that ``path`` imports anywhere in it (``from a.b import c`` imports
+    the module a.b.c when there is one, else a.b)."""
+    out = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if isinstance(node, ast.Import):
+            out |= {a.name for a in node.names if a.name in MODULES}
+        elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module in MODULES:
+            for a in node.names:
+                sub = f"{node.module}.{a.name}"
+                out.add(sub if sub in MODULES else node.module)
+    return out
+
+
+def test_every_module_imports_in_a_fresh_interpreter():
+    code = "import importlib, sys\nfor name in sys.argv[1:]:\n    importlib.import_module(name)\n"
+    done = subprocess.run([sys.executable, "-c", code, *MODULES], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr[-3000:]
+
+
+def test_the_import_graph_has_no_cycle():
+    graph = {name: imported_modules(path) - {name} for name, path in MODULES.items()}
+    try:
+        list(TopologicalSorter(graph).static_order())
+    except CycleError as cycle:
+        raise AssertionError(f"import cycle: {' -> '.join(cycle.args[1])}") from None
+
+
+def test_a_cycle_is_found_where_there_is_one():
+    """The check above can fail: two modules importing each other form a cycle."""
+    graph = {"a": {"b"}, "b": {"a"}}
+    try:
+        list(TopologicalSorter(graph).static_order())
+    except CycleError:
+        return
+    raise AssertionError("no cycle found")
+
+
+def test_only_entry_points_live_outside_the_layer_folders():
+    top_files = {p.name for p in PACKAGE.glob("*.py")}
+    assert top_files == TOP_LEVEL_MODULES
+    folders = {p.name for p in PACKAGE.iterdir() if p.is_dir() and (p / "__init__.py").is_file()}
+    assert folders == LAYERS
+
+
+def test_every_package_says_what_it_holds():
+    for init in PACKAGE.rglob("__init__.py"):
+        assert ast.get_docstring(ast.parse(init.read_text())), init
+
+
+def test_public_names_keep_working():
+    for name in chainchaos.__all__:
+        assert getattr(chainchaos, name) is not None, name
+    from chainchaos.engine.integrators import SCHEMES
+    from chainchaos.observe.registry import REGISTRY
+    from chainchaos.paper.claims.catalogue import CATALOGUE
+    from chainchaos.paper.statements import STATEMENTS
+    from chainchaos.system.models import MODELS
+
+    assert chainchaos.MODELS is MODELS and chainchaos.SCHEMES is SCHEMES and chainchaos.OBSERVABLES is REGISTRY
+    assert chainchaos.STATEMENTS is STATEMENTS and chainchaos.CLAIMS is CATALOGUE
+    assert chainchaos.random_chain(879, 5.0).N == 40
