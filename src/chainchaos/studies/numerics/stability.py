@@ -236,6 +236,45 @@ def taylor_sign_probe(chain, energies, t_final: float, dt: float, scheme: str, s
     return rows
 
 
+def _steps_over_grid(chain, alphas, energies, schemes, models, t_final, bound, rel_tol, excited_site, say) -> dict:
+    """Largest stable steps (and the bisection's bracket, runs and stop times) of every scheme for
+    every model, disorder strength (:func:`chain_at_alpha`) and energy, on (model, alpha, energy,
+    scheme), and each chain's linear omega_max."""
+    shape = (len(models), len(alphas), len(energies), len(schemes))
+    out = {k: np.full(shape, math.nan) for k in ("dt_max", "dt_unstable", "bisection_runs", "t_stopped")}
+    omega = np.empty(len(alphas))
+    for ai, alpha in enumerate(alphas):
+        c = chain_at_alpha(chain, alpha)
+        omega[ai] = linear_omega_max(c)
+        for mi, m in enumerate(models):
+            for ei, H in enumerate(energies):
+                start = time.perf_counter()
+                for si, s in enumerate(schemes):
+                    r = largest_stable_dt(m, c, H, s, t_final, bound, rel_tol=rel_tol, excited_site=excited_site)
+                    for key, value in (("dt_max", r["dt_max"]), ("dt_unstable", r["dt_unstable"]),
+                                       ("bisection_runs", r["runs"]), ("t_stopped", r["t_stopped"])):
+                        out[key][mi, ai, ei, si] = value
+                say(f"{m} alpha={alpha:g} H={H:g}: dt_max*omega_max = "
+                    + ", ".join(f"{s} {out['dt_max'][mi, ai, ei, si] * omega[ai]:.3g}" for si, s in enumerate(schemes))
+                    + f" ({time.perf_counter() - start:.1f} s)")
+    out["omega_max"] = omega
+    return out
+
+
+def _sonic_vacuum_steps(chain, factor: float, energies, schemes, t_final, bound, rel_tol, excited_site, say):
+    """Largest stable steps of Hertz on the near-sonic-vacuum chain (:func:`sonic_vacuum_chain`
+    of ``chain``), on (energy, scheme), and that chain."""
+    sonic = sonic_vacuum_chain(chain, factor)
+    sv = np.full((len(energies), len(schemes)), math.nan)
+    for ei, H in enumerate(energies):
+        for si, s in enumerate(schemes):
+            sv[ei, si] = largest_stable_dt("hertz", sonic, H, s, t_final, bound, rel_tol=rel_tol,
+                                           excited_site=excited_site)["dt_max"]
+        say(f"sonic vacuum (F0 x {factor:g}) H={H:g}: dt_max = "
+            + ", ".join(f"{s} {sv[ei, si]:.3g}" for si, s in enumerate(schemes)))
+    return sv, sonic
+
+
 def stability_scan(chain, alphas, energies, schemes, models=("hertz", "fput"), t_final: float = 1e3,
                    bound: float = 1e-2, rel_tol: float = 1e-2, sonic_factor: float | None = 1e-6,
                    sonic_energies=None, excited_site: int = 21, progress=None):
@@ -250,54 +289,32 @@ def stability_scan(chain, alphas, energies, schemes, models=("hertz", "fput"), t
     say = progress or (lambda message: None)
     alphas, energies = [float(a) for a in alphas], [float(e) for e in energies]
     schemes, models = list(schemes), list(models)
-    shape = (len(models), len(alphas), len(energies), len(schemes))
-    dt_max, dt_unst, n_runs, t_stop = (np.full(shape, math.nan) for _ in range(4))
-    omega = np.empty(len(alphas))
-    for ai, alpha in enumerate(alphas):
-        c = chain_at_alpha(chain, alpha)
-        omega[ai] = linear_omega_max(c)
-        for mi, m in enumerate(models):
-            for ei, H in enumerate(energies):
-                start = time.perf_counter()
-                for si, s in enumerate(schemes):
-                    r = largest_stable_dt(m, c, H, s, t_final, bound, rel_tol=rel_tol,
-                                          excited_site=excited_site)
-                    dt_max[mi, ai, ei, si], dt_unst[mi, ai, ei, si] = r["dt_max"], r["dt_unstable"]
-                    n_runs[mi, ai, ei, si], t_stop[mi, ai, ei, si] = r["runs"], r["t_stopped"]
-                say(f"{m} alpha={alpha:g} H={H:g}: dt_max*omega_max = "
-                    + ", ".join(f"{s} {dt_max[mi, ai, ei, si] * omega[ai]:.3g}" for si, s in enumerate(schemes))
-                    + f" ({time.perf_counter() - start:.1f} s)")
+    grid = _steps_over_grid(chain, alphas, energies, schemes, models, t_final, bound, rel_tol, excited_site, say)
     one = {"units": "1"}
     dims = ("model", "alpha", "energy", "scheme")
     data = {
-        "dt_max": (dims, dt_max, {**one, "long_name": "largest stable time step (units 1/omega_max of the homogeneous chain)",
+        "dt_max": (dims, grid["dt_max"], {**one, "long_name": "largest stable time step (units 1/omega_max of the homogeneous chain)",
                                   "comment": f"relative energy error <= {bound:g} up to t = {t_final:g}, and at every smaller step of the ladder"}),
-        "dt_unstable": (dims, dt_unst, {**one, "long_name": "smallest unstable step found (upper end of the bisection bracket)"}),
-        "t_stopped": (dims, t_stop, {**one, "long_name": "time at which the run at dt_unstable broke the bound"}),
-        "bisection_runs": (dims, n_runs, {**one, "long_name": "runs used by the search"}),
-        "omega_max": ("alpha", omega, {**one, "long_name": "largest linear frequency of the chain"}),
+        "dt_unstable": (dims, grid["dt_unstable"], {**one, "long_name": "smallest unstable step found (upper end of the bisection bracket)"}),
+        "t_stopped": (dims, grid["t_stopped"], {**one, "long_name": "time at which the run at dt_unstable broke the bound"}),
+        "bisection_runs": (dims, grid["bisection_runs"], {**one, "long_name": "runs used by the search"}),
+        "omega_max": ("alpha", grid["omega_max"], {**one, "long_name": "largest linear frequency of the chain"}),
         "linear_bound": ("scheme", np.array([linear_stability_bound(s) for s in schemes]),
                          {**one, "long_name": "linear stability bound x_s: first omega dt with an unstable harmonic step"}),
         "linear_bound_wide": ("scheme", np.array([linear_stability_bound(s, WIDE) for s in schemes]), {
             **one, "long_name": f"first omega dt of an instability interval at least {WIDE:g} wide",
             "comment": "narrower resonance intervals below it are usually missed by a discrete spectrum"}),
     }
-    data["dt_max_omega"] = (dims, dt_max * omega[None, :, None, None],
+    data["dt_max_omega"] = (dims, grid["dt_max"] * grid["omega_max"][None, :, None, None],
                             {**one, "long_name": "dt_max * omega_max (the linear estimate is linear_bound)"})
     coords = {"model": models, "alpha": ("alpha", np.array(alphas), {**one, "long_name": "disorder strength"}),
               "energy": ("energy", np.array(energies), {**one, "long_name": "total energy H"}),
               "scheme": schemes}
     attrs = {}
     if sonic_factor is not None:
-        sonic = sonic_vacuum_chain(chain, sonic_factor)
         sonic_energies = energies if sonic_energies is None else [float(e) for e in sonic_energies]
-        sv = np.full((len(sonic_energies), len(schemes)), math.nan)
-        for ei, H in enumerate(sonic_energies):
-            for si, s in enumerate(schemes):
-                sv[ei, si] = largest_stable_dt("hertz", sonic, H, s, t_final, bound, rel_tol=rel_tol,
-                                               excited_site=excited_site)["dt_max"]
-            say(f"sonic vacuum (F0 x {sonic_factor:g}) H={H:g}: dt_max = "
-                + ", ".join(f"{s} {sv[ei, si]:.3g}" for si, s in enumerate(schemes)))
+        sv, sonic = _sonic_vacuum_steps(chain, sonic_factor, sonic_energies, schemes, t_final, bound, rel_tol,
+                                        excited_site, say)
         coords["sonic_energy"] = ("sonic_energy", np.array(sonic_energies), {**one, "long_name": "total energy H (near-sonic-vacuum chain)"})
         data["sonic_dt_max"] = (("sonic_energy", "scheme"), sv, {
             **one, "long_name": "largest stable time step of Hertz on the near-sonic-vacuum chain",

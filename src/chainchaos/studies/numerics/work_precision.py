@@ -56,6 +56,60 @@ def _score(run, ref) -> tuple[float, float]:
     return ps, dl
 
 
+#: What each run of the study records (one value per case and run).
+RUN_QUANTITIES = ("seconds", "cpu_seconds", "energy_error", "phase_space_error", "lambda_error", "lambda_final",
+                  "force_evaluations", "n_steps")
+#: What each case's reference run records.
+REFERENCE_QUANTITIES = ("reference_lambda", "reference_phase_uncertainty", "reference_lambda_uncertainty",
+                        "reference_energy_error", "reference_seconds", "reference_max_open_gaps",
+                        "reference_open_fraction", "reference_bonds_ever_open", "reference_dt")
+
+
+def _reference_values(model, ref: dict, ref_dt: float) -> dict:
+    """The :data:`REFERENCE_QUANTITIES` of one case's reference run (the contact statistics are
+    zero for a model whose bonds never open)."""
+    r = ref["run"]
+    gaps = model.has_gaps
+    return {"reference_lambda": r.lambda_final, "reference_phase_uncertainty": ref["phase_uncertainty"],
+            "reference_lambda_uncertainty": ref["lambda_uncertainty"], "reference_energy_error": r.max_energy_error,
+            "reference_seconds": r.seconds, "reference_max_open_gaps": r.max_open_gaps if gaps else 0,
+            "reference_open_fraction": r.open_fraction if gaps else 0.0,
+            "reference_bonds_ever_open": r.bonds_ever_open if gaps else 0, "reference_dt": ref_dt}
+
+
+def _case_runs(model, chain, energy: float, runs: list, ref: dict, floor_factor: float, t_final: float,
+               t_probe: float, repeats: int, repeat_below: float, common: dict, say) -> list:
+    """Every run of one case, in order: (status, values of :data:`RUN_QUANTITIES`) per run, None
+    for a splitting run skipped because its scheme reached the floor (floor_factor x the
+    reference's uncertainty, or round-off) at a larger step."""
+    ps_floor = max(floor_factor * ref["phase_uncertainty"], ROUND_OFF)
+    dl_floor = max(floor_factor * ref["lambda_uncertainty"], ROUND_OFF)
+    floored, out = set(), []
+    name = case_name(model.name, energy)
+    for kind, method, dt, tol in runs:
+        if kind == "splitting" and method in floored:
+            out.append(None)
+            continue
+        if kind == "splitting":
+            run = run_scheme(model, chain, energy, method, dt, t_final, t_probe, repeats=repeats,
+                             repeat_below=repeat_below, stop_error=1.0, **common)
+        else:
+            run = run_solve_ivp(model, chain, energy, method, tol, t_final, t_probe, repeats=repeats,
+                                repeat_below=repeat_below, excited_site=common["excited_site"],
+                                deviation_seed=common["deviation_seed"])
+        ps, dl = _score(run, ref)
+        values = dict(seconds=run.seconds, cpu_seconds=run.cpu_seconds, energy_error=run.max_energy_error,
+                      phase_space_error=ps, lambda_error=dl, lambda_final=run.lambda_final,
+                      force_evaluations=run.force_evaluations, n_steps=run.n_steps)
+        out.append((STATUS["ok"] if run.stable else STATUS["unstable"], values))
+        say(f"{name}: {method} {'dt' if kind == 'splitting' else 'rtol'}="
+            f"{dt if kind == 'splitting' else tol:g}: {run.seconds:.3g} s, energy {run.max_energy_error:.2e}, "
+            f"phase {ps:.2e}, Lambda {dl:.2e}{'' if run.stable else ' UNSTABLE'}")
+        if kind == "splitting" and run.stable and ps <= ps_floor and dl <= dl_floor:
+            floored.add(method)
+    return out
+
+
 def work_precision(chain, cases, schemes=None, dts=None, tolerances=None, t_final: float = 1e3,
                    t_probe: float = 100.0, reference: dict | None = None, floor_factor: float = 10.0,
                    check_interval: float = 1.0, repeats: int = 3, repeat_below: float = 0.5,
@@ -82,15 +136,10 @@ def work_precision(chain, cases, schemes=None, dts=None, tolerances=None, t_fina
 
     runs = [("splitting", s, dt, math.nan) for s in schemes for dt in dts]
     runs += [("solve_ivp", m, math.nan, tol) for m in tolerances for tol in sorted(tolerances[m], reverse=True)]
-    R, C = len(runs), len(cases)
-    shape = (C, R)
-    out = {k: np.full(shape, math.nan) for k in ("seconds", "cpu_seconds", "energy_error", "phase_space_error", "lambda_error",
-                                                 "lambda_final", "force_evaluations", "n_steps")}
+    shape = (len(cases), len(runs))
+    out = {k: np.full(shape, math.nan) for k in RUN_QUANTITIES}
     status = np.full(shape, STATUS["skipped"], dtype=np.int8)
-    per_case = {k: np.full(C, math.nan) for k in (
-        "reference_lambda", "reference_phase_uncertainty", "reference_lambda_uncertainty",
-        "reference_energy_error", "reference_seconds", "reference_max_open_gaps", "reference_open_fraction",
-        "reference_bonds_ever_open", "reference_dt")}
+    per_case = {k: np.full(len(cases), math.nan) for k in REFERENCE_QUANTITIES}
     common = dict(check_interval=check_interval, excited_site=excited_site, deviation_seed=deviation_seed)
     warm_up(sorted({m for m, _ in cases}))
 
@@ -98,45 +147,39 @@ def work_precision(chain, cases, schemes=None, dts=None, tolerances=None, t_fina
         model = get_model(model_name)
         ref_dt = float(reference["dt"][model_name] if isinstance(reference["dt"], dict) else reference["dt"])
         ref = reference_run(model, chain, energy, reference["scheme"], ref_dt, t_final, t_probe, **common)
+        for k, v in _reference_values(model, ref, ref_dt).items():
+            per_case[k][ci] = v
         r = ref["run"]
-        per_case["reference_lambda"][ci] = r.lambda_final
-        per_case["reference_phase_uncertainty"][ci] = ref["phase_uncertainty"]
-        per_case["reference_lambda_uncertainty"][ci] = ref["lambda_uncertainty"]
-        per_case["reference_energy_error"][ci] = r.max_energy_error
-        per_case["reference_seconds"][ci] = r.seconds
-        per_case["reference_max_open_gaps"][ci] = r.max_open_gaps if model.has_gaps else 0
-        per_case["reference_open_fraction"][ci] = r.open_fraction if model.has_gaps else 0.0
-        per_case["reference_bonds_ever_open"][ci] = r.bonds_ever_open if model.has_gaps else 0
-        per_case["reference_dt"][ci] = ref_dt
         say(f"{case_name(model_name, energy)}: reference {reference['scheme']} dt={ref_dt:g} in {r.seconds:.1f} s, "
             f"Lambda={r.lambda_final:.6g}, uncertainty phase {ref['phase_uncertainty']:.2e} "
             f"Lambda {ref['lambda_uncertainty']:.2e}")
-        ps_floor = max(floor_factor * ref["phase_uncertainty"], ROUND_OFF)
-        dl_floor = max(floor_factor * ref["lambda_uncertainty"], ROUND_OFF)
-        floored = set()
-        for ri, (kind, method, dt, tol) in enumerate(runs):
-            if kind == "splitting":
-                if method in floored:
-                    continue
-                run = run_scheme(model, chain, energy, method, dt, t_final, t_probe, repeats=repeats,
-                                 repeat_below=repeat_below, stop_error=1.0, **common)
-            else:
-                run = run_solve_ivp(model, chain, energy, method, tol, t_final, t_probe, repeats=repeats,
-                                    repeat_below=repeat_below, excited_site=excited_site,
-                                    deviation_seed=deviation_seed)
-            ps, dl = _score(run, ref)
-            status[ci, ri] = STATUS["ok"] if run.stable else STATUS["unstable"]
-            vals = dict(seconds=run.seconds, cpu_seconds=run.cpu_seconds, energy_error=run.max_energy_error, phase_space_error=ps,
-                        lambda_error=dl, lambda_final=run.lambda_final, force_evaluations=run.force_evaluations,
-                        n_steps=run.n_steps)
-            for k, v in vals.items():
-                out[k][ci, ri] = v
-            say(f"{case_name(model_name, energy)}: {method} {'dt' if kind == 'splitting' else 'rtol'}="
-                f"{dt if kind == 'splitting' else tol:g}: {run.seconds:.3g} s, energy {run.max_energy_error:.2e}, "
-                f"phase {ps:.2e}, Lambda {dl:.2e}{'' if run.stable else ' UNSTABLE'}")
-            if kind == "splitting" and run.stable and ps <= ps_floor and dl <= dl_floor:
-                floored.add(method)
+        done = _case_runs(model, chain, energy, runs, ref, floor_factor, t_final, t_probe, repeats, repeat_below,
+                          common, say)
+        for ri, result in enumerate(done):
+            if result is not None:
+                status[ci, ri] = result[0]
+                for k, v in result[1].items():
+                    out[k][ci, ri] = v
 
+    parameters = {"cases": [list(c) for c in cases], "schemes": schemes, "dts": list(dts),
+                  "tolerances": {k: list(v) for k, v in tolerances.items()}, "t_final": t_final,
+                  "t_probe": t_probe, "reference": reference, "floor_factor": floor_factor,
+                  "check_interval": check_interval, "repeats": repeats, "repeat_below": repeat_below,
+                  "excited_site": excited_site, "deviation_seed": deviation_seed, "chain_seed": chain.seed,
+                  "alpha": chain.alpha}
+    ds = _dataset(cases, runs, out, status, per_case)
+    ds.attrs.update(provenance_attrs(parameters))
+    ds.attrs.update(title="chainchaos work-precision measurements", t_final=float(t_final),
+                    t_probe=float(t_probe), reference_scheme=reference["scheme"],
+                    floor_factor=float(floor_factor), check_interval=float(check_interval),
+                    seed=-1 if chain.seed is None else int(chain.seed), alpha=float(chain.alpha),
+                    comment="status 'skipped': the scheme's errors had reached floor_factor x the reference "
+                            "uncertainty (or round-off) at a larger step")
+    return ds
+
+
+def _dataset(cases: list, runs: list, out: dict, status: np.ndarray, per_case: dict) -> xr.Dataset:
+    """The measurements on (case, run), with the reference runs per case, as a Dataset."""
     kinds, methods, dt_c, tol_c = zip(*runs)
     order = [float(get_scheme(m).order) if k == "splitting" else float(IVP_ORDER[m]) for k, m, _, _ in runs]
     one = {"units": "1"}
@@ -169,28 +212,14 @@ def work_precision(chain, cases, schemes=None, dts=None, tolerances=None, t_fina
         "case": ("case", [case_name(m, e) for m, e in cases], {"long_name": "model and energy"}),
         "model": ("case", [m for m, _ in cases], {"long_name": "model"}),
         "energy": ("case", np.array([e for _, e in cases]), {**one, "long_name": "total energy H"}),
-        "run": ("run", np.arange(R), {**one, "long_name": "run index"}),
+        "run": ("run", np.arange(len(runs)), {**one, "long_name": "run index"}),
         "method": ("run", list(methods), {"long_name": "splitting scheme or solve_ivp method"}),
         "kind": ("run", list(kinds), {"long_name": "splitting (fixed step) or solve_ivp (adaptive)"}),
         "dt": ("run", np.array(dt_c), {**one, "long_name": "time step (units 1/omega_max); NaN for solve_ivp"}),
         "rtol": ("run", np.array(tol_c), {**one, "long_name": "relative tolerance (atol = rtol); NaN for splitting"}),
         "nominal_order": ("run", np.array(order), {**one, "long_name": "nominal order of the method"}),
     }
-    ds = xr.Dataset(data, coords=coords)
-    parameters = {"cases": [list(c) for c in cases], "schemes": schemes, "dts": list(dts),
-                  "tolerances": {k: list(v) for k, v in tolerances.items()}, "t_final": t_final,
-                  "t_probe": t_probe, "reference": reference, "floor_factor": floor_factor,
-                  "check_interval": check_interval, "repeats": repeats, "repeat_below": repeat_below,
-                  "excited_site": excited_site, "deviation_seed": deviation_seed, "chain_seed": chain.seed,
-                  "alpha": chain.alpha}
-    ds.attrs.update(provenance_attrs(parameters))
-    ds.attrs.update(title="chainchaos work-precision measurements", t_final=float(t_final),
-                    t_probe=float(t_probe), reference_scheme=reference["scheme"],
-                    floor_factor=float(floor_factor), check_interval=float(check_interval),
-                    seed=-1 if chain.seed is None else int(chain.seed), alpha=float(chain.alpha),
-                    comment="status 'skipped': the scheme's errors had reached floor_factor x the reference "
-                            "uncertainty (or round-off) at a larger step")
-    return ds
+    return xr.Dataset(data, coords=coords)
 
 
 def merge_cases(parts: list[xr.Dataset]) -> xr.Dataset:
