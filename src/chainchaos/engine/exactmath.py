@@ -22,7 +22,7 @@ the replacements the package's data paths use:
    equal ``math.log10(x)`` and ``10.0 ** x``). glibc picks its routines by CPU only between a
    variant for CPUs with FMA and one without, which round a few arguments differently; every
    x86-64 CPU with AVX2 has FMA (x86-64-v3), so AVX2 and AVX-512 machines agree. They serve only
-   for the sample steps (chainchaos.run.scenes.sample_steps), integers after rounding.
+   for the sample steps (chainchaos.run.driver.sample_steps), integers after rounding.
 """
 
 import math

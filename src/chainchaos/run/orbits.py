@@ -26,7 +26,7 @@ from chainchaos.run.settings import RunSettings
 from chainchaos.system.initial import initial_deviation, initial_displacement
 from chainchaos.system.models import MODELS, get_model
 
-#: Per-orbit series on the sample times, observables of the registry (``scene_observables``), with
+#: Per-orbit series on the sample times, observables of the registry (``observe.registry``), with
 #: their value at samples where the state is not measured (no initial state, or non-finite);
 #: None: kept as the engine recorded it.
 SERIES = {"participation": np.nan, "log_growth": None, "eta": np.nan, "energy_error": np.inf}
