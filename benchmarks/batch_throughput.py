@@ -16,9 +16,12 @@ the kernels are single-threaded, and CPU time is far less disturbed than wall ti
 busy machine). The ratio printed is batch throughput / single throughput on the same B
 trajectories; the single engine's row is its throughput on the largest B.
 
-The last line is a bound on the Hertz ratio: either engine takes one square root per bond and force
-evaluation, a vectorised loop of independent square roots gives the least time they can take on this
-CPU, and the ratio cannot exceed the single engine's time per step over that floor.
+The last lines measure the square-root floor: either engine takes one square root per bond and
+force evaluation, and a vectorised loop of independent hardware square roots gives the least time
+they take on this CPU. They print each Hertz time per trajectory-step as a ratio to that floor,
+and the bound it sets on the batch/single ratio. The square root of the kernels (the machine
+line's ``square root``) is chosen by ``CHAINCHAOS_SQRT`` (hardware or fma, the same bits;
+chainchaos.engine.sqrt): run the script once with each to see which is faster on a CPU.
 """
 
 import argparse
@@ -133,6 +136,8 @@ def main(argv=None):
     hertz_single = max((r for r in rows if r["model"] == "hertz"), key=lambda r: r["lanes"])["single_rate"]
     print(f"hertz square roots alone ({roots} per step and trajectory, {1e9 * per_root:.2f} ns each): "
           f"{1e6 * floor:.3f} us/step/traj, so batch/single <= {1 / (floor * hertz_single):.2f}")
+    ratios = ", ".join(f"batch {r['lanes']} {1 / (r['rate'] * floor):.2f}" for r in rows if r["model"] == "hertz")
+    print(f"hertz time per step and trajectory / square-root floor: {ratios}, single {1 / (hertz_single * floor):.2f}")
     if a.json:
         with open(a.json, "w") as fh:
             json.dump({"machine": machine_line(), "N": chain.N, "integrator": a.integrator, "dt": a.dt, "tangent": tangent,

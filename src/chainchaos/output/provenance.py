@@ -6,6 +6,7 @@ that a difference between two files can be traced to its build.
 """
 
 import json
+import os
 import platform
 import subprocess
 from functools import lru_cache
@@ -109,14 +110,22 @@ def numpy_simd_targets() -> str:
         return ""
 
 
+def square_root() -> str:
+    """The square root the Hertz kernels use (``CHAINCHAOS_SQRT``: hardware or fma; the same bits)."""
+    from chainchaos.engine.cache import SQRT_VARIABLE
+
+    return os.environ.get(SQRT_VARIABLE, "").strip() or "hardware"
+
+
 def machine_attrs() -> dict:
     """The machine that wrote a file: CPU model, vector extensions, NumPy's SIMD targets, Numba's
-    target CPU and the library versions."""
+    target CPU, the kernels' square root and the library versions."""
     return {
         "cpu_model": cpu_model(),
         "cpu_vector_extensions": cpu_vector_extensions(),
         "numpy_simd_targets": numpy_simd_targets(),
         "numba_target_cpu": numba_target_cpu(),
+        "square_root": square_root(),
         **library_versions(),
     }
 
@@ -130,11 +139,12 @@ def machine_line(attrs: dict | None = None) -> str:
         from chainchaos.engine.simd import LANES
 
         attrs = {"cpu_model": cpu_model(), "cpu_vector_extensions": cpu_vector_extensions(),
-                 "numba_target_cpu": numba_target_cpu()}
+                 "numba_target_cpu": numba_target_cpu(), "square_root": square_root()}
         width = f" | SIMD width: {LANES} doubles"
     extensions = attrs.get("cpu_vector_extensions") or "unknown"
+    root = f" | square root: {attrs['square_root']}" if attrs.get("square_root") else ""
     return (f"CPU: {attrs.get('cpu_model') or '?'} | vector extensions: {extensions} | "
-            f"Numba target: {attrs.get('numba_target_cpu') or '?'}{width}")
+            f"Numba target: {attrs.get('numba_target_cpu') or '?'}{width}{root}")
 
 
 def provenance_attrs(parameters: dict) -> dict:

@@ -9,8 +9,9 @@ kernels of the bond law ``force(P, left, right)``, ``force_stiffness(P, left, ri
 k = df/dD), ``potential(P, left, right)`` (V, zero at rest) and, for a model whose bonds can
 open, ``opening(P, left, right)`` (negative where the bond is open). P is the tuple of the bond's
 parameters, ``left`` and ``right`` the displacements u_{b-1} and u_b: floats, or vectors of the
-batch engine (``chainchaos.engine.simd``), for which force and stiffness must use only + - *, ``max``,
-``np.sqrt`` and ``np.expm1`` (each lane then gets exactly the scalar result).
+batch engine (``chainchaos.engine.simd``), for which force and stiffness must use only + - *,
+``max``, ``np.sqrt`` (or ``chainchaos.engine.sqrt.root``) and ``np.expm1`` (each lane then gets
+exactly the scalar result).
 
 A model is also a Numba type: passed to a compiled function it selects its kernels at compile
 time (``bond_force`` and the other dispatchers below), so one engine source serves every model
