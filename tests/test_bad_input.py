@@ -350,6 +350,8 @@ CLI_CASES = [
     (_set(SIMULATE, "--deviation-seed", "-3"), "--deviation-seed", "an integer >= 0"),
     (_set(SIMULATE, "--samples-per-decade", "0"), "--samples-per-decade", "an integer >= 1"),
     (_set(SIMULATE, "--max-energy-error", "nan"), "--max-energy-error", "a finite number > 0"),
+    (_set(SIMULATE, "--exponents", "-1"), "--exponents", "an integer >= 0"),
+    (_set(SIMULATE, "--gali-order", "1"), "--gali-order", "an integer >= 2"),
     (_set(SIMULATE, "--out", "a_directory.nc"), "--out", "a file path"),
     (SIMULATE[:SIMULATE.index("--energy")] + ["--t-final", "10", "--out", "OUT"], "--energy", "required"),
     # ensemble

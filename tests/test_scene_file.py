@@ -26,9 +26,13 @@ def test_only_requested_observables_are_written(tmp_path, chain):
 
 
 def test_every_observable_of_the_contract(chain):
-    ds = simulate(chain, SceneParameters(model="hertz", energy=1.8, t_final=100.0, dt=0.01))
+    ds = simulate(chain, SceneParameters(model="hertz", energy=1.8, t_final=100.0, dt=0.01, observables=OBSERVABLES,
+                                         exponents=4, gali_order=3))
     for name in OBSERVABLES + ("initial_deviation",):
         assert name in ds, name
+    assert ds.lyapunov_spectrum.dims == ("time", "exponent") and list(ds.exponent.values) == [1, 2, 3, 4]
+    assert np.array_equal(ds.lyapunov_spectrum.values[:, 0], ds.mlce.values, equal_nan=True)
+    assert ds.log_gali.attrs["k"] == 3 and np.all(ds.sali.values[1:] <= np.sqrt(2.0))
     assert np.allclose(ds.energy_density.sum("site"), 1.0) and np.allclose(ds.dvd.sum("site"), 1.0)
     assert np.all((ds.gap_fraction >= 0) & (ds.gap_fraction <= 1))
     assert np.all(ds.n_gaps_max >= ds.n_gaps)

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from chainchaos.observe.registry import GAPS, MODES, OBSERVABLES, REGISTRY, TANGENT, needing
+from chainchaos.observe.registry import ALIGNMENT, GAPS, MODES, OBSERVABLES, REGISTRY, SPECTRUM, TANGENT, needing
 from chainchaos.paper import panels
 from chainchaos.run.scenes import SceneParameters, simulate
 from chainchaos.system.chain import random_chain
@@ -38,6 +38,9 @@ def test_each_observable_is_written_alone_with_its_dims_and_nothing_it_does_not_
 
 
 def test_needs_split_the_observables_as_the_engines_run_them():
-    assert needing(TANGENT) == {"mlce", "log_growth", "dvd", "dvd_participation"}
+    assert needing(TANGENT) == {"mlce", "log_growth", "dvd", "dvd_participation", "lyapunov_spectrum", "ks_entropy",
+                                "sali", "log_gali"}
     assert needing(GAPS) == {"gap_open", "gap_fraction", "n_gaps"}
     assert needing(MODES) == {"mode_energy", "spectral_entropy", "eta"}
+    assert needing(SPECTRUM) == {"lyapunov_spectrum", "ks_entropy"} and needing(ALIGNMENT) == {"sali", "log_gali"}
+    assert needing(SPECTRUM) | needing(ALIGNMENT) <= needing(TANGENT)

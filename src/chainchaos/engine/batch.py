@@ -154,6 +154,77 @@ def _kick_only(tangent, N, Z, c):
             g_left = g
 
 
+#: An extra deviation vector's buffer, per lane: row r holds its dq of bead r-1 (rows 0 and N+1,
+#: the walls, stay zero) and its dp of bead r, as in a block's rows (``QUANTITIES``).
+_VQ, _VP = 0, LANES
+VROW = 2 * LANES
+
+
+@njit(cache=True, inline="always")
+def _vector_base(N, j):
+    """Where extra deviation vector j starts in the buffer of a block's extra vectors."""
+    return j * (N + 2) * VROW
+
+
+@njit(cache=True, error_model="numpy")
+def _drift_kick_vectors(N, Z, V, extra, drift, kick, a, c):
+    """drift(a) (if ``drift``) then kick(c) (if ``kick``) of the ``extra`` deviation vectors in V
+    with the inverse masses and the stiffnesses stored in the block Z (the orbit's sweep stored
+    them at the drifted positions): per lane and element the operations of ``_sweep`` on the
+    block's own deviation vector, dq += a M^-1 dp, g_b = k_b (dq_{b-1} - dq_b),
+    dp += c (g_b - g_{b+1}), so a vector equal to it stays equal to it, to the bit."""
+    literally(drift)
+    literally(kick)
+    for j in range(extra):
+        base = _vector_base(N, j)
+        if drift:
+            for n in range(N):
+                row = base + (n + 1) * VROW
+                dq = vload(V, row + _VQ) + a * vload(Z, n * ROW + _IM) * vload(V, base + n * VROW + _VP)
+                vstore(V, row + _VQ, dq)
+        if kick:
+            dq_left = vload(V, base + _VQ)  # the wall
+            g_left = dq_left
+            for b in range(N + 1):
+                dq_right = vload(V, base + (b + 1) * VROW + _VQ)
+                g = vload(Z, b * ROW + _K) * (dq_left - dq_right)
+                if b >= 1:
+                    row = base + (b - 1) * VROW + _VP
+                    vstore(V, row, vload(V, row) + c * (g_left - g))
+                g_left, dq_left = g, dq_right
+
+
+@njit(cache=True, inline="always")
+def _component(N, Z, V, lane, i, n, momentum):
+    """Component n of deviation vector i of a lane (i = -1: the block's own vector) in its dq
+    (``momentum`` False) or dp part."""
+    if i < 0:
+        return Z[n * ROW + _DP + lane] if momentum else Z[(n + 1) * ROW + _DQ + lane]
+    base = _vector_base(N, i)
+    return V[base + n * VROW + _VP + lane] if momentum else V[base + (n + 1) * VROW + _VQ + lane]
+
+
+@njit(cache=True, error_model="numpy")
+def _normalise_vectors(N, Z, V, lane, first, last, orthogonal, growth):
+    """Extra deviation vectors first..last-1 of one lane, each made orthogonal to the block's own
+    vector and the extra vectors before it (modified Gram-Schmidt, if ``orthogonal``) and divided
+    by its norm, ln of the norm added to growth[j, lane]. The norm is computed as the engine
+    computes the block's own vector's (``integrators._renormalise``)."""
+    for j in range(first, last):
+        base = _vector_base(N, j)
+        if orthogonal:
+            for i in range(-1, j):
+                dot = 0.0
+                for n in range(N):
+                    dot += (_component(N, Z, V, lane, i, n, False) * V[base + (n + 1) * VROW + _VQ + lane]
+                            + _component(N, Z, V, lane, i, n, True) * V[base + n * VROW + _VP + lane])
+                for n in range(N):
+                    V[base + (n + 1) * VROW + _VQ + lane] -= dot * _component(N, Z, V, lane, i, n, False)
+                    V[base + n * VROW + _VP + lane] -= dot * _component(N, Z, V, lane, i, n, True)
+        growth[j, lane] += _renormalise(V[base + VROW + _VQ + lane:base + (N + 1) * VROW + _VQ + lane:VROW],
+                                        V[base + _VP + lane:base + N * VROW + _VP + lane:VROW])
+
+
 @njit(cache=True, error_model="numpy")
 def _count_gaps(model, N, Z, gap_steps, max_gaps):
     """Open bonds of every lane (the model's opening < 0): one step added to
@@ -171,9 +242,13 @@ def _count_gaps(model, N, Z, gap_steps, max_gaps):
 
 @njit(cache=True, error_model="numpy")
 def _advance_block(model, tangent, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, gap_steps,
-                   log_growth, max_gaps, bad):
+                   log_growth, max_gaps, bad, V, extra, orthogonal, vector_growth):
     """``advance_batch`` for one block in its buffer Z; gap_steps is (N+1) x LANES, flattened, and
-    with max_gaps held as doubles."""
+    with max_gaps held as doubles. With the tangent map, the ``extra`` deviation vectors in V
+    (``_vector_base``) follow the block's own one through every drift and kick (the stiffnesses
+    are then stored at every sweep); at every check the first ``orthogonal`` of them are
+    orthonormalised against it and each other, the rest normalised, and ln of their norms added
+    to vector_growth (extra, LANES)."""
     literally(tangent)
     n_stages = drifts.shape[0]
     force_valid = False
@@ -182,16 +257,25 @@ def _advance_block(model, tangent, N, Z, kicks, drifts, dt, n_steps, check_every
         if c != 0.0:
             if force_valid:
                 _kick_only(tangent, N, Z, c)
+            elif extra:
+                _sweep(model, tangent, False, True, True, N, Z, 0.0, c)
             else:
                 _sweep(model, tangent, False, True, False, N, Z, 0.0, c)
+            if extra:
+                _drift_kick_vectors(N, Z, V, extra, False, True, 0.0, c)
         for i in range(n_stages):
             a, c = drifts[i] * dt, kicks[i + 1] * dt
             if c == 0.0:
                 _sweep(model, tangent, True, False, False, N, Z, a, c)
-            elif i == n_stages - 1:  # the next step's first kick reuses these forces
-                _sweep(model, tangent, True, True, True, N, Z, a, c)
+            elif i == n_stages - 1 or extra:  # the forces are kept for the next step's first kick
+                _sweep(model, tangent, True, True, True, N, Z, a, c)  # or the extra vectors' kick
             else:
                 _sweep(model, tangent, True, True, False, N, Z, a, c)
+            if extra:
+                if c == 0.0:
+                    _drift_kick_vectors(N, Z, V, extra, True, False, a, c)
+                else:
+                    _drift_kick_vectors(N, Z, V, extra, True, True, a, c)
             force_valid = c != 0.0
         if track_gaps:
             _count_gaps(model, N, Z, gap_steps, max_gaps)
@@ -204,13 +288,16 @@ def _advance_block(model, tangent, N, Z, kicks, drifts, dt, n_steps, check_every
                     log_growth[j] += _renormalise(Z[ROW + _DQ + j:(N + 1) * ROW + _DQ + j:ROW],
                                                   Z[_DP + j:N * ROW + _DP + j:ROW])
                     s += Z[ROW + _DQ + j]
+                    if extra:
+                        _normalise_vectors(N, Z, V, j, 0, orthogonal, True, vector_growth)
+                        _normalise_vectors(N, Z, V, j, orthogonal, extra, False, vector_growth)
                 if bad[j] < 0 and not np.isfinite(s):
                     bad[j] = step + 1
 
 
 @njit(cache=True, error_model="numpy")
 def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, tangent, check_every, track_gaps,
-                  gap_steps, log_growth, max_gaps, bad, lanes):
+                  gap_steps, log_growth, max_gaps, bad, lanes, xq, xp, orthogonal, x_growth):
     """Advance the first ``lanes`` of the B trajectories (q, p) of ``model`` (a ``chainchaos.system.models``
     Model), shape (N, B), and, if ``tangent``, their deviation vectors (dq, dp) by n_steps steps of
     the scheme (kicks, drifts), in blocks of LANES (the last padded by repeating its last lane).
@@ -221,17 +308,26 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
     first failed check if it is still < 0) and, with ``tangent``, its deviation vector
     renormalised, ln|v| added to ``log_growth[j]``. With ``track_gaps`` (a model whose bonds open)
     ``gap_steps[b, j]`` counts the steps bond b of lane j ends open and ``max_gaps[j]`` keeps the
-    largest number of simultaneously open bonds. All arrays are updated in place.
+    largest number of simultaneously open bonds. With the tangent map, ``xq, xp`` (K, N, B) are K
+    more deviation vectors of every trajectory, evolved by the same tangent map with the
+    trajectory's stiffnesses (computed once for all its vectors); at every check the first
+    ``orthogonal`` of them are orthonormalised against (dq, dp) and each other (modified
+    Gram-Schmidt) and the others normalised, ln of each norm added to ``x_growth[k, j]``. All
+    arrays are updated in place.
     """
     N = q.shape[0]
     B = lanes
+    extra = xq.shape[0] if tangent else 0
     Z = _aligned_zeros((N + 2) * ROW)
+    V = _aligned_zeros(max(extra, 1) * (N + 2) * VROW)
     block_gaps = _aligned_zeros((N + 1) * LANES)  # counts as doubles, exact below 2**53
     block_growth = np.zeros(LANES)
     block_max_gaps = _aligned_zeros(LANES)
     block_bad = np.zeros(LANES, dtype=np.int64)
+    block_x_growth = np.zeros((max(extra, 1), LANES))
     for first in range(0, B, LANES):
         Z[:] = 0.0
+        V[:] = 0.0
         for lane in range(LANES):
             j = min(first + lane, B - 1)  # padding lanes repeat the last trajectory
             for n in range(N):
@@ -240,6 +336,9 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
                 Z[n * ROW + _P + lane] = p[n, j]
                 Z[n * ROW + _DP + lane] = dp[n, j]
                 Z[n * ROW + _IM + lane] = inv_mass[n, j]
+                for k in range(extra):
+                    V[_vector_base(N, k) + (n + 1) * VROW + _VQ + lane] = xq[k, n, j]
+                    V[_vector_base(N, k) + n * VROW + _VP + lane] = xp[k, n, j]
             for b in range(N + 1):
                 for r in range(MAX_BOND_PARAMETERS):
                     Z[b * ROW + _B0 + r * LANES + lane] = bonds[r, b, j]
@@ -247,13 +346,15 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
             block_growth[lane] = log_growth[j]
             block_max_gaps[lane] = max_gaps[j]
             block_bad[lane] = bad[j]
+            for k in range(extra):
+                block_x_growth[k, lane] = x_growth[k, j]
         # the tangent flag literal: each case compiles to its own code without these branches
         if tangent:
             _advance_block(model, True, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
-                           block_gaps, block_growth, block_max_gaps, block_bad)
+                           block_gaps, block_growth, block_max_gaps, block_bad, V, extra, orthogonal, block_x_growth)
         else:
             _advance_block(model, False, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
-                           block_gaps, block_growth, block_max_gaps, block_bad)
+                           block_gaps, block_growth, block_max_gaps, block_bad, V, 0, 0, block_x_growth)
         for lane in range(min(LANES, B - first)):
             j = first + lane
             for n in range(N):
@@ -261,11 +362,16 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
                 dq[n, j] = Z[(n + 1) * ROW + _DQ + lane]
                 p[n, j] = Z[n * ROW + _P + lane]
                 dp[n, j] = Z[n * ROW + _DP + lane]
+                for k in range(extra):
+                    xq[k, n, j] = V[_vector_base(N, k) + (n + 1) * VROW + _VQ + lane]
+                    xp[k, n, j] = V[_vector_base(N, k) + n * VROW + _VP + lane]
             for b in range(N + 1):
                 gap_steps[b, j] = np.int64(block_gaps[b * LANES + lane])
             log_growth[j] = block_growth[lane]
             max_gaps[j] = np.int64(block_max_gaps[lane])
             bad[j] = block_bad[lane]
+            for k in range(extra):
+                x_growth[k, j] = block_x_growth[k, lane]
 
 
 class Batch:
@@ -276,9 +382,12 @@ class Batch:
     ``q, p, dq, dp`` are (N, B) arrays (trajectory index last); ``log_growth`` (B,) accumulates
     ln|v| over renormalisations, so Lambda(t) = log_growth / t as in ``integrators.advance``;
     ``gap_steps`` (N+1, B) and ``max_gaps`` (B,) accumulate the gap counts (the caller resets them).
+    ``xq, xp`` (K, N, B) are the problem's ``extra_vectors`` more deviation vectors per lane (its
+    spectrum's, orthonormalised, then GALI's, normalised, at every renormalisation) and
+    ``x_growth`` (K, B) their accumulated ln of the norms; they run in SIMD blocks only.
     """
 
-    def __init__(self, problem, q, p, dq=None, dp=None, serial_lanes: int = 0):
+    def __init__(self, problem, q, p, dq=None, dp=None, serial_lanes: int = 0, xq=None, xp=None):
         self.problem, self.model, self.scheme = problem, problem.model, problem.scheme
         self.inv_mass, self.bonds = problem.lane_parameters
         self.q = np.ascontiguousarray(q, dtype=float).copy()
@@ -291,6 +400,13 @@ class Batch:
         require(0 <= int(serial_lanes) <= B, "serial_lanes", serial_lanes, f"an integer from 0 to the {B} lanes")
         self.block_lanes = B - int(serial_lanes)
         self._serial = {j: problem.lane(j) for j in range(self.block_lanes, B)}
+        K = problem.extra_vectors
+        require(not (K and serial_lanes), "serial_lanes", serial_lanes, "0 with several deviation vectors per orbit")
+        self.xq = np.zeros((K, N, B)) if xq is None else np.ascontiguousarray(xq, dtype=float).copy()
+        self.xp = np.zeros((K, N, B)) if xp is None else np.ascontiguousarray(xp, dtype=float).copy()
+        require(self.xq.shape == self.xp.shape == (K, N, B), "extra deviation vectors", self.xq.shape,
+                f"(K, N, B) = {(K, N, B)}")
+        self.x_growth = np.zeros((K, B))
         self.gap_steps = np.zeros((N + 1, B), dtype=np.int64)
         self.max_gaps = np.zeros(B, dtype=np.int64)
         self.log_growth = np.zeros(B)
@@ -311,7 +427,8 @@ class Batch:
         if self.block_lanes:
             advance_batch(self.model, self.q, self.p, self.dq, self.dp, self.inv_mass, self.bonds, self.scheme.kicks,
                           self.scheme.drifts, pr.dt, int(n_steps), pr.tangent, pr.check_every, pr.track_gaps,
-                          self.gap_steps, self.log_growth, self.max_gaps, bad, self.block_lanes)
+                          self.gap_steps, self.log_growth, self.max_gaps, bad, self.block_lanes, self.xq, self.xp,
+                          pr.spectrum - 1, self.x_growth)
         for j, lane in self._serial.items():
             bad[j] = self._advance_serial(j, lane, int(n_steps))
         newly = (bad >= 0) & (self.bad < 0)

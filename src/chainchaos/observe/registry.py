@@ -22,6 +22,9 @@ from chainchaos.system.linear import modal_energies, normal_modes, participation
 from chainchaos.system.models import energy_density, get_model, open_bonds
 
 TANGENT, GAPS, MODES = "tangent", "gaps", "modes"
+#: Needs of the chaos indicators beyond the mLCE: deviation vectors kept orthonormal (the
+#: Lyapunov spectrum) or only normalised (SALI and GALI); both need the tangent map.
+SPECTRUM, ALIGNMENT = "spectrum", "alignment"
 
 
 class SampledRun:
@@ -29,11 +32,16 @@ class SampledRun:
     derive from them, each computed once on first use."""
 
     def __init__(self, model, chain, times, steps, Q, P, DQ, DP, log_growth, gap_steps, max_gaps, energy_error,
-                 deviation0):
+                 deviation0, spectrum_growth=None, log_gali=None, sali=None, gali_order=1):
         self.model, self.chain, self.times, self.steps = model, chain, times, steps
         self.Q, self.P, self.DQ, self.DP = Q, P, DQ, DP
         self.log_growth, self.gap_steps, self.max_gaps = log_growth, gap_steps, max_gaps
         self.energy_error, self.deviation0 = energy_error, deviation0
+        self.spectrum_growth, self.log_gali, self.sali, self.gali_order = spectrum_growth, log_gali, sali, gali_order
+
+    @cached_property
+    def spectrum(self) -> np.ndarray:
+        return obs.lyapunov_spectrum(self.spectrum_growth, self.times)
 
     @cached_property
     def energy_density(self) -> np.ndarray:
@@ -80,6 +88,7 @@ class Observable:
     dtype: type | None = None
     companions: tuple[str, ...] = ()  # written whenever this one is
     selectable: bool = True
+    by_default: bool = True  # among a model's observables when a scene names none (costly ones are not)
 
 
 def _registry(*entries: Observable) -> dict[str, Observable]:
@@ -100,6 +109,18 @@ REGISTRY: dict[str, Observable] = _registry(
     Observable("log_growth", ("time",), "logarithmic growth ln(|v(t)|/|v(0)|) = Lambda(t) t of the deviation vector",
                r"$\ln(|v|/|v_0|)$", lambda run: run.log_growth, frozenset({TANGENT}),
                companions=("initial_deviation",)),
+    Observable("lyapunov_spectrum", ("time", "exponent"), "finite-time Lyapunov exponents lambda_i(t)",
+               r"$\lambda_i$ [$\omega_{\max}$]", lambda run: run.spectrum, frozenset({TANGENT, SPECTRUM}),
+               companions=("initial_deviation",), by_default=False),
+    Observable("ks_entropy", ("time",), "Kolmogorov-Sinai entropy estimate: sum of the positive exponents",
+               r"$h_{\rm KS}$ [$\omega_{\max}$]", lambda run: obs.ks_entropy(run.spectrum),
+               frozenset({TANGENT, SPECTRUM}), companions=("initial_deviation",), by_default=False),
+    Observable("sali", ("time",), "smaller alignment index SALI of the mLCE vector and a second deviation vector",
+               "SALI", lambda run: run.sali, frozenset({TANGENT, ALIGNMENT}), companions=("initial_deviation",),
+               by_default=False),
+    Observable("log_gali", ("time",), "natural logarithm of the generalized alignment index GALI_k",
+               r"$\ln {\rm GALI}_k$", lambda run: run.log_gali, frozenset({TANGENT, ALIGNMENT}),
+               companions=("initial_deviation",), attrs=lambda run: {"k": np.int32(run.gali_order)}, by_default=False),
     Observable("dvd", ("time", "site"), "deviation vector density w_n", r"$w_n$", lambda run: run.dvd,
                frozenset({TANGENT}), companions=("initial_deviation",)),
     Observable("dvd_participation", ("time",), "participation number of the deviation vector density P_D",
@@ -153,5 +174,8 @@ def variables(run: SampledRun, wanted) -> dict:
 
 
 def model_observables(model: str) -> tuple:
-    """Every observable ``model`` has: the gap observables only where bonds open (Hertz)."""
-    return OBSERVABLES if get_model(model).has_gaps else tuple(o for o in OBSERVABLES if o not in needing(GAPS))
+    """The observables of ``model`` a scene computes when it names none: every one computed by
+    default (not the costly chaos indicators beyond the mLCE), the gap observables only where
+    bonds open (Hertz)."""
+    gaps = frozenset() if get_model(model).has_gaps else needing(GAPS)
+    return tuple(o for o in OBSERVABLES if REGISTRY[o].by_default and o not in gaps)

@@ -18,6 +18,7 @@ import numpy as np
 
 from chainchaos.engine import exactmath
 from chainchaos.errors import SimulationError
+from chainchaos.observe.formulas import log_volume, sali
 from chainchaos.observe.registry import SampledRun
 from chainchaos.system.models import open_bonds
 
@@ -42,7 +43,10 @@ def sample_steps(t_final: float, dt: float, per_decade: int, t_first: float) -> 
 class Samples:
     """The record of a problem's lanes on the sample steps, lane first: states (B, S, N), ln|v|,
     energy error and largest number of open gaps (B, S), gap counts (B, S, N+1); ``bad`` (B,) is
-    the step at which a lane turned non-finite (-1: never), ``H0`` (B,) the initial energies."""
+    the step at which a lane turned non-finite (-1: never), ``H0`` (B,) the initial energies.
+    With the problem's several deviation vectors: ``spectrum_growth`` (B, S, spectrum), the
+    accumulated ln of the norms of the orthonormalised vectors (column 0: ``log_growth``), and
+    ``log_gali`` and ``sali`` (B, S) of the mLCE vector with the GALI vectors (NaN without)."""
 
     problem: object
     steps: np.ndarray
@@ -56,6 +60,9 @@ class Samples:
     energy_error: np.ndarray
     H0: np.ndarray
     bad: np.ndarray
+    spectrum_growth: np.ndarray
+    log_gali: np.ndarray
+    sali: np.ndarray
 
     @property
     def times(self) -> np.ndarray:
@@ -65,20 +72,36 @@ class Samples:
         """Lane j as the sampled run the observable registry reads."""
         return SampledRun(self.problem.model, self.problem.chains[j], self.times, self.steps, self.Q[j], self.P[j],
                           self.DQ[j], self.DP[j], self.log_growth[j], self.gap_steps[j], self.max_gaps[j],
-                          self.energy_error[j], deviation0)
+                          self.energy_error[j], deviation0, self.spectrum_growth[j], self.log_gali[j], self.sali[j],
+                          self.problem.gali)
 
 
-def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto") -> Samples:
+def _alignment(engine, samples: Samples, i: int) -> None:
+    """ln GALI_k and SALI of every lane's mLCE vector and GALI vectors (unit vectors after every
+    call of the engine) at sample i."""
+    first = engine.problem.spectrum - 1
+    for j in range(engine.problem.lanes):
+        W = np.concatenate([np.concatenate([engine.dq[:, j], engine.dp[:, j]])[None, :],
+                            np.concatenate([engine.xq[first:, :, j], engine.xp[first:, :, j]], axis=1)])
+        samples.log_gali[j, i] = log_volume(W)
+        samples.sali[j, i] = sali(W[0], W[1])
+
+
+def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq0=None, xp0=None) -> Samples:
     """Integrate the lanes of ``problem`` from q0, p0, dq0, dp0 ((N, B) each) on the engine of
     ``kind`` (``Problem.engine``) and record them at the step indices ``steps`` (increasing, from
-    0); call every monitor after every sample."""
-    engine = problem.engine(q0, p0, dq0, dp0, kind)
+    0); call every monitor after every sample. ``xq0, xp0`` (K, N, B) are the problem's extra
+    deviation vectors (``Problem.extra_vectors``: the spectrum's, then GALI's), unit vectors."""
+    engine = problem.engine(q0, p0, dq0, dp0, kind, xq0, xp0)
     N, B, S = problem.N, problem.lanes, len(steps)
     Q, P, DQ, DP = (np.empty((B, S, N)) for _ in range(4))
     samples = Samples(problem, np.asarray(steps), Q, P, DQ, DP, np.zeros((B, S)),
                       np.zeros((B, S, N + 1), dtype=np.int64), np.zeros((B, S), dtype=np.int64), np.zeros((B, S)),
-                      np.zeros(B), engine.bad)
+                      np.zeros(B), engine.bad, np.zeros((B, S, problem.spectrum)), np.full((B, S), np.nan),
+                      np.full((B, S), np.nan))
     Q[:, 0], P[:, 0], DQ[:, 0], DP[:, 0] = engine.q.T, engine.p.T, engine.dq.T, engine.dp.T
+    if problem.gali > 1:
+        _alignment(engine, samples, 0)
     samples.H0[:] = problem.energies(Q[:, 0], P[:, 0])
     if problem.track_gaps:
         samples.max_gaps[:, 0] = [open_bonds(problem.model, c, Q[j, 0]).sum() for j, c in enumerate(problem.chains)]
@@ -90,6 +113,10 @@ def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto") ->
         engine.advance(int(steps[i] - steps[i - 1]))
         Q[:, i], P[:, i], DQ[:, i], DP[:, i] = engine.q.T, engine.p.T, engine.dq.T, engine.dp.T
         samples.log_growth[:, i] = engine.log_growth
+        samples.spectrum_growth[:, i, 0] = engine.log_growth
+        samples.spectrum_growth[:, i, 1:] = engine.x_growth[:problem.spectrum - 1].T
+        if problem.gali > 1:
+            _alignment(engine, samples, i)
         samples.gap_steps[:, i] = engine.gap_steps.T
         samples.max_gaps[:, i] = engine.max_gaps
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):

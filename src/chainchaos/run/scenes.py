@@ -13,7 +13,17 @@ import xarray as xr
 
 from chainchaos.engine.integrators import get_scheme
 from chainchaos.errors import require, require_finite_positive
-from chainchaos.observe.registry import GAPS, OBSERVABLES, TANGENT, SampledRun, model_observables, needing, variables
+from chainchaos.observe.registry import (
+    ALIGNMENT,
+    GAPS,
+    OBSERVABLES,
+    SPECTRUM,
+    TANGENT,
+    SampledRun,
+    model_observables,
+    needing,
+    variables,
+)
 from chainchaos.output.provenance import provenance_attrs
 from chainchaos.run import driver
 from chainchaos.run.settings import RunSettings
@@ -58,7 +68,7 @@ def scene_parameters(config: dict, scene, name: str, observables) -> SceneParame
 #: The settings that scenes integrated together in one batch must share: one step, one sampling
 #: schedule, one force law. Energies, excited beads, deviation vectors and observables may differ.
 BATCH_KEYS = ("model", "integrator", "dt", "t_final", "samples_per_decade", "t_first_sample", "check_every",
-              "k4_sign")
+              "k4_sign", "exponents", "gali_order")
 
 
 def batch_key(params: SceneParameters) -> tuple:
@@ -108,21 +118,24 @@ def simulate_scenes(chain, scenes: list[SceneParameters], progress=None) -> list
     model = get_model(first.model)
     wanted = set().union(*(set(s.observables) for s in scenes))
     problem = first.problem(model, [chain] * len(scenes), tangent=bool(wanted & needing(TANGENT)),
-                            track_gaps=bool(wanted & needing(GAPS)))
+                            track_gaps=bool(wanted & needing(GAPS)), spectrum=bool(wanted & needing(SPECTRUM)),
+                            alignment=bool(wanted & needing(ALIGNMENT)))
     chain = problem.chains[0]
     N, B = chain.N, len(scenes)
     Q0, P0, DQ0, DP0 = (np.zeros((N, B)) for _ in range(4))
     u0, deviation0 = np.zeros(B), np.zeros((B, 2 * N))
+    XQ0, XP0 = (np.zeros((problem.extra_vectors, N, B)) for _ in range(2))
     for j, params in enumerate(scenes):
         Q0[:, j], P0[:, j], u0[j] = initial_state(model, chain, params.energy, params.excited_site)
         DQ0[:, j], DP0[:, j] = initial_deviation(N, params.deviation_seed)
         deviation0[j] = np.concatenate([DQ0[:, j], DP0[:, j]])
+        XQ0[:, :, j], XP0[:, :, j] = params.extra_deviations(problem)
     if not problem.tangent:
         DQ0[:], DP0[:] = 0.0, 0.0
     monitors = [driver.EnergyGuard([s.name for s in scenes], [s.max_energy_error for s in scenes])]
     if progress is not None:
         monitors.append(driver.progress(progress))
-    samples = driver.sample(problem, Q0, P0, DQ0, DP0, first.sample_steps(), monitors)
+    samples = driver.sample(problem, Q0, P0, DQ0, DP0, first.sample_steps(), monitors, xq0=XQ0, xp0=XP0)
     return [_dataset(chain, params, samples.run(j, deviation0[j]), u0[j], samples.H0[j])
             for j, params in enumerate(scenes)]
 
@@ -137,6 +150,9 @@ def _dataset(chain, params, run: SampledRun, u0, H0) -> xr.Dataset:
     ds.site.attrs.update(units="1", long_name="bead index n")
     ds.bond.attrs.update(units="1", long_name="bond index (bond n joins beads n-1 and n)")
     ds.mode.attrs.update(units="1", long_name="mode number, by increasing frequency")
+    if "exponent" in ds.dims:
+        ds = ds.assign_coords(exponent=np.arange(1, ds.sizes["exponent"] + 1))
+        ds.exponent.attrs.update(units="1", long_name="index i of the Lyapunov exponent (deviation vector i of the QR)")
     parameters = {k: (list(v) if isinstance(v, tuple) else v) for k, v in asdict(params).items()}
     parameters["chain_seed"] = chain.seed
     ds.attrs.update(provenance_attrs(parameters))

@@ -13,6 +13,7 @@ import numpy as np
 from chainchaos.engine.integrators import get_scheme
 from chainchaos.errors import require, require_finite_positive
 from chainchaos.run.driver import sample_steps
+from chainchaos.system.initial import extra_deviations, initial_deviation, orthonormalised
 from chainchaos.system.problem import Problem, check_step
 
 
@@ -32,22 +33,41 @@ class RunSettings:
     k4_sign: float = 1.0
     deviation_seed: int = 0
     max_energy_error: float = 1e-2
+    exponents: int = 0  # Lyapunov exponents where an observable needs the spectrum (0: all 2N)
+    gali_order: int = 2  # k of GALI_k where an observable needs SALI or GALI
 
     def __post_init__(self):
         get_scheme(self.integrator)
         require_finite_positive(self, "t_final", "t_first_sample", "max_energy_error")
         check_step(self.dt, self.t_final)
         require(self.k4_sign in (1, -1), "k4_sign", self.k4_sign, "+1 (paper) or -1 (Taylor expansion)")
-        for key in ("samples_per_decade", "check_every"):
+        for key, least in (("samples_per_decade", 1), ("check_every", 1), ("exponents", 0), ("gali_order", 2)):
             value = getattr(self, key)
-            require(isinstance(value, (int, np.integer)) and value >= 1, key, value, "an integer >= 1")
+            require(isinstance(value, (int, np.integer)) and value >= least, key, value, f"an integer >= {least}")
 
     def sample_steps(self) -> np.ndarray:
         """Step indices of the log-spaced samples, from 0 to the last step."""
         return sample_steps(self.t_final, self.dt, self.samples_per_decade, self.t_first_sample)
 
-    def problem(self, model, chains, tangent: bool, track_gaps: bool) -> Problem:
+    def problem(self, model, chains, tangent: bool, track_gaps: bool, spectrum: bool = False,
+                alignment: bool = False) -> Problem:
         """The :class:`Problem` of ``model`` on ``chains`` (one per lane, taken with this run's
-        sign of K4) at this run's scheme, step and check interval."""
+        sign of K4) at this run's scheme, step and check interval; with ``spectrum`` the
+        deviation vectors of ``exponents`` Lyapunov exponents, with ``alignment`` those of
+        GALI_``gali_order``."""
+        N = chains[0].N
         return Problem(model, [c.with_k4_sign(self.k4_sign) for c in chains], self.integrator, self.dt,
-                       tangent=tangent, track_gaps=track_gaps, check_every=self.check_every)
+                       tangent=tangent, track_gaps=track_gaps, check_every=self.check_every,
+                       spectrum=(self.exponents or 2 * N) if spectrum else 1,
+                       gali=self.gali_order if alignment else 1)
+
+    def extra_deviations(self, problem) -> tuple[np.ndarray, np.ndarray]:
+        """The initial extra deviation vectors of ``problem`` (K, N) of this run's deviation seed:
+        the spectrum's, orthonormal to the first vector (``initial.initial_deviation``) and each
+        other, then GALI's, each of norm 1 (``initial.extra_deviations``)."""
+        N, seed = problem.N, self.deviation_seed
+        spectrum = orthonormalised(np.concatenate(initial_deviation(N, seed)),
+                                   np.hstack(extra_deviations(N, seed, problem.spectrum - 1, 1)))
+        gali = np.hstack(extra_deviations(N, seed, problem.gali - 1, 2))
+        vectors = np.concatenate([spectrum, gali])
+        return vectors[:, :N], vectors[:, N:]

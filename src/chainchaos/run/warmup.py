@@ -13,7 +13,7 @@ import numpy as np
 
 from chainchaos.engine.checked import CheckedRun
 from chainchaos.engine.rhs import RightHandSide
-from chainchaos.observe.registry import model_observables, variables
+from chainchaos.observe.registry import ALIGNMENT, OBSERVABLES, REGISTRY, SPECTRUM, model_observables, variables
 from chainchaos.run.driver import sample, sample_steps
 from chainchaos.system.chain import random_chain
 from chainchaos.system.models import MODELS, get_model
@@ -22,16 +22,23 @@ from chainchaos.system.problem import Problem
 
 def _sampled_runs(model, chain) -> None:
     """Both engines, with and without the tangent map and gap counting, through the driver, and
-    the kernels of every observable the model has (modes, logarithms)."""
+    the kernels of every observable the model has (modes, logarithms); then a run with more
+    deviation vectors and the chaos indicators they give."""
     q, p, dq, dp = np.zeros((4, 2)), np.zeros((4, 2)), np.zeros((4, 2)), np.full((4, 2), 0.5)
     q[1] = 0.1
+    steps = sample_steps(0.4, 0.1, 2, 0.1)
     for track_gaps in sorted({False, model.has_gaps}):
         for tangent in (True, False):
             for kind in ("single", "batch"):
                 problem = Problem(model, [chain] * 2, dt=0.1, tangent=tangent, track_gaps=track_gaps, check_every=3)
-                samples = sample(problem, q, p, dq, dp, sample_steps(0.4, 0.1, 2, 0.1), kind=kind)
+                samples = sample(problem, q, p, dq, dp, steps, kind=kind)
                 if tangent and track_gaps == model.has_gaps and kind == "batch":
                     variables(samples.run(0, np.concatenate([dq[:, 0], dp[:, 0]])), model_observables(model.name))
+    problem = Problem(model, [chain] * 2, dt=0.1, track_gaps=model.has_gaps, check_every=3, spectrum=2, gali=2)
+    x = np.full((2, 4, 2), 0.5)
+    samples = sample(problem, q, p, dq, dp, steps, xq0=x, xp0=x)
+    variables(samples.run(0, np.concatenate([dq[:, 0], dp[:, 0]])),
+              [name for name in OBSERVABLES if REGISTRY[name].needs & {SPECTRUM, ALIGNMENT}])
 
 
 def _measured_runs(model, chain) -> None:

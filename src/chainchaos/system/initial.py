@@ -4,7 +4,7 @@
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
-from chainchaos.engine.exactmath import norm
+from chainchaos.engine.exactmath import matmul, norm
 from chainchaos.errors import ParameterError, require
 from chainchaos.system.models import total_energy
 
@@ -54,6 +54,31 @@ def initial_state(model: int, chain, energy: float, site: int) -> tuple[np.ndarr
     u = np.zeros(chain.N)
     u[site - 1] = u0
     return u, np.zeros(chain.N), u0
+
+
+def extra_deviations(N: int, seed: int, count: int, stream: int) -> tuple[np.ndarray, np.ndarray]:
+    """``count`` more deviation vectors (du, dp), each (count, N): du and dp uniform in [-1, 1]
+    from default_rng([seed, stream, i]), each normalised to 1 (docs/conventions.md#deviation-vector);
+    ``stream`` 1 for the Lyapunov spectrum's, 2 for GALI's."""
+    du, dp = np.zeros((count, N)), np.zeros((count, N))
+    for i in range(count):
+        v = np.random.default_rng([int(seed), int(stream), i + 1]).uniform(-1.0, 1.0, 2 * N)
+        v = v / norm(v)
+        du[i], dp[i] = v[:N], v[N:]
+    return du, dp
+
+
+def orthonormalised(first: np.ndarray, others: np.ndarray) -> np.ndarray:
+    """``others`` (k, M) made orthogonal to the unit vector ``first`` (M,) and to each other and
+    normalised, by modified Gram-Schmidt with every sum in index order (chainchaos.engine.exactmath):
+    the start of a Lyapunov spectrum, whose first QR then measures the dynamics only."""
+    basis, out = [np.asarray(first, dtype=float)], np.empty_like(others, dtype=float)
+    for i, v in enumerate(np.asarray(others, dtype=float)):
+        for b in basis:
+            v = v - float(matmul(b, v)) * b
+        out[i] = v / norm(v)
+        basis.append(out[i])
+    return out
 
 
 def initial_deviation(N: int, seed: int) -> tuple[np.ndarray, np.ndarray]:

@@ -41,6 +41,8 @@ class Problem:
     tangent: bool = True
     track_gaps: bool = False
     check_every: int = 1000
+    spectrum: int = 1  # Lyapunov exponents: the mLCE vector and spectrum - 1 vectors kept orthonormal to it
+    gali: int = 1  # k of GALI_k: the mLCE vector and gali - 1 more vectors, each only normalised
 
     def __post_init__(self):
         object.__setattr__(self, "model", get_model(self.model))
@@ -57,6 +59,12 @@ class Problem:
         object.__setattr__(self, "check_every", int(self.check_every))
         object.__setattr__(self, "tangent", bool(self.tangent))
         object.__setattr__(self, "track_gaps", bool(self.track_gaps))
+        for key in ("spectrum", "gali"):
+            value = getattr(self, key)
+            require(isinstance(value, (int, np.integer)) and 1 <= value <= 2 * self.N, key, value,
+                    f"an integer from 1 to 2N = {2 * self.N} deviation vectors")
+            require(value == 1 or self.tangent, key, value, "1 without the tangent map")
+            object.__setattr__(self, key, int(value))
 
     @property
     def N(self) -> int:
@@ -65,6 +73,11 @@ class Problem:
     @property
     def lanes(self) -> int:
         return len(self.chains)
+
+    @property
+    def extra_vectors(self) -> int:
+        """Deviation vectors beyond the mLCE vector: the spectrum's, then GALI's."""
+        return self.spectrum - 1 + self.gali - 1
 
     @property
     def scheme(self):
@@ -87,17 +100,20 @@ class Problem:
         """H of every lane's state, Q and P lane-first (B, N) (docs/conventions.md#hamiltonian)."""
         return np.array([float(total_energy(self.model, c, Q[j], P[j])) for j, c in enumerate(self.chains)])
 
-    def engine(self, q, p, dq=None, dp=None, kind: str = "auto"):
-        """The engine of this problem from the states q, p (and deviations dq, dp), each (N, B):
-        ``kind`` "batch" (every lane in SIMD blocks of the batch engine, the last block padded),
-        "single" (the single-trajectory engine, lane after lane) or "auto" (blocks, and a
-        remainder of up to ``batch.SERIAL_REMAINDER`` lanes beyond them on the single engine);
-        every kind gives the same numbers."""
+    def engine(self, q, p, dq=None, dp=None, kind: str = "auto", xq=None, xp=None):
+        """The engine of this problem from the states q, p (and deviations dq, dp), each (N, B),
+        and its :attr:`extra_vectors` deviation vectors xq, xp (K, N, B): ``kind`` "batch" (every
+        lane in SIMD blocks of the batch engine, the last block padded), "single" (the
+        single-trajectory engine, lane after lane) or "auto" (blocks, and a remainder of up to
+        ``batch.SERIAL_REMAINDER`` lanes beyond them on the single engine); every kind gives the
+        same numbers. Extra deviation vectors run on the batch engine only."""
         from chainchaos.engine.batch import SERIAL_REMAINDER, Batch
         from chainchaos.engine.simd import LANES
 
         require(kind in ENGINES, "engine", kind, f"one of {ENGINES}")
+        require(kind != "single" or not self.extra_vectors, "engine", kind,
+                "'batch' or 'auto' with several deviation vectors per orbit")
         remainder = self.lanes % LANES
         serial = {"batch": 0, "single": self.lanes,
-                  "auto": remainder if remainder <= SERIAL_REMAINDER else 0}[kind]
-        return Batch(self, q, p, dq, dp, serial_lanes=serial)
+                  "auto": remainder if remainder <= SERIAL_REMAINDER and not self.extra_vectors else 0}[kind]
+        return Batch(self, q, p, dq, dp, serial_lanes=serial, xq=xq, xp=xp)

@@ -103,7 +103,8 @@ def _cmd_simulate(args) -> None:
                              integrator=args.integrator, observables=observables,
                              excited_site=args.site, k4_sign=args.k4_sign, deviation_seed=args.deviation_seed,
                              samples_per_decade=args.samples_per_decade,
-                             max_energy_error=args.max_energy_error)
+                             max_energy_error=args.max_energy_error, exponents=args.exponents,
+                             gali_order=args.gali_order)
     chain = _read("--chain", read_chain, args.chain)
     ds = simulate(chain, params, progress=ProgressReporter(params.name, params.t_final))
     write_netcdf(ds, args.out)
@@ -173,8 +174,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--dt", type=_positive_float, default=5e-4, help="time step (default 5e-4, the paper's)")
     p.add_argument("--integrator", choices=sorted(SCHEMES), default="SRKN6b", help="splitting scheme")
     p.add_argument("--observables", nargs="+", default=["all"], choices=["all", *OBSERVABLES],
-                   metavar="NAME", help=f"observables to compute: {', '.join(OBSERVABLES)} (default all the "
-                                        f"model has; the gap observables only for hertz)")
+                   metavar="NAME", help=f"observables to compute: {', '.join(OBSERVABLES)} (default all: "
+                                        f"those the model has, the gap observables only for hertz, but the "
+                                        f"chaos indicators beyond the mLCE, which are asked for by name)")
+    p.add_argument("--exponents", type=_integer(0), default=0,
+                   help="Lyapunov exponents of lyapunov_spectrum and ks_entropy (default 0: all 2N)")
+    p.add_argument("--gali-order", type=_integer(2), default=2, help="k of GALI_k for log_gali (default 2)")
     p.add_argument("--site", type=_integer(1), default=21, help="excited bead, 1..N (default 21)")
     p.add_argument("--k4-sign", type=float, choices=[1.0, -1.0], default=1.0,
                    help="sign of K4: +1 the paper's, -1 the Taylor expansion of Hertz (default +1)")
