@@ -35,6 +35,7 @@ Speed: ``benchmarks/batch_throughput.py`` (figures in the README, per machine).
 import numpy as np
 from numba import literally, njit
 
+from chainchaos.engine.exactmath import ln
 from chainchaos.engine.integrators import _aligned_zeros, _renormalise, advance
 from chainchaos.engine.simd import LANES, vbelow, vload, vstore
 from chainchaos.errors import require
@@ -172,57 +173,65 @@ def _drift_kick_vectors(N, Z, V, extra, drift, kick, a, c):
     with the inverse masses and the stiffnesses stored in the block Z (the orbit's sweep stored
     them at the drifted positions): per lane and element the operations of ``_sweep`` on the
     block's own deviation vector, dq += a M^-1 dp, g_b = k_b (dq_{b-1} - dq_b),
-    dp += c (g_b - g_{b+1}), so a vector equal to it stays equal to it, to the bit."""
+    dp += c (g_b - g_{b+1}), so a vector equal to it stays equal to it, to the bit. One pass per
+    vector: iteration b drifts bead b, computes bond b (beads b-1 and b, both drifted) and kicks
+    bead b-1 (whose drift used its momentum before the kick)."""
     literally(drift)
     literally(kick)
+    wall = vload(V, _VQ)  # row 0 of vector 0: a wall, zero
     for j in range(extra):
         base = _vector_base(N, j)
-        if drift:
-            for n in range(N):
-                row = base + (n + 1) * VROW
-                dq = vload(V, row + _VQ) + a * vload(Z, n * ROW + _IM) * vload(V, base + n * VROW + _VP)
-                vstore(V, row + _VQ, dq)
-        if kick:
-            dq_left = vload(V, base + _VQ)  # the wall
-            g_left = dq_left
-            for b in range(N + 1):
+        dq_left = wall
+        g_left = wall
+        for b in range(N + 1):
+            if b < N:
                 dq_right = vload(V, base + (b + 1) * VROW + _VQ)
+                if drift:
+                    dq_right = dq_right + a * vload(Z, b * ROW + _IM) * vload(V, base + b * VROW + _VP)
+                    vstore(V, base + (b + 1) * VROW + _VQ, dq_right)
+            else:
+                dq_right = wall
+            if kick:
                 g = vload(Z, b * ROW + _K) * (dq_left - dq_right)
                 if b >= 1:
                     row = base + (b - 1) * VROW + _VP
                     vstore(V, row, vload(V, row) + c * (g_left - g))
-                g_left, dq_left = g, dq_right
-
-
-@njit(cache=True, inline="always")
-def _component(N, Z, V, lane, i, n, momentum):
-    """Component n of deviation vector i of a lane (i = -1: the block's own vector) in its dq
-    (``momentum`` False) or dp part."""
-    if i < 0:
-        return Z[n * ROW + _DP + lane] if momentum else Z[(n + 1) * ROW + _DQ + lane]
-    base = _vector_base(N, i)
-    return V[base + n * VROW + _VP + lane] if momentum else V[base + (n + 1) * VROW + _VQ + lane]
+                g_left = g
+            dq_left = dq_right
 
 
 @njit(cache=True, error_model="numpy")
-def _normalise_vectors(N, Z, V, lane, first, last, orthogonal, growth):
-    """Extra deviation vectors first..last-1 of one lane, each made orthogonal to the block's own
-    vector and the extra vectors before it (modified Gram-Schmidt, if ``orthogonal``) and divided
-    by its norm, ln of the norm added to growth[j, lane]. The norm is computed as the engine
-    computes the block's own vector's (``integrators._renormalise``)."""
-    for j in range(first, last):
-        base = _vector_base(N, j)
-        if orthogonal:
-            for i in range(-1, j):
+def _normalise_vectors(N, Z, V, lane, extra, orthogonal, growth, W):
+    """The extra deviation vectors of one lane at a check, gathered with the block's own vector
+    (already normalised) into the rows of W (extra + 1, 2N): the first ``orthogonal`` made
+    orthogonal to the own vector and to each other (modified Gram-Schmidt), then every one
+    divided by its norm, ln of the norm added to growth[j, lane]. Norms and dot products are
+    summed bead by bead, dq then dp, as the engine's own norm (``integrators._renormalise``)."""
+    for n in range(N):
+        W[0, n] = Z[(n + 1) * ROW + _DQ + lane]
+        W[0, N + n] = Z[n * ROW + _DP + lane]
+        for j in range(extra):
+            W[j + 1, n] = V[_vector_base(N, j) + (n + 1) * VROW + _VQ + lane]
+            W[j + 1, N + n] = V[_vector_base(N, j) + n * VROW + _VP + lane]
+    for j in range(1, extra + 1):
+        if j <= orthogonal:
+            for i in range(j):
                 dot = 0.0
                 for n in range(N):
-                    dot += (_component(N, Z, V, lane, i, n, False) * V[base + (n + 1) * VROW + _VQ + lane]
-                            + _component(N, Z, V, lane, i, n, True) * V[base + n * VROW + _VP + lane])
-                for n in range(N):
-                    V[base + (n + 1) * VROW + _VQ + lane] -= dot * _component(N, Z, V, lane, i, n, False)
-                    V[base + n * VROW + _VP + lane] -= dot * _component(N, Z, V, lane, i, n, True)
-        growth[j, lane] += _renormalise(V[base + VROW + _VQ + lane:base + (N + 1) * VROW + _VQ + lane:VROW],
-                                        V[base + _VP + lane:base + N * VROW + _VP + lane:VROW])
+                    dot += W[i, n] * W[j, n] + W[i, N + n] * W[j, N + n]
+                for m in range(2 * N):
+                    W[j, m] -= dot * W[i, m]
+        s = 0.0
+        for n in range(N):
+            s += W[j, n] * W[j, n] + W[j, N + n] * W[j, N + n]
+        norm = np.sqrt(s)
+        for m in range(2 * N):
+            W[j, m] /= norm
+        growth[j - 1, lane] += ln(norm)
+    for j in range(extra):
+        for n in range(N):
+            V[_vector_base(N, j) + (n + 1) * VROW + _VQ + lane] = W[j + 1, n]
+            V[_vector_base(N, j) + n * VROW + _VP + lane] = W[j + 1, N + n]
 
 
 @njit(cache=True, error_model="numpy")
@@ -252,6 +261,7 @@ def _advance_block(model, tangent, N, Z, kicks, drifts, dt, n_steps, check_every
     literally(tangent)
     n_stages = drifts.shape[0]
     force_valid = False
+    W = np.empty((extra + 1, 2 * N))  # a lane's vectors at a check
     for step in range(n_steps):
         c = kicks[0] * dt
         if c != 0.0:
@@ -289,8 +299,7 @@ def _advance_block(model, tangent, N, Z, kicks, drifts, dt, n_steps, check_every
                                                   Z[_DP + j:N * ROW + _DP + j:ROW])
                     s += Z[ROW + _DQ + j]
                     if extra:
-                        _normalise_vectors(N, Z, V, j, 0, orthogonal, True, vector_growth)
-                        _normalise_vectors(N, Z, V, j, orthogonal, extra, False, vector_growth)
+                        _normalise_vectors(N, Z, V, j, extra, orthogonal, vector_growth, W)
                 if bad[j] < 0 and not np.isfinite(s):
                     bad[j] = step + 1
 
