@@ -35,8 +35,7 @@ Speed: ``benchmarks/batch_throughput.py`` (figures in the README, per machine).
 import numpy as np
 from numba import literally, njit
 
-from chainchaos.engine.exactmath import ln
-from chainchaos.engine.integrators import _aligned_zeros, _renormalise, advance
+from chainchaos.engine.integrators import _aligned_zeros, _renormalise, advance, gram_schmidt
 from chainchaos.engine.simd import LANES, vbelow, vload, vstore
 from chainchaos.errors import require
 from chainchaos.system.models import MAX_BOND_PARAMETERS
@@ -201,34 +200,21 @@ def _drift_kick_vectors(N, Z, V, extra, drift, kick, a, c):
 
 
 @njit(cache=True, error_model="numpy")
-def _normalise_vectors(N, Z, V, lane, extra, orthogonal, growth, W):
+def _normalise_vectors(N, Z, V, lane, extra, orthogonal, growth, W, lane_growth):
     """The extra deviation vectors of one lane at a check, gathered with the block's own vector
-    (already normalised) into the rows of W (extra + 1, 2N): the first ``orthogonal`` made
-    orthogonal to the own vector and to each other (modified Gram-Schmidt), then every one
-    divided by its norm, ln of the norm added to growth[j, lane]. Norms and dot products are
-    summed bead by bead, dq then dp, as the engine's own norm (``integrators._renormalise``)."""
+    (already normalised) into the rows of W (extra + 1, 2N), the first ``orthogonal`` of them
+    orthonormalised against it and each other and the others normalised
+    (``integrators.gram_schmidt``), ln of their norms added to growth[:, lane]."""
     for n in range(N):
         W[0, n] = Z[(n + 1) * ROW + _DQ + lane]
         W[0, N + n] = Z[n * ROW + _DP + lane]
         for j in range(extra):
             W[j + 1, n] = V[_vector_base(N, j) + (n + 1) * VROW + _VQ + lane]
             W[j + 1, N + n] = V[_vector_base(N, j) + n * VROW + _VP + lane]
-    for j in range(1, extra + 1):
-        if j <= orthogonal:
-            for i in range(j):
-                dot = 0.0
-                for n in range(N):
-                    dot += W[i, n] * W[j, n] + W[i, N + n] * W[j, N + n]
-                for m in range(2 * N):
-                    W[j, m] -= dot * W[i, m]
-        s = 0.0
-        for n in range(N):
-            s += W[j, n] * W[j, n] + W[j, N + n] * W[j, N + n]
-        norm = np.sqrt(s)
-        for m in range(2 * N):
-            W[j, m] /= norm
-        growth[j - 1, lane] += ln(norm)
+    lane_growth[:] = 0.0
+    gram_schmidt(W, 1, orthogonal + 1, lane_growth)
     for j in range(extra):
+        growth[j, lane] += lane_growth[j]
         for n in range(N):
             V[_vector_base(N, j) + (n + 1) * VROW + _VQ + lane] = W[j + 1, n]
             V[_vector_base(N, j) + n * VROW + _VP + lane] = W[j + 1, N + n]
@@ -261,7 +247,8 @@ def _advance_block(model, tangent, N, Z, kicks, drifts, dt, n_steps, check_every
     literally(tangent)
     n_stages = drifts.shape[0]
     force_valid = False
-    W = np.empty((extra + 1, 2 * N))  # a lane's vectors at a check
+    W = np.empty((extra + 1, 2 * N))  # a lane's vectors at a check, and their ln norms
+    lane_growth = np.empty(max(extra, 1))
     for step in range(n_steps):
         c = kicks[0] * dt
         if c != 0.0:
@@ -299,7 +286,7 @@ def _advance_block(model, tangent, N, Z, kicks, drifts, dt, n_steps, check_every
                                                   Z[_DP + j:N * ROW + _DP + j:ROW])
                     s += Z[ROW + _DQ + j]
                     if extra:
-                        _normalise_vectors(N, Z, V, j, extra, orthogonal, vector_growth, W)
+                        _normalise_vectors(N, Z, V, j, extra, orthogonal, vector_growth, W, lane_growth)
                 if bad[j] < 0 and not np.isfinite(s):
                     bad[j] = step + 1
 

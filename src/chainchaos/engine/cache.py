@@ -38,6 +38,12 @@ SHARED_KERNEL_MODULES = ("system/models/*.py", "engine/integrators.py", "engine/
                          "engine/sqrt.py")
 
 
+def sqrt_choice() -> str:
+    """The square root the kernels are compiled with: ``CHAINCHAOS_SQRT`` if set, else
+    "hardware" (chainchaos.engine.sqrt checks the value)."""
+    return os.environ.get(SQRT_VARIABLE, "").strip() or "hardware"
+
+
 def kernel_sources() -> list[Path]:
     """The shared kernel modules: an edit to one of them (or a new model) invalidates kernels in
     other files."""
@@ -53,7 +59,7 @@ def kernel_key() -> str:
     for path in kernel_sources():
         digest.update(path.relative_to(PACKAGE).as_posix().encode() + b"\0" + path.read_bytes())
     digest.update(b"lanes\0" + os.environ.get(LANES_VARIABLE, "").strip().encode())
-    digest.update(b"sqrt\0" + (os.environ.get(SQRT_VARIABLE, "").strip() or "hardware").encode())
+    digest.update(b"sqrt\0" + sqrt_choice().encode())
     return digest.hexdigest()[:16]
 
 

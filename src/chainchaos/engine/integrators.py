@@ -129,6 +129,32 @@ def _renormalise(dq, dp):
     return ln(norm)
 
 
+@njit(cache=True)
+def gram_schmidt(W, first, orthogonal, growth):
+    """Rows first..k-1 of W (k, 2N: a deviation vector per row, du_1..du_N then dp_1..dp_N) in
+    place: rows first..orthogonal-1 made orthogonal to every row before them (modified
+    Gram-Schmidt), then each of rows first..k-1 divided by its norm, ln of the norm added to
+    growth[row - first]; rows before ``first`` are taken as they are (unit and orthogonal).
+    Norms and dot products are summed bead by bead, du_n then dp_n, as in :func:`_renormalise`,
+    so a row equal to a vector the engine renormalises gets the same bits."""
+    N = W.shape[1] // 2
+    for j in range(first, W.shape[0]):
+        if j < orthogonal:
+            for i in range(j):
+                dot = 0.0
+                for n in range(N):
+                    dot += W[i, n] * W[j, n] + W[i, N + n] * W[j, N + n]
+                for m in range(2 * N):
+                    W[j, m] -= dot * W[i, m]
+        s = 0.0
+        for n in range(N):
+            s += W[j, n] * W[j, n] + W[j, N + n] * W[j, N + n]
+        norm = np.sqrt(s)
+        for m in range(2 * N):
+            W[j, m] /= norm
+        growth[j - first] += ln(norm)
+
+
 #: The rows of the single engine's work buffer, all indexed alike and padded to whole vectors:
 #: displacements U and deviations DQ with the walls (U[0] = U[N+1] = 0, beads at 1..N), momenta
 #: P, DP and inverse masses IM of the beads at 1..N, bond force F and stiffness K and the bond

@@ -29,7 +29,6 @@ and Cornea, Harrison & Tang 2002)::
     R  = R (c ? 2^-100 : 1) ;  x < 0 -> NaN ; x = +inf -> +inf
 """
 
-import os
 
 import numpy as np
 from llvmlite import ir
@@ -37,7 +36,7 @@ from numba import njit, types
 from numba.core import cgutils
 from numba.extending import intrinsic
 
-from chainchaos.engine.cache import SQRT_VARIABLE
+from chainchaos.engine.cache import SQRT_VARIABLE, sqrt_choice
 from chainchaos.engine.simd import LANES, VectorType, vector
 from chainchaos.errors import require
 
@@ -62,7 +61,7 @@ _I64 = ir.IntType(64)
 
 def method() -> str:
     """The square root the kernels use: ``CHAINCHAOS_SQRT`` if set, else ``hardware``."""
-    chosen = os.environ.get(SQRT_VARIABLE, "").strip() or "hardware"
+    chosen = sqrt_choice()
     require(chosen in METHODS, SQRT_VARIABLE, chosen, f"one of {list(METHODS)}")
     return chosen
 

@@ -9,6 +9,7 @@ import numpy as np
 from numba import njit
 
 from chainchaos.engine import exactmath
+from chainchaos.engine.integrators import gram_schmidt
 from chainchaos.system.linear import participation_number
 
 EULER_GAMMA = 0.5772156649015329
@@ -54,8 +55,7 @@ def lyapunov_spectrum(growth: np.ndarray, t: np.ndarray) -> np.ndarray:
     """Finite-time Lyapunov exponents lambda_i(t) = (1/t) sum ln R_ii (Benettin, Galgani,
     Giorgilli & Strelcyn, Meccanica 15, 9 (1980)): ``growth`` (S, k) holds the accumulated ln of
     the norms of k deviation vectors kept orthonormal (QR every check); NaN at t = 0."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(t[:, None] > 0, growth / np.where(t > 0, t, 1.0)[:, None], np.nan)
+    return finite_time_mlce(growth, np.asarray(t)[:, None])
 
 
 def ks_entropy(spectrum: np.ndarray) -> np.ndarray:
@@ -66,31 +66,16 @@ def ks_entropy(spectrum: np.ndarray) -> np.ndarray:
     return np.where(np.isnan(spectrum).all(axis=-1), np.nan, total)
 
 
-@njit(cache=True)
 def log_volume(W: np.ndarray) -> float:
-    """ln of the k-dimensional volume of the parallelepiped spanned by the rows of W (k, M):
-    sum_i ln R_ii of the QR factorisation of W^T by modified Gram-Schmidt, (1/2) ln det(W W^T).
-    For unit rows (normalised deviation vectors) it is ln GALI_k (Skokos, Bountis & Antonopoulos,
-    Physica D 231, 30 (2007)), which as a product of the singular values equals their product; the
-    log form does not underflow where GALI_k goes far below the smallest double."""
-    k, M = W.shape
-    A = W.copy()
-    out = 0.0
-    for j in range(k):
-        for i in range(j):
-            dot = 0.0
-            for m in range(M):
-                dot += A[i, m] * A[j, m]
-            for m in range(M):
-                A[j, m] -= dot * A[i, m]
-        s = 0.0
-        for m in range(M):
-            s += A[j, m] * A[j, m]
-        norm = np.sqrt(s)
-        for m in range(M):
-            A[j, m] /= norm
-        out += exactmath.ln(norm)
-    return out
+    """ln of the k-dimensional volume of the parallelepiped spanned by the rows of W (k, 2N, each
+    a deviation vector du then dp): sum_i ln R_ii of the QR factorisation of W^T by modified
+    Gram-Schmidt (``integrators.gram_schmidt``), (1/2) ln det(W W^T). For unit rows (normalised
+    deviation vectors) it is ln GALI_k (Skokos, Bountis & Antonopoulos, Physica D 231, 30 (2007)),
+    the product of the singular values; the log form does not underflow where GALI_k goes far
+    below the smallest double."""
+    logs = np.zeros(W.shape[0])
+    gram_schmidt(np.array(W, dtype=float), 0, W.shape[0], logs)
+    return float(exactmath.matmul(logs, np.ones(logs.size)))
 
 
 @njit(cache=True)

@@ -6,13 +6,12 @@ that a difference between two files can be traced to its build.
 """
 
 import json
-import os
 import platform
 import subprocess
 from functools import lru_cache
 from pathlib import Path
 
-from chainchaos.engine.cache import project_root
+from chainchaos.engine.cache import project_root, sqrt_choice
 
 #: x86 vector extensions reported, in this order, when the CPU has them (/proc/cpuinfo "flags").
 VECTOR_FLAGS = ("sse2", "sse4_1", "sse4_2", "avx", "avx2", "fma", "avx512f", "avx512dq", "avx512cd",
@@ -110,13 +109,6 @@ def numpy_simd_targets() -> str:
         return ""
 
 
-def square_root() -> str:
-    """The square root the Hertz kernels use (``CHAINCHAOS_SQRT``: hardware or fma; the same bits)."""
-    from chainchaos.engine.cache import SQRT_VARIABLE
-
-    return os.environ.get(SQRT_VARIABLE, "").strip() or "hardware"
-
-
 def machine_attrs() -> dict:
     """The machine that wrote a file: CPU model, vector extensions, NumPy's SIMD targets, Numba's
     target CPU, the kernels' square root and the library versions."""
@@ -125,7 +117,7 @@ def machine_attrs() -> dict:
         "cpu_vector_extensions": cpu_vector_extensions(),
         "numpy_simd_targets": numpy_simd_targets(),
         "numba_target_cpu": numba_target_cpu(),
-        "square_root": square_root(),
+        "square_root": sqrt_choice(),  # hardware or fma: the same bits
         **library_versions(),
     }
 
@@ -139,7 +131,7 @@ def machine_line(attrs: dict | None = None) -> str:
         from chainchaos.engine.simd import LANES
 
         attrs = {"cpu_model": cpu_model(), "cpu_vector_extensions": cpu_vector_extensions(),
-                 "numba_target_cpu": numba_target_cpu(), "square_root": square_root()}
+                 "numba_target_cpu": numba_target_cpu(), "square_root": sqrt_choice()}
         width = f" | SIMD width: {LANES} doubles"
     extensions = attrs.get("cpu_vector_extensions") or "unknown"
     root = f" | square root: {attrs['square_root']}" if attrs.get("square_root") else ""

@@ -44,9 +44,10 @@ class Samples:
     """The record of a problem's lanes on the sample steps, lane first: states (B, S, N), ln|v|,
     energy error and largest number of open gaps (B, S), gap counts (B, S, N+1); ``bad`` (B,) is
     the step at which a lane turned non-finite (-1: never), ``H0`` (B,) the initial energies.
-    With the problem's several deviation vectors: ``spectrum_growth`` (B, S, spectrum), the
-    accumulated ln of the norms of the orthonormalised vectors (column 0: ``log_growth``), and
-    ``log_gali`` and ``sali`` (B, S) of the mLCE vector with the GALI vectors (NaN without)."""
+    With the problem's several deviation vectors: ``extra_growth`` (B, S, spectrum - 1), the
+    accumulated ln of the norms of the orthonormalised vectors beyond the mLCE vector (with
+    ``log_growth``, the ``spectrum_growth``), and ``log_gali`` and ``sali`` (B, S) of the mLCE
+    vector with the GALI vectors (NaN without)."""
 
     problem: object
     steps: np.ndarray
@@ -60,7 +61,7 @@ class Samples:
     energy_error: np.ndarray
     H0: np.ndarray
     bad: np.ndarray
-    spectrum_growth: np.ndarray
+    extra_growth: np.ndarray
     log_gali: np.ndarray
     sali: np.ndarray
 
@@ -68,11 +69,18 @@ class Samples:
     def times(self) -> np.ndarray:
         return self.steps * self.problem.dt
 
+    @property
+    def spectrum_growth(self) -> np.ndarray:
+        """(B, S, spectrum): the accumulated ln of the norms of the spectrum's vectors, the mLCE
+        vector's first."""
+        return np.concatenate([self.log_growth[:, :, None], self.extra_growth], axis=2)
+
     def run(self, j: int, deviation0=None) -> SampledRun:
         """Lane j as the sampled run the observable registry reads."""
         return SampledRun(self.problem.model, self.problem.chains[j], self.times, self.steps, self.Q[j], self.P[j],
                           self.DQ[j], self.DP[j], self.log_growth[j], self.gap_steps[j], self.max_gaps[j],
-                          self.energy_error[j], deviation0, self.spectrum_growth[j], self.log_gali[j], self.sali[j],
+                          self.energy_error[j], deviation0,
+                          np.column_stack([self.log_growth[j], self.extra_growth[j]]), self.log_gali[j], self.sali[j],
                           self.problem.gali)
 
 
@@ -97,7 +105,7 @@ def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq
     Q, P, DQ, DP = (np.empty((B, S, N)) for _ in range(4))
     samples = Samples(problem, np.asarray(steps), Q, P, DQ, DP, np.zeros((B, S)),
                       np.zeros((B, S, N + 1), dtype=np.int64), np.zeros((B, S), dtype=np.int64), np.zeros((B, S)),
-                      np.zeros(B), engine.bad, np.zeros((B, S, problem.spectrum)), np.full((B, S), np.nan),
+                      np.zeros(B), engine.bad, np.zeros((B, S, problem.spectrum - 1)), np.full((B, S), np.nan),
                       np.full((B, S), np.nan))
     Q[:, 0], P[:, 0], DQ[:, 0], DP[:, 0] = engine.q.T, engine.p.T, engine.dq.T, engine.dp.T
     if problem.gali > 1:
@@ -113,8 +121,7 @@ def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq
         engine.advance(int(steps[i] - steps[i - 1]))
         Q[:, i], P[:, i], DQ[:, i], DP[:, i] = engine.q.T, engine.p.T, engine.dq.T, engine.dp.T
         samples.log_growth[:, i] = engine.log_growth
-        samples.spectrum_growth[:, i, 0] = engine.log_growth
-        samples.spectrum_growth[:, i, 1:] = engine.x_growth[:problem.spectrum - 1].T
+        samples.extra_growth[:, i] = engine.x_growth[:problem.spectrum - 1].T
         if problem.gali > 1:
             _alignment(engine, samples, i)
         samples.gap_steps[:, i] = engine.gap_steps.T

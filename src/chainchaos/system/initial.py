@@ -4,7 +4,8 @@
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
-from chainchaos.engine.exactmath import matmul, norm
+from chainchaos.engine.exactmath import norm
+from chainchaos.engine.integrators import gram_schmidt
 from chainchaos.errors import ParameterError, require
 from chainchaos.system.models import total_energy
 
@@ -69,16 +70,12 @@ def extra_deviations(N: int, seed: int, count: int, stream: int) -> tuple[np.nda
 
 
 def orthonormalised(first: np.ndarray, others: np.ndarray) -> np.ndarray:
-    """``others`` (k, M) made orthogonal to the unit vector ``first`` (M,) and to each other and
-    normalised, by modified Gram-Schmidt with every sum in index order (chainchaos.engine.exactmath):
-    the start of a Lyapunov spectrum, whose first QR then measures the dynamics only."""
-    basis, out = [np.asarray(first, dtype=float)], np.empty_like(others, dtype=float)
-    for i, v in enumerate(np.asarray(others, dtype=float)):
-        for b in basis:
-            v = v - float(matmul(b, v)) * b
-        out[i] = v / norm(v)
-        basis.append(out[i])
-    return out
+    """``others`` (k, 2N) made orthogonal to the unit deviation vector ``first`` (2N,) and to each
+    other and normalised (``integrators.gram_schmidt``): the start of a Lyapunov spectrum, whose
+    first QR then measures the dynamics only."""
+    W = np.vstack([first, others]).astype(float)
+    gram_schmidt(W, 1, W.shape[0], np.zeros(W.shape[0]))
+    return W[1:]
 
 
 def initial_deviation(N: int, seed: int) -> tuple[np.ndarray, np.ndarray]:

@@ -29,7 +29,7 @@ from chainchaos.engine.rhs import RightHandSide
 from chainchaos.errors import require
 from chainchaos.system.initial import initial_deviation, initial_state
 from chainchaos.system.models import get_model
-from chainchaos.system.problem import Problem
+from chainchaos.system.problem import Problem, check_step
 
 IVP_METHODS = ("RK45", "DOP853")
 
@@ -87,7 +87,7 @@ def run_scheme(model, chain, energy: float, scheme: str, dt: float, t_final: flo
     of the run are recorded: largest number of simultaneously open bonds, fraction of bond-steps
     open, number of bonds that opened at least once (at step ends).
     """
-    require(np.isfinite(dt) and dt > 0, "dt", dt, "a finite step > 0")
+    check_step(dt)
     n_total = grid_steps(t_final, dt, "t_final")
     n_probe = grid_steps(t_probe, dt, "t_probe") if t_probe is not None else n_total
     require(n_probe <= n_total, "t_probe", t_probe, f"<= t_final = {t_final}")
