@@ -126,7 +126,7 @@ def test_search_filters_scores_and_chooses_the_best(tmp_path):
     rows = search.candidate_rows(found)
     assert len(rows) == 3 and [r["score"] for r in rows] == sorted(r["score"] for r in rows)
     assert found.attrs["n_qualifying"] >= 3
-    filters = [search.filter_group(selection, plan, settings, c, rows, g, 21) for g in range(plan.n_filter_jobs)]
+    filters = [search.filter_group(selection, plan, settings, c, rows, g, 21) for g in range(plan.n_filter_jobs(len(rows)))]
     assert [f.sizes["candidate"] for f in filters] == [2, 1]
     kept = search.survivors(filters, plan)
     assert len(kept) == 2
@@ -140,7 +140,7 @@ def test_search_filters_scores_and_chooses_the_best(tmp_path):
     assert ds.attrs["chosen_seed"] == rows[best]["seed"]
     # pinned: one candidate, no filter jobs
     pinned = search.SearchPlan(pinned_seed=int(rows[1]["seed"]), lanes=2)
-    assert pinned.n_filter_jobs == 0 and pinned.n_score_jobs == 1
+    assert pinned.n_filter_jobs(1) == 0 and pinned.n_score_jobs(1) == 1
     only = search.candidates(selection, pinned)
     assert list(only["seed"].values) == [rows[1]["seed"]] and only.attrs["n_qualifying"] == found.attrs["n_qualifying"]
     with pytest.raises(Exception, match="pinned_seed"):

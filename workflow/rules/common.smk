@@ -4,13 +4,19 @@
 
 import glob
 import math
+import os
 import re
+
+import xarray as xr
+
 from chainchaos.engine.simd import LANES
 from chainchaos.output.report_captions import figure_labels, figure_subcategory, panel_labels
 from chainchaos.paper import panels, statements
 from chainchaos.run.scenes import scene_batches, scene_parameters
 from chainchaos.studies.scan import runs as scan_runs
+from chainchaos.studies.search import archive
 from chainchaos.studies.search.stages import SearchPlan
+from chainchaos.workflow.tasks.chain import selection_criteria
 
 RESULTS = config["results"]
 SCENES = panels.scenes()
@@ -113,32 +119,107 @@ def scan_runtime(kind):
 
 
 # ---- the realization search and the ensemble verdicts (workflow/rules/search.smk) --------------
+# Two searches share the rules: `search`, the one `all` runs (pinned to the archived full search's
+# chain when search.archive names an existing file), and `search_full`, whose result
+# `snakemake search_full` writes to search.archive.
 
-SEARCH_PLAN = SearchPlan.from_config(config["search"])
+SEARCH_ARCHIVE = config["search"].get("archive") or None
 
 
-def search_params():
+def search_archive():
+    """The archived full search when the config names one and it exists, else None."""
+    return SEARCH_ARCHIVE if SEARCH_ARCHIVE and os.path.exists(SEARCH_ARCHIVE) else None
+
+
+def search_block(name):
+    """The config of a search: block `search` (its seed pinned to the archive's choice when it
+    pins none), or block `search_full` with the orbit settings of `search`."""
+    if name == "search_full":
+        return {**config["search_full"], "settings": config["search"]["settings"]}
+    block = {k: v for k, v in config["search"].items() if k != "archive"}
+    if block.get("pinned_seed") is None and search_archive():
+        block["pinned_seed"] = archive.chosen_seed(search_archive())
+    return block
+
+
+def search_chain(name):
+    """The chain block of a search: the full search scans search_full.n_seeds seeds."""
+    if name != "search_full":
+        return config["chain"]
+    selection = {**config["chain"]["selection"], "n_seeds": config["search_full"]["n_seeds"]}
+    return {**config["chain"], "selection": selection}
+
+
+SEARCH_PLANS = {name: SearchPlan.from_config(search_block(name)) for name in ("search", "search_full")}
+
+
+def search_selection(name):
+    return selection_criteria({"chain": search_chain(name)})
+
+
+def search_params(name):
     return {
-        "search": config["search"],
-        "chain": config["chain"],
+        "search": search_block(name),
+        "chain": search_chain(name),
         "claims": config.get("claims", {}),
         "site": config["simulation"]["excited_site"],
     }
 
 
-def search_filter_files():
-    return [result("search", "filter", f"{g:03d}.nc") for g in range(SEARCH_PLAN.n_filter_jobs)]
+def search_param(key):
+    """A parameter of the search named by the rule's `search` wildcard."""
+    return lambda wildcards: search_params(wildcards.search)[key]
 
 
-def search_score_files():
-    return [result("search", "score", f"{k:03d}.nc") for k in range(SEARCH_PLAN.n_score_jobs)]
+def search_seed_files(wildcards):
+    plan = SEARCH_PLANS[wildcards.search]
+    n = plan.n_seed_jobs(search_selection(wildcards.search))
+    return [result(wildcards.search, "seeds", f"{k:03d}.nc") for k in range(n)]
 
 
-def search_runtime(orbits_per_job, t_final):
-    """Minutes a search or verdict job may take, at the search's step."""
-    return cluster_runtime(
-        orbits_per_job, float(t_final), float(config["search"]["settings"]["dt"])
-    )
+def _n_candidates(name):
+    """Stage 0's count of candidates (read once the checkpoint search_candidates has run)."""
+    with xr.open_dataset(checkpoints.search_candidates.get(search=name).output.result) as found:
+        return found.sizes["candidate"]
+
+
+def search_filter_files(wildcards):
+    plan = SEARCH_PLANS[wildcards.search]
+    if plan.pinned:
+        return []
+    n = plan.n_filter_jobs(_n_candidates(wildcards.search))
+    return [result(wildcards.search, "filter", f"{g:03d}.nc") for g in range(n)]
+
+
+def search_score_files(wildcards):
+    plan = SEARCH_PLANS[wildcards.search]
+    n = plan.n_score_jobs(1 if plan.pinned else _n_candidates(wildcards.search))
+    return [result(wildcards.search, "score", f"{k:03d}.nc") for k in range(n)]
+
+
+def search_runtime(stage):
+    """Minutes a stage-1 ("filter") or stage-2 ("score") job of a search may take."""
+
+    def minutes(wildcards):
+        plan = SEARCH_PLANS[wildcards.search]
+        if stage == "filter":
+            orbits, t_final = plan.candidates_per_job, plan.filter_t_final
+        else:
+            orbits, t_final = plan.lanes, config["search"]["settings"]["t_final"]
+        return orbit_runtime(len(statements.statement_scenes()) * orbits, t_final)
+
+    return minutes
+
+
+def orbit_runtime(orbits_per_job, t_final):
+    """Minutes a job of orbits at the search's step may take."""
+    return cluster_runtime(orbits_per_job, float(t_final), float(config["search"]["settings"]["dt"]))
+
+
+def search_population():
+    """The search whose candidates the manuscript counts: the archived full search when `all`
+    uses it, else this run's."""
+    return search_archive() or result("search", "search.nc")
 
 
 # ---- claims and manuscript (workflow/rules/manuscript.smk) -------------------------------------
@@ -167,6 +248,7 @@ def claims_inputs(wildcards=None):
         "energy_scan": result("scan", "energy_scan.nc"),  # the threshold statements
         "disorder": result("scan", "disorder_statistics.nc"),  # numbers quoted in the text
         "search": result("search", "search.nc"),
+        "search_population": search_population(),
     }
     files.update({f"verdict_{name}": path for name, path in VERDICT_FILES.items()})
     files.update({name: scene_file(name) for name in sorted(SCENES)})

@@ -1,27 +1,54 @@
-# The realization chosen by the paper's published dynamics (chainchaos.studies.search.stages): the linear rule,
-# a short-run filter, and ensembles of the survivors scored against the paper's statements
-# (chainchaos.paper.statements.STATEMENTS); then, on the chosen chain, the ensemble verdicts of every statement
-# (chainchaos.paper.verdicts) that the claims table reads. With `search.pinned_seed` set, the search
-# re-scores that chain only.
+# The realization chosen by the paper's published dynamics (chainchaos.studies.search.stages): the linear rule
+# over chunks of seeds, a short-run filter, and ensembles of the survivors scored against the paper's
+# statements (chainchaos.paper.statements.STATEMENTS); then, on the chosen chain, the ensemble verdicts of
+# every statement (chainchaos.paper.verdicts) that the claims table reads.
+#
+# The rules serve two searches ({search}, common.smk): `search`, the one `all` runs, and `search_full`,
+# the search over many more chains whose merged result `snakemake search_full` keeps in the repository
+# (config search.archive). With an archive present, `all` pins its chosen chain and re-scores that chain
+# only; `search.pinned_seed` pins any seed. Every stage writes one file per chunk, so a killed search
+# resumes where it stopped.
 
 
 wildcard_constraints:
+    search="search|search_full",
+    chunk=r"\d+",
+    group=r"\d+",
     rank=r"\d+",
 
 
-N_STATEMENT_SCENES = len(statements.statement_scenes())
+localrules:
+    search_full,
 
 
-rule search_candidates:
-    """Stage 0: the chains that pass the linear rule (or the pinned seed), computed once."""
+rule search_seeds:
+    """Stage 0: the chains of a chunk of seeds that pass the linear rule."""
     output:
-        result=result("search", "candidates.nc"),
+        result=result("{search}", "seeds", "{chunk}.nc"),
     params:
-        **search_params(),
+        search=search_param("search"),
+        chain=search_param("chain"),
     log:
-        log_file("search_candidates"),
+        log_file("search_seeds", "{search}-{chunk}"),
     benchmark:
-        benchmark_file("search_candidates")
+        benchmark_file("search_seeds", "{search}-{chunk}")
+    script:
+        "../scripts/search_seeds.py"
+
+
+checkpoint search_candidates:
+    """Stage 0: the candidates (or the pinned seed), from every chunk of seeds."""
+    input:
+        seeds=search_seed_files,
+    output:
+        result=result("{search}", "candidates.nc"),
+    params:
+        search=search_param("search"),
+        chain=search_param("chain"),
+    log:
+        log_file("search_candidates", "{search}"),
+    benchmark:
+        benchmark_file("search_candidates", "{search}")
     script:
         "../scripts/search_candidates.py"
 
@@ -29,21 +56,22 @@ rule search_candidates:
 rule search_filter:
     """Stage 1: one short orbit per scene for a group of candidates."""
     input:
-        candidates=result("search", "candidates.nc"),
+        candidates=result("{search}", "candidates.nc"),
         kernels=result("kernels_compiled.txt"),
     output:
-        result=result("search", "filter", "{group}.nc"),
+        result=result("{search}", "filter", "{group}.nc"),
     params:
-        **search_params(),
+        search=search_param("search"),
+        chain=search_param("chain"),
+        claims=search_param("claims"),
+        site=search_param("site"),
     log:
-        log_file("search_filter", "{group}"),
+        log_file("search_filter", "{search}-{group}"),
     benchmark:
-        benchmark_file("search_filter", "{group}")
+        benchmark_file("search_filter", "{search}-{group}")
     resources:
         mem_mb=1000,
-        runtime=search_runtime(
-            N_STATEMENT_SCENES * SEARCH_PLAN.candidates_per_job, SEARCH_PLAN.filter_t_final
-        ),
+        runtime=search_runtime("filter"),
     script:
         "../scripts/search_filter.py"
 
@@ -51,47 +79,65 @@ rule search_filter:
 rule search_score:
     """Stage 2: the ensembles of the survivor of a given rank."""
     input:
-        candidates=result("search", "candidates.nc"),
-        filters=search_filter_files(),
+        candidates=result("{search}", "candidates.nc"),
+        filters=search_filter_files,
         kernels=result("kernels_compiled.txt"),
     output:
-        result=result("search", "score", "{rank}.nc"),
+        result=result("{search}", "score", "{rank}.nc"),
     priority: 4
     params:
-        **search_params(),
+        search=search_param("search"),
+        chain=search_param("chain"),
+        claims=search_param("claims"),
+        site=search_param("site"),
     log:
-        log_file("search_score", "{rank}"),
+        log_file("search_score", "{search}-{rank}"),
     benchmark:
-        benchmark_file("search_score", "{rank}")
+        benchmark_file("search_score", "{search}-{rank}")
     resources:
         mem_mb=1000,
-        runtime=search_runtime(
-            N_STATEMENT_SCENES * SEARCH_PLAN.lanes, config["search"]["settings"]["t_final"]
-        ),
+        runtime=search_runtime("score"),
     script:
         "../scripts/search_score.py"
 
 
 rule search_merge:
     input:
-        candidates=result("search", "candidates.nc"),
-        filters=search_filter_files(),
-        scores=search_score_files(),
+        candidates=result("{search}", "candidates.nc"),
+        filters=search_filter_files,
+        scores=search_score_files,
     output:
-        result=result("search", "search.nc"),
+        result=result("{search}", "search.nc"),
     params:
-        **search_params(),
+        search=search_param("search"),
+        chain=search_param("chain"),
+        claims=search_param("claims"),
+        site=search_param("site"),
     log:
-        log_file("search_merge"),
+        log_file("search_merge", "{search}"),
     benchmark:
-        benchmark_file("search_merge")
+        benchmark_file("search_merge", "{search}")
     script:
         "../scripts/search_merge.py"
 
 
+rule search_full:
+    """The full search's merged result, with its cost and provenance, written to search.archive
+    (a file of the repository: no rule of `all` makes it, so `all` never reruns the full search)."""
+    input:
+        search=result("search_full", "search.nc"),
+    params:
+        archive=SEARCH_ARCHIVE,
+        benchmarks=result("benchmarks"),
+    log:
+        log_file("search_full"),
+    script:
+        "../scripts/search_full.py"
+
+
 rule plot_search:
     input:
-        search=result("search", "search.nc"),
+        search=search_population(),
     output:
         pdf=result("figures", "search.pdf"),
         png=report(
@@ -128,9 +174,7 @@ rule ensemble_verdicts:
         benchmark_file("ensemble_verdicts", "{scene}")
     resources:
         mem_mb=1000,
-        runtime=search_runtime(
-            config["verdicts"]["lanes"], config["verdicts"]["settings"]["t_final"]
-        ),
+        runtime=orbit_runtime(config["verdicts"]["lanes"], config["verdicts"]["settings"]["t_final"]),
     script:
         "../scripts/ensemble_verdicts.py"
 

@@ -154,8 +154,8 @@ def consistency_errors(config: dict) -> list[str]:
             _check(messages, blocks, lambda: settings_for(kind, scan))
             _check(messages, blocks, lambda: energy_grid(scan[kind]))
 
-    search = config["search"]
-    _check(messages, [("search", search)], lambda: SearchPlan.from_config(search))
+    for block in ("search", "search_full"):
+        _check(messages, [(block, config[block])], lambda: SearchPlan.from_config(config[block]))
     for block in ("search", "verdicts"):
         settings = config[block]["settings"]
         _check(messages, [(f"{block}.settings", settings)], lambda: OrbitSettings.from_config(settings))

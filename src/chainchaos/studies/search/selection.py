@@ -54,15 +54,27 @@ def candidate_row(seed: int, c: SelectionCriteria) -> dict:
             "overlap_left": float(overlaps[0]), "overlap_right": float(overlaps[1]), "qualifies": bool(ok)}
 
 
+def ranked(rows: list[dict]) -> list[dict]:
+    """Rows of :func:`candidate_row` in the linear rule's order: best overlap score first, the lower
+    seed on ties."""
+    return sorted(rows, key=lambda r: (r["score"], r["seed"]))
+
+
+def qualifying(criteria: SelectionCriteria, seeds: range) -> list[dict]:
+    """The rows (:func:`candidate_row`) of the chains of ``seeds`` that pass the linear rule, in
+    seed order: one chunk of a scan over many seeds."""
+    return [row for row in (candidate_row(seed, criteria) for seed in seeds) if row["qualifies"]]
+
+
 def candidates(criteria: SelectionCriteria = SelectionCriteria()) -> list[dict]:
     """Every chain of seeds 0..n_seeds-1 that passes the linear rule, best overlap score first
     (the lower seed on ties): dicts with seed, score, mode_participation, overlap_left/right."""
     c = criteria
-    rows = [row for row in map(lambda seed: candidate_row(seed, c), range(c.n_seeds)) if row["qualifies"]]
+    rows = qualifying(c, range(c.n_seeds))
     if not rows:
         raise RuntimeError(f"no alpha = {c.alpha} chain among seeds 0..{c.n_seeds - 1} has mode {c.mode} "
                            f"with {c.p_min} <= P <= {c.p_max} peaked at site {c.site}; raise n_seeds")
-    return sorted(rows, key=lambda r: (r["score"], r["seed"]))
+    return ranked(rows)
 
 
 def select_realization(criteria: SelectionCriteria = SelectionCriteria()) -> tuple[Chain, dict]:

@@ -3,8 +3,9 @@
 The paper's alpha = 5 chain is unpublished. Its linear properties (mode 34 localized at bead 21,
 overlaps near 1.06) leave many chains, and they differ in what the paper's scenes do. The search:
 
-0. **Linear rule** (``selection.candidates``): the chains of seeds 0..n_seeds-1 that pass the
-   linear rule, ordered by their overlap score; the first ``candidates`` of them are searched.
+0. **Linear rule** (``selection.qualifying``, in chunks of ``seeds_per_job`` seeds): the chains
+   of seeds 0..n_seeds-1 that pass the linear rule, ordered by their overlap score; the first
+   ``candidates`` of them (all of them when ``candidates`` is empty) are searched.
 1. **Filter**: every candidate's scenes (``statements.statement_scenes``), one orbit each, to
    ``filter_t_final``. A statement marked ``early`` that such a run already breaks (a packet
    already spread, an orbit already chaotic) cannot hold at t = 1e5. The ``survivors`` candidates
@@ -31,46 +32,54 @@ from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
 from chainchaos.paper.verdicts import HOLDS, LANE, STATEMENT, ensemble_verdict, evaluate
 from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
-from chainchaos.studies.search.selection import SelectionCriteria, candidate_row
-from chainchaos.studies.search.selection import candidates as linear_candidates
+from chainchaos.studies.search.selection import SelectionCriteria, candidate_row, qualifying, ranked
 from chainchaos.system.chain import random_chain
 
 
 @dataclass(frozen=True)
 class SearchPlan:
-    """The sizes of a search (config block ``search:``)."""
+    """The sizes of a search (config blocks ``search:`` and ``search_full:``). ``candidates``:
+    how many chains that pass the linear rule are searched, None for all of them."""
 
-    candidates: int = 32
+    candidates: int | None = 32
     candidates_per_job: int = 8
     survivors: int = 4
     lanes: int = 4
     filter_t_final: float = 1e4
+    seeds_per_job: int = 10000
     pinned_seed: int | None = None
 
     def __post_init__(self):
-        for key in ("candidates", "candidates_per_job", "survivors", "lanes"):
+        for key in ("candidates_per_job", "survivors", "lanes", "seeds_per_job"):
             value = getattr(self, key)
             require(isinstance(value, int) and value >= 1, key, value, "an integer >= 1")
+        require(self.candidates is None or (isinstance(self.candidates, int) and self.candidates >= 1),
+                "candidates", self.candidates, "empty (every chain that passes the linear rule) or an integer >= 1")
         require(self.filter_t_final > 0, "filter_t_final", self.filter_t_final, "> 0")
         require(self.pinned_seed is None or (isinstance(self.pinned_seed, int) and self.pinned_seed >= 0),
                 "pinned_seed", self.pinned_seed, "empty (search) or an integer seed >= 0")
 
     @classmethod
     def from_config(cls, block: dict) -> "SearchPlan":
-        keys = ("candidates", "candidates_per_job", "survivors", "lanes", "filter_t_final", "pinned_seed")
+        keys = ("candidates", "candidates_per_job", "survivors", "lanes", "filter_t_final", "seeds_per_job",
+                "pinned_seed")
         return cls(**{k: block[k] for k in keys if k in block})
 
     @property
     def pinned(self) -> bool:
         return self.pinned_seed is not None
 
-    @property
-    def n_filter_jobs(self) -> int:
-        return 0 if self.pinned else -(-self.candidates // self.candidates_per_job)
+    def n_seed_jobs(self, selection: SelectionCriteria) -> int:
+        """Stage-0 jobs: chunks of ``seeds_per_job`` of the ``selection.n_seeds`` seeds."""
+        return -(-int(selection.n_seeds) // self.seeds_per_job)
 
-    @property
-    def n_score_jobs(self) -> int:
-        return 1 if self.pinned else min(self.survivors, self.candidates)
+    def n_filter_jobs(self, n_candidates: int) -> int:
+        """Stage-1 jobs for ``n_candidates`` candidates (stage 0's count)."""
+        return 0 if self.pinned else -(-int(n_candidates) // self.candidates_per_job)
+
+    def n_score_jobs(self, n_candidates: int) -> int:
+        """Stage-2 jobs for ``n_candidates`` candidates."""
+        return 1 if self.pinned else min(self.survivors, int(n_candidates))
 
 
 def _statement_orbits(chains: list, site: int, lanes: int) -> list[Orbit]:
@@ -101,15 +110,34 @@ def _outcomes(chains: list, site: int, lanes: int, settings: OrbitSettings, crit
     return out, value, np.max(energy_error, axis=1) if C else np.zeros(0)
 
 
-def candidates(selection: SelectionCriteria, plan: SearchPlan) -> xr.Dataset:
+def seed_chunk(selection: SelectionCriteria, plan: SearchPlan, chunk: int) -> xr.Dataset:
+    """Stage 0 for one chunk of seeds, ``chunk * seeds_per_job`` up to the next chunk or
+    ``selection.n_seeds``: the chains that pass the linear rule, with their linear-rule data."""
+    n = plan.n_seed_jobs(selection)
+    require(0 <= chunk < n, "chunk", chunk, f"0..{n - 1} (n_seeds / seeds_per_job)")
+    seeds = range(chunk * plan.seeds_per_job, min((chunk + 1) * plan.seeds_per_job, int(selection.n_seeds)))
+    rows = qualifying(selection, seeds)
+    ds = xr.Dataset(_seed_dataset(rows), coords={"candidate": _candidates(np.arange(len(rows)))})
+    ds.attrs.update(title="Realization search, stage 0: the chains of a chunk of seeds that pass the linear rule",
+                    first_seed=int(seeds.start), seeds_scanned=len(seeds))
+    return ds
+
+
+def candidates(selection: SelectionCriteria, plan: SearchPlan, chunks: list[xr.Dataset] | None = None) -> xr.Dataset:
     """Stage 0, once per search: the candidates (the first ``plan.candidates`` chains passing the
-    linear rule, or the pinned seed) with their linear-rule data, and in the attribute
-    ``n_qualifying`` how many of the scanned seeds pass the rule. Later stages read this."""
-    qualifying = linear_candidates(selection)
-    rows = [candidate_row(plan.pinned_seed, selection)] if plan.pinned else qualifying[:plan.candidates]
+    linear rule, all of them when it is None, or the pinned seed) with their linear-rule data, and
+    in the attribute ``n_qualifying`` how many of the scanned seeds pass the rule. ``chunks``: the
+    :func:`seed_chunk` results of every chunk (computed here when None). Later stages read this."""
+    if chunks is None:
+        chunks = [seed_chunk(selection, plan, k) for k in range(plan.n_seed_jobs(selection))]
+    scanned = sum(int(c.attrs["seeds_scanned"]) for c in chunks)
+    require(scanned == int(selection.n_seeds), "seed chunks", f"{scanned} seeds",
+            f"the {selection.n_seeds} seeds of chain.selection.n_seeds")
+    found = ranked([row for c in chunks for row in candidate_rows(c)])
+    rows = [candidate_row(plan.pinned_seed, selection)] if plan.pinned else found[:plan.candidates]
     ds = xr.Dataset(_seed_dataset(rows), coords={"candidate": _candidates(np.arange(len(rows)))})
     ds.attrs.update(title="Realization search, stage 0: the candidate chains of the linear rule",
-                    n_qualifying=len(qualifying), seeds_scanned=int(selection.n_seeds), pinned=int(plan.pinned))
+                    n_qualifying=len(found), seeds_scanned=scanned, pinned=int(plan.pinned))
     return ds
 
 
@@ -149,7 +177,8 @@ def filter_group(selection: SelectionCriteria, plan: SearchPlan, settings: Orbit
                  rows: list[dict], group: int, site: int, progress=None) -> xr.Dataset:
     """Stage 1 for the candidates of one job (``rows``: :func:`candidate_rows`): one orbit per
     scene to ``plan.filter_t_final``."""
-    require(0 <= group < max(plan.n_filter_jobs, 1), "group", group, f"0..{plan.n_filter_jobs - 1}")
+    n_jobs = plan.n_filter_jobs(len(rows))
+    require(0 <= group < max(n_jobs, 1), "group", group, f"0..{n_jobs - 1}")
     rows = rows[group * plan.candidates_per_job:(group + 1) * plan.candidates_per_job]
     short = OrbitSettings(**{**vars(settings), "t_final": float(plan.filter_t_final)})
     chains = [random_chain(r["seed"], selection.alpha, selection.N) for r in rows]
@@ -178,7 +207,7 @@ def survivors(filter_groups: list[xr.Dataset], plan: SearchPlan) -> np.ndarray:
     ds = xr.concat(filter_groups, dim="candidate") if len(filter_groups) > 1 else filter_groups[0]
     broken = (ds["outcome"].values == 0).sum(axis=1)
     order = np.lexsort((ds["candidate"].values, broken))
-    return ds["candidate"].values[order][:plan.n_score_jobs]
+    return ds["candidate"].values[order][:plan.n_score_jobs(ds.sizes["candidate"])]
 
 
 def score_candidate(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSettings, criteria: Criteria,

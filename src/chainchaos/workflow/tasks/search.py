@@ -3,15 +3,18 @@ of the chosen chain."""
 
 import sys
 import time
+from pathlib import Path
 
 import xarray as xr
 
+from chainchaos.errors import require
 from chainchaos.output.io import read_chain, write_netcdf
 from chainchaos.output.provenance import provenance_attrs
 from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
 from chainchaos.paper.verdicts import verdict_dataset
 from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
+from chainchaos.studies.search import archive
 from chainchaos.studies.search import stages as search
 from chainchaos.studies.search.selection import SelectionCriteria
 from chainchaos.studies.search.stages import SearchPlan
@@ -27,10 +30,14 @@ def _progress(label: str):
     return report
 
 
+def _plan(params: dict) -> tuple[SelectionCriteria, SearchPlan]:
+    """The linear rule and the sizes of a search: all that stage 0 needs."""
+    return selection_criteria(params), SearchPlan.from_config(params["search"])
+
+
 def _search_parts(params: dict):
-    block = params["search"]
-    return (selection_criteria(params), SearchPlan.from_config(block), OrbitSettings.from_config(block["settings"]),
-            Criteria.from_config(params.get("claims")), int(params["site"]))
+    settings = OrbitSettings.from_config(params["search"]["settings"])
+    return (*_plan(params), settings, Criteria.from_config(params.get("claims")), int(params["site"]))
 
 
 def _write_search_product(ds, params: dict, selection: SelectionCriteria, path) -> None:
@@ -44,10 +51,19 @@ def _as_list(value) -> list:
     return [value] if isinstance(value, str) else list(value)
 
 
+def search_seeds(inputs, outputs, params, wildcards) -> None:
+    """Stage 0 of the realization search for one chunk of seeds: the chains that pass the linear rule."""
+    selection, plan = _plan(params)
+    ds = search.seed_chunk(selection, plan, int(wildcards["chunk"]))
+    print(f"{ds.sizes['candidate']} of the {ds.attrs['seeds_scanned']} seeds from {ds.attrs['first_seed']} "
+          "pass the linear rule", file=sys.stderr)
+    _write_search_product(ds, params, selection, outputs["result"])
+
+
 def search_candidates(inputs, outputs, params, wildcards) -> None:
     """Stage 0 of the realization search: the candidates, by the linear rule (or the pinned seed)."""
-    selection, plan, *_ = _search_parts(params)
-    ds = search.candidates(selection, plan)
+    selection, plan = _plan(params)
+    ds = search.candidates(selection, plan, [xr.load_dataset(p) for p in _as_list(inputs["seeds"])])
     print(f"{ds.attrs['n_qualifying']} of {selection.n_seeds} seeds pass the linear rule; "
           f"{ds.sizes['candidate']} candidates", file=sys.stderr)
     _write_search_product(ds, params, selection, outputs["result"])
@@ -87,6 +103,19 @@ def search_merge(inputs, outputs, params, wildcards) -> None:
     _write_search_product(ds, params, selection, outputs["result"])
 
 
+def search_full(inputs, outputs, params, wildcards) -> None:
+    """The full search's merged result, with its cost and provenance, kept at config search.archive."""
+    target = params.get("archive")
+    require(bool(target), "search.archive", target, "the path of the archived full search (e.g. data/search/search_full.nc)")
+    merged = Path(inputs["search"])
+    stage_files = sorted(merged.parent.glob("*/*.nc")) + [merged.parent / "candidates.nc", merged]
+    ds = archive.archive_dataset(xr.load_dataset(merged), archive.job_costs(Path(params["benchmarks"])),
+                                 archive.stage_machines(stage_files))
+    write_netcdf(ds, target)
+    print(f"{target}: chose seed {ds.attrs['chosen_seed']} among {ds.sizes['candidate']} candidates; "
+          f"{ds.attrs['cost_total_jobs']} jobs, {ds.attrs['cost_total_cpu_seconds'] / 60:.1f} CPU-min", file=sys.stderr)
+
+
 def plot_search(inputs, outputs, params, wildcards) -> None:
     """The search figure: how many candidates satisfy each statement, and every candidate."""
     from chainchaos.studies.search.plots import plot_search as draw  # matplotlib: only in the plotting jobs
@@ -114,4 +143,5 @@ def ensemble_verdicts(inputs, outputs, params, wildcards) -> None:
     write_netcdf(ds, outputs["result"])
 
 
-TASKS = (search_candidates, search_filter, search_score, search_merge, plot_search, ensemble_verdicts)
+TASKS = (search_seeds, search_candidates, search_filter, search_score, search_merge, search_full, plot_search,
+         ensemble_verdicts)
