@@ -99,9 +99,11 @@ def test_paper_scale_dry_run_plans_every_scene(tmp_path):
     # scenes that share their settings run together, one SIMD block per job
     per_model = [sum(s.model == model for s in panels.scenes().values()) for model in ("hertz", "fput")]
     assert jobs["simulate_scenes"] == sum(-(-n // LANES) for n in per_model)
-    # the realization search: stage-1 jobs of 8 candidates, the survivors' scores, one verdict per scene
-    assert jobs["search_candidates"] == 1 and jobs["search_filter"] == 5 and jobs["search_score"] == 6
-    assert jobs["search_merge"] == 1
+    # the realization search: the archived full search's chain (data/search/search_full.nc, part of
+    # the repository) re-scored alone, no filter; one verdict per scene
+    assert (ROOT / "data" / "search" / "search_full.nc").is_file()
+    assert jobs["search_seeds"] == 1 and jobs["search_candidates"] == 1 and "search_filter" not in jobs
+    assert jobs["search_score"] == 1 and jobs["search_merge"] == 1
     assert jobs["ensemble_verdicts"] == len(statements.statement_scenes())
 
 

@@ -9,9 +9,10 @@ import pytest
 import xarray as xr
 
 from chainchaos.paper import statements
+from chainchaos.paper.criteria import Criteria
 from chainchaos.paper.verdicts import HOLDS
 from chainchaos.studies.numerics import bench
-from chainchaos.studies.search import report
+from chainchaos.studies.search import joint, report
 from chainchaos.system.chain import random_chain
 from chainchaos.system.models import get_model, total_energy
 
@@ -26,7 +27,7 @@ def search_results(quick):
 
 def test_the_search_table_has_a_row_per_statement_with_its_counts(search_results):
     search, verdicts, _, _ = search_results
-    tex = report.search_table_tex(search, verdicts)
+    tex = report.search_table_tex(search, search, verdicts)
     rows = re.findall(r"\\texttt\{([^}]+)\} & (\d+)/(\d+) & (\d+)/(\d+) &", tex)
     assert [r[0] for r in rows] == [s.id for s in statements.STATEMENTS]
     scored = search["scored"].values == 1
@@ -38,7 +39,7 @@ def test_the_search_table_has_a_row_per_statement_with_its_counts(search_results
 
 def test_the_search_numbers_are_those_of_the_file(search_results):
     search, verdicts, energy_scan, disorder = search_results
-    macros = report.search_macros(search, verdicts, energy_scan, disorder, agreement=0.75)
+    macros = report.search_macros(search, search, verdicts, energy_scan, disorder, Criteria(agreement=0.75))
     assert macros["search.seed"] == str(int(search.attrs["chosen_seed"]))
     assert macros["search.candidates"] == str(search.sizes["candidate"])
     same, total = (int(macros["search.stepsame"]), int(macros["search.steptotal"]))
@@ -80,3 +81,48 @@ def test_the_benchmark_problem_is_a_production_one(model):
     H = float(total_energy(law, chain, state["q"], state["p"]))
     assert abs(H - H0) / H0 < 1e-9 and np.isfinite(growth) and seconds > 0
     assert bench.time_kernel(model, "SRKN6b", n_steps=200, repeats=1) > 0
+
+
+def _population(verdicts: np.ndarray, scores, onset, level) -> xr.Dataset:
+    """A merged search of len(scores) scored candidates over the first verdicts.shape[1] statements
+    (the rest untestable), with Hertz H = 1.8's onset and level medians."""
+    ids = [st.id for st in statements.STATEMENTS]
+    C, S = verdicts.shape
+    v = np.full((C, len(ids)), -2, dtype=np.int8)
+    v[:, :S] = verdicts
+    median = np.full((C, len(ids)), np.nan)
+    median[:, ids.index(joint.ONSET)], median[:, ids.index(joint.LEVEL)] = onset, level
+    best = int(np.argmax(scores))
+    return xr.Dataset({"scored": ("candidate", np.ones(C, dtype=np.int8)),
+                       "verdict": (("candidate", "statement"), v),
+                       "score": ("candidate", np.asarray(scores, dtype=float)),
+                       "measured_median": (("candidate", "statement"), median)},
+                      coords={"candidate": np.arange(C), "statement": ids},
+                      attrs={"chosen_score": float(scores[best]), "chosen_candidate": best})
+
+
+def test_the_joint_analysis_finds_exclusive_statements_and_ranks_the_chosen_chain():
+    # statements 0 and 1 never hold together, 2 always holds, 3 never: one exclusive pair
+    verdicts = np.array([[1, 0, 1, 0], [0, 1, 1, 0], [1, 0, 1, 0], [1, 1, 1, -1]])
+    verdicts[3, 1] = 0
+    ds = _population(verdicts, [2.5, 2.0, 2.5, 1.0], onset=[2e2, 3e2, 1e3, np.nan], level=[5e-3, 1e-3, 1e-3, 1e-3])
+    j = joint.joint_statements(ds)
+    ids = [st.id for st in statements.STATEMENTS]
+    assert j.exclusive_pairs() == [(ids[0], ids[1])]
+    assert j.both[0, 2] == 3 and j.both[2, 2] == 4 and j.both[3, 3] == 0
+    assert j.all_held() == 0 and j.at_least_as_good() == 2
+    c = joint.onset_level_consistency(ds, 2e2, 1e-3, 2.0, 3.0)
+    # onsets within x2 of 2e2: candidates 0 and 1; levels within x3 of 1e-3: 1 and 2 (3 has no onset)
+    assert c == {"onset_near": 2, "level_near": 3, "both": 1, "lowest_level_with_onset": 1e-3, "decided": 3}
+
+
+def test_the_joint_figure_marks_every_exclusive_pair(tmp_path):
+    from chainchaos.studies.search import plots
+
+    verdicts = np.array([[1, 0, 1], [0, 1, 1]])
+    ds = _population(verdicts, [2.0, 2.0], onset=[2e2, 1e3], level=[1e-2, 1e-3])
+    fig = plots.joint_figure(ds)
+    matrix = fig.axes[0]
+    crosses = [line for line in matrix.lines if line.get_marker() == "x"]
+    assert len(crosses) == 1 and sorted(crosses[0].get_xdata()) == [0, 1]
+    assert matrix.get_xlabel() == "" and fig.axes[2].get_xlabel() and fig.axes[3].get_yscale() == "log"

@@ -212,3 +212,23 @@ def test_quick_scan_runs_through_slurm(slurm, tmp_path):
                           text=True, timeout=30).stdout.split("\n")
     assert len([j for j in jobs if j.strip()]) >= 4, (jobs, submitted)
     assert elapsed < 400, f"the quick scan through SLURM took {elapsed:.0f} s"
+
+
+def test_small_full_search_runs_through_slurm(slurm, tmp_path):
+    """`snakemake --profile profiles/slurm search_full` at a small scale: the checkpoint of stage 0
+    and the archive behave on a cluster as on one machine."""
+    from test_search_full import SMALL
+
+    results, archive = tmp_path / "results", tmp_path / "data" / "search_full.nc"
+    config = tmp_path / "small.yaml"
+    config.write_text(SMALL.format(archive=archive))
+    cmd = ["timeout", "-k", "15", "420", sys.executable, "-m", "snakemake", "--profile", "profiles/slurm",
+           "--nolock", "--jobs", "2", "--latency-wait", "5",
+           "--default-resources", "slurm_partition=debug", "mem_mb=1000", "runtime=30", "cpus_per_task=1",
+           "--slurm-status-command", "squeue", "--slurm-init-seconds-before-status-checks", "5",
+           "--configfile", "config/quick.yaml", str(config), "--config", f"results={results}", "--", "search_full"]
+    done = subprocess.run(cmd, cwd=ROOT, env=slurm, capture_output=True, text=True, timeout=480)
+    assert done.returncode == 0, (done.stdout + done.stderr)[-6000:]
+    with xr.open_dataset(archive) as ds:
+        assert ds.attrs["seeds_scanned"] == 1500 and int(ds["scored"].sum()) == 2
+        assert ds.attrs["cost_search_filter_jobs"] == -(-ds.sizes["candidate"] // 2)

@@ -150,7 +150,9 @@ def search_chain(name):
     return {**config["chain"], "selection": selection}
 
 
-SEARCH_PLANS = {name: SearchPlan.from_config(search_block(name)) for name in ("search", "search_full")}
+SEARCH_PLANS = {
+    name: SearchPlan.from_config(search_block(name)) for name in ("search", "search_full")
+}
 
 
 def search_selection(name):
@@ -213,7 +215,9 @@ def search_runtime(stage):
 
 def orbit_runtime(orbits_per_job, t_final):
     """Minutes a job of orbits at the search's step may take."""
-    return cluster_runtime(orbits_per_job, float(t_final), float(config["search"]["settings"]["dt"]))
+    return cluster_runtime(
+        orbits_per_job, float(t_final), float(config["search"]["settings"]["dt"])
+    )
 
 
 def search_population():
@@ -267,6 +271,7 @@ def manuscript_inputs(wildcards=None):
             "figdisorder": result("figures", "disorder_statistics.pdf"),
             "thresholds": result("scan", "thresholds.tex"),
             "figsearch": result("figures", "search.pdf"),
+            "figsearchjoint": result("figures", "search_joint.pdf"),
         }
     )
     files.update({f"numerics_{key}": path for key, path in manuscript_numerics().items()})

@@ -156,6 +156,32 @@ rule plot_search:
         "../scripts/plot_search.py"
 
 
+rule plot_search_joint:
+    """The statements analysed jointly over the searched candidates."""
+    input:
+        search=search_population(),
+    output:
+        pdf=result("figures", "search_joint.pdf"),
+        png=report(
+            result("figures", "search_joint.png"),
+            caption="../report/search_joint.rst",
+            category=REPORT_CATEGORIES["search"],
+            labels={
+                "result": "search_joint",
+                "shows": "statements that hold together, scores, H = 1.8 chaos",
+            },
+        ),
+    params:
+        dpi=config["figures"]["dpi"],
+        claims=config.get("claims", {}),
+    log:
+        log_file("plot_search_joint"),
+    benchmark:
+        benchmark_file("plot_search_joint")
+    script:
+        "../scripts/plot_search_joint.py"
+
+
 rule ensemble_verdicts:
     """A scene's ensemble of perturbed orbits on the chosen chain, and its statements' verdicts."""
     input:
@@ -174,7 +200,9 @@ rule ensemble_verdicts:
         benchmark_file("ensemble_verdicts", "{scene}")
     resources:
         mem_mb=1000,
-        runtime=orbit_runtime(config["verdicts"]["lanes"], config["verdicts"]["settings"]["t_final"]),
+        runtime=orbit_runtime(
+            config["verdicts"]["lanes"], config["verdicts"]["settings"]["t_final"]
+        ),
     script:
         "../scripts/ensemble_verdicts.py"
 
@@ -184,5 +212,7 @@ SEARCH_TARGETS = [
     result("search", "search.nc"),
     result("figures", "search.pdf"),
     result("figures", "search.png"),
+    result("figures", "search_joint.pdf"),
+    result("figures", "search_joint.png"),
     *VERDICT_FILES.values(),
 ]

@@ -30,7 +30,9 @@ def _benchmark_rows(path: Path) -> list[dict]:
 def job_costs(benchmarks: Path, search: str = "search_full") -> dict:
     """Per stage and in total: the number of jobs, their wall seconds and CPU seconds summed, read
     from the benchmark files ``<benchmarks>/<stage>/<search>[-<n>].tsv``; ``span_seconds``: from
-    the first job's start to the last job's end (a resumed search includes its pause)."""
+    the first job's start to the last job's end (a resumed search includes its pause). A job whose
+    run was killed just after writing its output may have left no benchmark file: its cost is
+    missing from the sums."""
     costs, starts, ends = {}, [], []
     for stage in STAGES:
         files = sorted(Path(benchmarks, stage).glob(f"{search}.tsv")) + sorted(

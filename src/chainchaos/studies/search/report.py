@@ -1,7 +1,10 @@
 """The realization search in the manuscript: its numbers as macros, and a table per statement.
 
-Reads results/search/search.nc (``stages.merge``), the ensemble verdicts of the chosen chain
-(``verdicts.verdict_dataset``, one file per scene), the energy scan and the disorder statistics.
+Reads two merged searches (``stages.merge``): the *population*, whose candidates are counted (the
+archived full search, ``archive``, when the build pins its chain; else the build's own search), and
+the build's *search* (results/search/search.nc: the chosen chain re-scored when pinned); the
+ensemble verdicts of the chosen chain (``verdicts.verdict_dataset``, one file per scene), the
+energy scan and the disorder statistics.
 """
 
 import numpy as np
@@ -9,14 +12,16 @@ import xarray as xr
 
 from chainchaos.output.formatting import tex_number, tex_parameter
 from chainchaos.paper import statements
+from chainchaos.paper.criteria import Criteria
 from chainchaos.paper.verdicts import HOLDS, VERDICT_NAMES, verdict_code
 from chainchaos.studies.scan.merge import probability_at
 from chainchaos.studies.scan.thresholds import criterion_holds, first_energy
+from chainchaos.studies.search.joint import joint_statements, onset_level_consistency
 from chainchaos.system.models import model_label
 
 
-def _statement_rows(search: xr.Dataset, verdicts: dict) -> list[dict]:
-    scored = search["scored"].values == 1
+def _statement_rows(population: xr.Dataset, search: xr.Dataset, verdicts: dict) -> list[dict]:
+    scored = population["scored"].values == 1
     chosen = int(search.attrs["chosen_candidate"])
     rows = []
     for st in statements.STATEMENTS:
@@ -24,8 +29,8 @@ def _statement_rows(search: xr.Dataset, verdicts: dict) -> list[dict]:
         v = verdicts.get(st.scene.name)
         row = {
             "id": i,
-            "not_broken": int((search["filter_outcome"].sel(statement=i).values != 0).sum()),
-            "held": int((search["verdict"].sel(statement=i).values[scored] == HOLDS).sum()),
+            "not_broken": int((population["filter_outcome"].sel(statement=i).values != 0).sum()),
+            "held": int((population["verdict"].sel(statement=i).values[scored] == HOLDS).sum()),
             "search_fraction": float(search["fraction"].sel(statement=i).values[chosen]),
             "fraction": float(v["fraction"].sel(statement=i)) if v is not None else float("nan"),
             "lanes": int(v["n_decided"].sel(statement=i)) if v is not None else 0,
@@ -40,7 +45,7 @@ def step_agreement(search: xr.Dataset, verdicts: dict, agreement: float) -> tupl
     verdicts' step, statements decided at both): the check that the coarser search step does not
     change the verdicts."""
     same = total = 0
-    for r in _statement_rows(search, verdicts):
+    for r in _statement_rows(search, search, verdicts):
         a, b = r["search_fraction"], r["fraction"]
         if not (np.isfinite(a) and np.isfinite(b)):
             continue
@@ -49,15 +54,17 @@ def step_agreement(search: xr.Dataset, verdicts: dict, agreement: float) -> tupl
     return same, total
 
 
-def search_table_tex(search: xr.Dataset, verdicts: dict) -> str:
-    """Per statement: candidates whose short run leaves it unbroken, scored candidates on whose
-    ensemble it holds, the chosen chain's fraction at the search step and at the verdict step."""
-    n_c, n_s = search.sizes["candidate"], int((search["scored"].values == 1).sum())
+def search_table_tex(population: xr.Dataset, search: xr.Dataset, verdicts: dict) -> str:
+    """Per statement: candidates of the population whose short run leaves it unbroken, scored
+    candidates on whose ensemble it holds, the chosen chain's fraction at the build's search step
+    and at the verdict step."""
+    n_c, n_s = population.sizes["candidate"], int((population["scored"].values == 1).sum())
     lines = [
         r"\begingroup\footnotesize",
         r"\begin{longtable}{@{}lcccc@{}}",
         (r"\caption{\label{tab:search}The realization search, statement by statement: of the "
-         f"{n_c} candidates, how many short runs (to $t = {tex_parameter(search.attrs['filter_t_final'])}$) leave the "
+         f"{n_c} candidates, how many short runs (to "
+         f"$t = {tex_parameter(population.attrs['filter_t_final'])}$) leave the "
          f"statement unbroken; of the {n_s} candidates scored on ensembles, on how many it holds; on the "
          r"chosen chain, the fraction of perturbed orbits satisfying it at the search's step "
          f"($\\Delta t = {tex_parameter(search.attrs['dt'])}$) and at the verdicts' step, with that verdict.}}\\\\"),
@@ -69,13 +76,35 @@ def search_table_tex(search: xr.Dataset, verdicts: dict) -> str:
         r"\hline\hline",
         r"\endlastfoot",
     ]
-    for r in _statement_rows(search, verdicts):
+    for r in _statement_rows(population, search, verdicts):
         verdict_cell = (f"${tex_number(r['fraction'], 2)}$ of {r['lanes']}, {r['verdict']}" if r["lanes"]
                         else r["verdict"])
         lines.append(f"\\texttt{{{r['id']}}} & {r['not_broken']}/{n_c} & {r['held']}/{n_s} & "
                      f"${tex_number(r['search_fraction'], 2)}$ & {verdict_cell}\\\\")
     lines += [r"\end{longtable}", r"\endgroup", ""]
     return "\n".join(lines)
+
+
+def _joint_macros(population: xr.Dataset, criteria: Criteria) -> dict[str, str]:
+    """The joint analysis in words: statements that exclude each other, how many candidates score
+    at least as well as the chosen one, and Hertz H = 1.8's onset against its level."""
+    joint = joint_statements(population)
+    pairs = joint.exclusive_pairs()
+    tol = criteria.tolerance
+    c = onset_level_consistency(population, 2e2, 1e-3, tol.time_factor, tol.mlce_factor)
+    listed = "; ".join(f"\\texttt{{{a}}} and \\texttt{{{b}}}" for a, b in pairs) or "none"
+    return {
+        "search.exclusive": str(len(pairs)),
+        "search.exclusivelist": listed,
+        "search.asgood": str(joint.at_least_as_good()),
+        "search.allheldtestable": str(joint.all_held()),
+        "search.onsetnear": str(c["onset_near"]),
+        "search.levelnear": str(c["level_near"]),
+        "search.onsetlevelboth": str(c["both"]),
+        "search.onsetleveldecided": str(c["decided"]),
+        "search.lowestlevel": tex_number(c["lowest_level_with_onset"]) if np.isfinite(c["lowest_level_with_onset"])
+        else "--",
+    }
 
 
 def threshold_quantiles(energy_scan: xr.Dataset, disorder: xr.Dataset) -> dict:
@@ -91,19 +120,24 @@ def threshold_quantiles(energy_scan: xr.Dataset, disorder: xr.Dataset) -> dict:
     return out
 
 
-def search_macros(search: xr.Dataset, verdicts: dict, energy_scan: xr.Dataset, disorder: xr.Dataset,
-                  agreement: float) -> dict[str, str]:
-    a = search.attrs
-    scored = search["scored"].values == 1
-    held = search["statements_held"].values[scored]
+def search_macros(population: xr.Dataset, search: xr.Dataset, verdicts: dict, energy_scan: xr.Dataset,
+                  disorder: xr.Dataset, criteria: Criteria) -> dict[str, str]:
+    """The search's numbers in the text: the population's counts and choice, this build's re-score,
+    the joint analysis (``joint``) and, for an archived search, its cost and machine."""
+    agreement = criteria.agreement
+    a = population.attrs
+    scored = population["scored"].values == 1
+    held = population["statements_held"].values[scored]
     out = {
-        "search.pinned": "yes" if int(a["pinned"]) else "no",
-        "search.candidates": str(search.sizes["candidate"]),
+        "search.pinned": "yes" if int(search.attrs["pinned"]) else "no",
+        "search.archived": "yes" if "cost_total_cpu_seconds" in a else "no",
+        "search.candidates": str(population.sizes["candidate"]),
         "search.scored": str(int(scored.sum())),
         "search.statements": str(int(a["n_statements"])),
         "search.seed": str(int(a["chosen_seed"])),
         "search.score": tex_number(float(a["chosen_score"])),
-        "search.held": str(int(search["statements_held"].values[int(a["chosen_candidate"])])),
+        "search.rescore": tex_number(float(search.attrs["chosen_score"])),
+        "search.held": str(int(population["statements_held"].values[int(a["chosen_candidate"])])),
         "search.heldmax": str(int(held.max())) if held.size else "0",
         "search.heldmin": str(int(held.min())) if held.size else "0",
         "search.filtert": tex_parameter(a["filter_t_final"]),
@@ -111,9 +145,18 @@ def search_macros(search: xr.Dataset, verdicts: dict, energy_scan: xr.Dataset, d
         "search.dt": tex_parameter(a["dt"]),
         "search.lanes": str(int(a["lanes"])),
         "search.seedsscanned": str(int(a["seeds_scanned"])),
+        "search.qualifying": str(int(a["n_qualifying"])),
         "search.perturbation": tex_parameter(a["perturbation"]),
         "search.allheld": str(int((held == int(a["n_statements"])).sum())),
+        "search.rescoretfinal": tex_parameter(search.attrs["t_final"]),
+        "search.rescorelanes": str(int(search.attrs["lanes"])),
     }
+    out.update(_joint_macros(population, criteria))
+    if "cost_total_cpu_seconds" in a:
+        out.update({"search.cost.cpuhours": tex_number(a["cost_total_cpu_seconds"] / 3600, 2),
+                    "search.cost.jobs": str(int(a["cost_total_jobs"])),
+                    "search.cost.cpu": str(a["stage_cpus"]).replace("_", "\\_"),
+                    "search.cost.commit": str(a["stage_commits"])[:12]})
     same, total = step_agreement(search, verdicts, agreement)
     out["search.stepsame"], out["search.steptotal"] = str(same), str(total)
     any_v = next(iter(verdicts.values()), None)

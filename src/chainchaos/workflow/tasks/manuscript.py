@@ -24,7 +24,9 @@ from chainchaos.paper.criteria import Criteria
 from chainchaos.studies.search import report as search_report
 
 #: The inputs of evaluate_claims that are not scene files (and the prefix of the ensemble verdicts).
-PRODUCTS = ("chain", "ensemble", "energy_scan", "disorder", "search")
+#: ``search_population``: the search whose candidates are counted (the archived full search when
+#: ``all`` pins its chain, else ``search`` itself).
+PRODUCTS = ("chain", "ensemble", "energy_scan", "disorder", "search", "search_population")
 VERDICT_PREFIX = "verdict_"
 
 
@@ -36,7 +38,7 @@ def evaluate_claims(inputs, outputs, params, wildcards) -> None:
     reruns); params: the config blocks ``claims`` and ``simulation``."""
     files = {k: v for k, v in inputs.items() if k != "code"}
     products = {name: xr.load_dataset(files.pop(name)) for name in PRODUCTS}
-    chain, ensemble, energy_scan, disorder, search = (products[name] for name in PRODUCTS)
+    chain, ensemble, energy_scan, disorder, search, population = (products[name] for name in PRODUCTS)
     verdicts = {name[len(VERDICT_PREFIX):]: xr.load_dataset(files.pop(name))
                 for name in sorted(files) if name.startswith(VERDICT_PREFIX)}
     scenes = {name: xr.load_dataset(path) for name, path in files.items()}
@@ -44,7 +46,7 @@ def evaluate_claims(inputs, outputs, params, wildcards) -> None:
     simulation = params.get("simulation", {})
     site = int(simulation.get("excited_site", 21))
     claims = measure_claims(scenes, chain, ensemble, criteria, excited_site=site, energy_scan=energy_scan,
-                            verdicts=verdicts, search=search, disorder=disorder)
+                            verdicts=verdicts, search=population, disorder=disorder)
 
     barrier = taylor_sign_barrier(read_chain(inputs["chain"], k4_sign=-1.0), site)
     macros = run_macros(scenes, chain, ensemble, simulation, criteria, barrier)
@@ -52,7 +54,7 @@ def evaluate_claims(inputs, outputs, params, wildcards) -> None:
     for name, ds in scenes.items():
         macros.update(scene_macros(name, ds, criteria))
     macros.update(claim_macros(claims))
-    macros.update(search_report.search_macros(search, verdicts, energy_scan, disorder, criteria.agreement))
+    macros.update(search_report.search_macros(population, search, verdicts, energy_scan, disorder, criteria))
     paper_scale = macros["run.scale"] == "paper"
 
     with atomic_output(outputs["csv"]) as tmp:
@@ -60,11 +62,13 @@ def evaluate_claims(inputs, outputs, params, wildcards) -> None:
     write_text(claims_table_tex(claims), outputs["table"])
     write_text(claims_notes_tex(claims), outputs["notes"])
     write_text(scenes_table_tex(scenes), outputs["scenes"])
-    write_text(search_report.search_table_tex(search, verdicts), outputs["search"])
+    write_text(search_report.search_table_tex(population, search, verdicts), outputs["search"])
     write_text(macros_tex(macros)
                + "\\newif\\ifpaperscale\n" + ("\\paperscaletrue\n" if paper_scale else "\\paperscalefalse\n")
                + "\\newif\\ifsearchpinned\n"
-               + ("\\searchpinnedtrue\n" if int(search.attrs["pinned"]) else "\\searchpinnedfalse\n"),
+               + ("\\searchpinnedtrue\n" if int(search.attrs["pinned"]) else "\\searchpinnedfalse\n")
+               + "\\newif\\ifsearcharchived\n"
+               + ("\\searcharchivedtrue\n" if macros["search.archived"] == "yes" else "\\searcharchivedfalse\n"),
                outputs["macros"])
     for claim in claims:
         print(f"{claim.id:28s} {claim.verdict:28s} {claim.measured}", file=sys.stderr)

@@ -106,7 +106,8 @@ def search_merge(inputs, outputs, params, wildcards) -> None:
 def search_full(inputs, outputs, params, wildcards) -> None:
     """The full search's merged result, with its cost and provenance, kept at config search.archive."""
     target = params.get("archive")
-    require(bool(target), "search.archive", target, "the path of the archived full search (e.g. data/search/search_full.nc)")
+    require(bool(target), "search.archive", target,
+            "the path of the archived full search (e.g. data/search/search_full.nc)")
     merged = Path(inputs["search"])
     stage_files = sorted(merged.parent.glob("*/*.nc")) + [merged.parent / "candidates.nc", merged]
     ds = archive.archive_dataset(xr.load_dataset(merged), archive.job_costs(Path(params["benchmarks"])),
@@ -121,6 +122,16 @@ def plot_search(inputs, outputs, params, wildcards) -> None:
     from chainchaos.studies.search.plots import plot_search as draw  # matplotlib: only in the plotting jobs
 
     draw(xr.load_dataset(inputs["search"]), outputs["pdf"], outputs["png"], int(params.get("dpi", 200)))
+
+
+def plot_search_joint(inputs, outputs, params, wildcards) -> None:
+    """The joint-analysis figure: statements that hold together, the scores, and Hertz H = 1.8's
+    onset of chaos against its level, with the claims' tolerances on the paper's values."""
+    from chainchaos.studies.search.plots import plot_search_joint as draw  # matplotlib: only in the plotting jobs
+
+    tol = Criteria.from_config(params.get("claims")).tolerance
+    draw(xr.load_dataset(inputs["search"]), outputs["pdf"], outputs["png"], int(params.get("dpi", 200)),
+         time_factor=tol.time_factor, level_factor=tol.mlce_factor)
 
 
 def ensemble_verdicts(inputs, outputs, params, wildcards) -> None:
@@ -144,4 +155,4 @@ def ensemble_verdicts(inputs, outputs, params, wildcards) -> None:
 
 
 TASKS = (search_seeds, search_candidates, search_filter, search_score, search_merge, search_full, plot_search,
-         ensemble_verdicts)
+         plot_search_joint, ensemble_verdicts)
