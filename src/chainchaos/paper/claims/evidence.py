@@ -60,7 +60,10 @@ def search_evidence(inputs: Inputs, ids) -> str:
                      f"{ds.sizes['candidate']} candidates)")
     if not parts:
         return ""
-    return "a property of the chosen chain, which satisfies the most statements of the search: " + "; ".join(parts)
+    seeds = ds.attrs.get("seeds_scanned")
+    searched = f"the search over {int(seeds)} seeds" if seeds else "the search"
+    return (f"a property of the chosen chain, which satisfies the most statements of {searched}: "
+            + "; ".join(parts))
 
 
 # ---- reasons a row names -------------------------------------------------------------------------

@@ -97,6 +97,7 @@ def _joint_macros(population: xr.Dataset, criteria: Criteria) -> dict[str, str]:
         "search.exclusive": str(len(pairs)),
         "search.exclusivelist": listed,
         "search.asgood": str(joint.at_least_as_good()),
+        "search.asgoodfraction": tex_number(joint.at_least_as_good() / float(population.attrs["seeds_scanned"]), 2),
         "search.allheldtestable": str(joint.all_held()),
         "search.onsetnear": str(c["onset_near"]),
         "search.levelnear": str(c["level_near"]),
