@@ -8,7 +8,9 @@ so that a wrong window, case or comparison fails.
 
 import inspect
 import math
+import os
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -214,6 +216,38 @@ def test_scan_measures():
     assert never.value is None and never.case == "never" and never["switches"] == 0
 
 
+def test_scan_always_is_a_bound_strictly_above_the_papers_energy():
+    E = np.array([0.5, 1.0, 1.8, 2.5, 4.0])
+    inp = inputs({fw.ENERGY_SCAN: scan("00011", "00000", E)})
+    at = ms.scan_always(inp, fw.ENERGY_SCAN, "hertz", "delocalized", 1.8)
+    assert at["holds_above"] and (at["count"], at["above"]) == (2, 2) and at.value == 2.5  # 1.8 is not above 1.8
+    above = ms.scan_always(inp, fw.ENERGY_SCAN, "hertz", "delocalized", 1.0)
+    assert not above["holds_above"] and list(above["failing"]) == [1.8]
+    # an invalid run (energy error above the bound) is neither: not a failure, and not a success
+    ds = scan("00001", "00000", E)
+    ds["valid"][0, 3] = 0
+    invalid = ms.scan_always(inputs({fw.ENERGY_SCAN: ds}), fw.ENERGY_SCAN, "hertz", "delocalized", 1.8)
+    assert invalid["holds_above"] and (invalid["count"], invalid["above"]) == (1, 1) and invalid.value == 4.0
+    ds["valid"][0, 4] = 0
+    assert not ms.scan_always(inputs({fw.ENERGY_SCAN: ds}), fw.ENERGY_SCAN, "hertz", "delocalized", 1.8).decided
+
+
+def test_scan_onset_brackets_the_first_energy():
+    E = np.array([0.25, 0.5, 1.0, 1.8, 2.5])
+    onset = ms.scan_onset(inputs({fw.ENERGY_SCAN: scan("00101", "00000", E)}), fw.ENERGY_SCAN, "hertz",
+                          "delocalized", 1.8)
+    assert (onset.value, onset["first"], onset["before"], onset.case) == (1.0, 1.0, 0.5, "")
+    lowest = ms.scan_onset(inputs({fw.ENERGY_SCAN: scan("11111", "00000", E)}), fw.ENERGY_SCAN, "hertz",
+                           "delocalized", 1.8)
+    assert (lowest.value, lowest["before"], lowest.case) == (0.25, 0.0, "lowest")
+    never = ms.scan_onset(inputs({fw.ENERGY_SCAN: scan("00000", "00000", E)}), fw.ENERGY_SCAN, "hertz",
+                          "delocalized", 1.8)
+    assert never.value is None and never.case == "never" and never.decided  # 2.5 lies above the range
+    short = ms.scan_onset(inputs({fw.ENERGY_SCAN: scan("0000", "0000", E[:4])}), fw.ENERGY_SCAN, "hertz",
+                          "delocalized", 1.8)
+    assert not short.decided  # nothing scanned above the range: it may set in higher up
+
+
 def ensemble(curves: dict) -> xr.Dataset:
     alphas = sorted(curves)
     return xr.Dataset({"mean_participation": (("alpha", "rank"), np.array([curves[a] for a in alphas]))},
@@ -259,3 +293,174 @@ def test_ensemble_statement_counts_orbits_and_takes_the_median():
     assert m.value == 1.0 and (m["chaotic"], m["orbits"]) == (2, 3)
     none = ms.ensemble_statement(inp, "s", "onset-x")
     assert none.value is None and math.isnan(none["median"])
+
+
+# ------------------------------------------------------------------ the paper's words
+
+#: The paper's LaTeX source (a directory with a .tex file, or a text file holding it).
+PAPER_DIR = Path(os.environ.get("CHAINCHAOS_PAPER_DIR", "/work/shared/paper"))
+ROMAN = ("I", "II", "III", "IV", "V", "VI")
+
+
+def normalise(tex: str) -> str:
+    """LaTeX compared as words: without comments, whitespace, $, braces, ~ and thin spaces."""
+    tex = re.sub(r"(?<!\\)%.*", "", tex).replace(r"\,", "")
+    return re.sub(r"[\s${}~]", "", tex)
+
+
+def paper_sections() -> dict[str, str]:
+    """The paper's body by section ("II A", "III B 2", "IV"; before the first, "abstract"), figure
+    environments left out (their captions float away from the text they sit in), normalised."""
+    sources = [p.read_text() for p in sorted(PAPER_DIR.glob("*")) if p.suffix in (".tex", ".txt")]
+    sources = [s for s in sources if r"\begin{document}" in s]
+    if not sources:
+        pytest.skip(f"the paper's LaTeX source is not in {PAPER_DIR} (set CHAINCHAOS_PAPER_DIR)")
+    body = re.sub(r"(?<!\\)%.*", "", sources[0])
+    body = re.sub(r"\\begin\{figure\*?\}.*?\\end\{figure\*?\}", "", body[body.index(r"\begin{document}"):],
+                  flags=re.S)
+    heads = list(re.finditer(r"\\(section|subsection|subsubsection)(\*?)\{[^}]*\}", body))
+    sections, counters = {"abstract": normalise(body[:heads[0].start()])}, [0, 0, 0]
+    for head, after in zip(heads, [*heads[1:], None]):
+        level = ("section", "subsection", "subsubsection").index(head.group(1))
+        counters[level] += 1
+        counters[level + 1:] = [0] * (2 - level)
+        label = "*" if head.group(2) else " ".join(
+            [ROMAN[counters[0] - 1], "ABCDEFG"[counters[1] - 1] if level >= 1 else "",
+             str(counters[2]) if level >= 2 else ""]).split()
+        text = body[head.end():after.start() if after else len(body)]
+        sections[label if isinstance(label, str) else " ".join(label)] = normalise(text)
+    return sections
+
+
+def cited_sections(where: str) -> list[str]:
+    """The sections a row's ``where`` names: "Fig. 4(d), Sec. III B, IV" -> ["III B", "IV"]."""
+    found = re.search(r"Sec\. ([IVX]+(?: [A-Z])?(?:, [IVX]+(?: [A-Z])?)*)", where)
+    return found.group(1).split(", ") if found else []
+
+
+def test_the_paper_is_read_by_section():
+    sections = paper_sections()
+    assert {"I", "II", "II A", "III", "III A", "III B", "III B 1", "III B 2", "III B 3", "III C", "IV"} <= set(sections)
+    assert normalise(r"For energies $H > 1.8$ we have found") in sections["III B 2"]
+    assert normalise(r"For energies $H > 1.8$ we have found") not in sections["III C"]
+    assert cited_sections("Fig. 4(d), Sec. III B, IV") == ["III B", "IV"] and cited_sections("Fig. 1(a)") == []
+
+
+@pytest.mark.parametrize("row", ROWS, ids=lambda row: row.id)
+def test_every_row_quotes_the_paper_in_the_section_it_names(row):
+    sections = paper_sections()
+    cited = cited_sections(row.where)
+    assert row.quote and cited, "a row quotes the paper's words and names their section"
+    for passage in row.quote:
+        inside = [label for label, text in sections.items() if normalise(passage) in text]
+        assert inside, f"not in the paper: {passage!r}"
+        assert any(label.split()[:len(c.split())] == c.split() for label in inside for c in cited), \
+            f"{passage!r} is in section(s) {inside}, the row names {cited}"
+
+
+def test_every_statement_of_the_paper_has_its_quote():
+    from chainchaos.paper.claims.catalogue import STATEMENT_QUOTES
+
+    assert set(STATEMENT_QUOTES) == {st.id for st in statements.STATEMENTS}
+    text = "".join(paper_sections().values())
+    for i, passages in STATEMENT_QUOTES.items():
+        assert passages and all(normalise(p) in text for p in passages), i
+
+
+# ------------------------------------------------------------------ the paper against itself
+
+#: What the paper itself reports for each row, as the fields of the row's measurement (typed from
+#: its text, independently of the catalogue); None where it prints no number a check could read
+#: (the scan rows are fed the paper's energies in tests/test_claims.py).
+PAPER_VALUES = {
+    "fig1-count": {"counts": [10]},                              # "about 10 strongly localized modes"
+    "fig1-level": {"levels": [2.0]},                             # "<P> ~ 2"
+    "fig1-limit": {"value": 0.0},                                # "reaches a limiting curve"
+    "fig1-extended": {"value": 26.0},                            # "P ~ 26 [...] most extended mode"
+    "mode34-P": {"value": 2.5},
+    "mode34-site": {"value": 21},
+    "overlaps": {"overlaps": [1.06, 1.06]},                      # "delta_{21,22} ~ 1.06"
+    "u0": {"value": 1.01},
+    "P-H0.25-hertz": {"value": 1.8},                             # "a constant value of P ~ 1.8"
+    "P-H0.25-fput": {"value": 1.8},
+    "P-H0.25-overlap": {"value": 0.0},                           # "almost overlap"
+    "regular-H0.25-hertz": {"chaotic": False},
+    "regular-H0.25-fput": {"chaotic": False},
+    "PD-H0.25-hertz": {"value": 20.0},
+    "PD-H0.25-fput": {"value": 20.0},
+    "PD-H0.25-drop": {"second": 1.0},                            # FPUT's does not drop; Hertz's drop has no size
+    "eta-H0.25-hertz": {"value": 1.0},                           # "eta = 1 and only slightly decreases"
+    "eta-H0.25-fput": {"value": 1.0},
+    "loc-H0.5-hertz": None,
+    "chaos-H0.5-hertz": {"chaotic": True},
+    "loc-H0.5-fput": None,
+    "regular-H0.5-fput": {"chaotic": False},
+    "dvd-H0.5-site21": {"value": 1.0},                           # "for the rest of the simulation"
+    "gaps-H0.5-one": {"value": 1},                               # "no more than one gap"
+    "gaps-H0.5-site21": {"opened": 2, "distances": [0, 0]},      # "on the left and right side of site n=21"
+    "spread-H1.8-level": None,                                   # "P < 3": a bound, no value
+    "spread-H1.8-onset": {"value": 2e2},
+    "spread-H1.8-saturation": {"value": 26.0},
+    "spread-H1.8-until": {"value": 4e3},
+    "mlce-H1.8": {"value": 1e-3},
+    "chaos-H1.8-onset": {"value": 2e2},
+    "gaps-H1.8-spread": {"value": 3e2},
+    "gaps-H1.8-cover": {"value": 1.0},                           # "covering eventually the whole lattice"
+    "fput-regular-to-1.8": {"chaotic": [False, False, False]},
+    "fput-H2.9": {"chaotic": True},
+    "chaos-H2.9-onset": {"value": 4e3},
+    "loc-H4-fput": None,
+    "chaos-H4-fput": {"chaotic": True},
+    "fput-H8.7381": {"chaotic": True},
+    "eta-plateau-hertz_H1.8": {"value": 0.5},
+    "eta-plateau-hertz_H3": {"value": 0.5},
+    "eta-plateau-fput_H2.9": {"value": 0.7},
+    "eta-plateau-fput_H4": {"value": 0.82},
+    "eta-plateau-fput_H8.7381": {"value": 0.8},
+    "eta-final-hertz_H1.8": {"excess": 0.0},                     # "approaches [...] <eta>"
+    "eta-final-hertz_H3": {"excess": 0.0},
+    "eta-final-fput_H2.9": {"excess": 0.0},
+    "eta-final-fput_H8.7381": {"excess": 0.0},
+    "eta-final-fput_H4": None,                                   # not at equipartition: no value
+    "scan-hertz-deloc": None,
+    "scan-hertz-chaos": None,
+    "scan-hertz-onset": None,
+    "scan-fput-chaos": None,
+    "scan-fput-alternation": {"first": 2.9, "switches": 2},       # 2.9 delocalized, 4 localized, 8.7381 delocalized
+}
+
+
+def test_every_row_says_what_the_paper_reports_for_it():
+    assert set(PAPER_VALUES) == {row.id for row in CATALOGUE}
+
+
+@pytest.mark.parametrize("row", [row for row in CATALOGUE if PAPER_VALUES[row.id] is not None],
+                         ids=lambda row: row.id)
+def test_the_papers_own_values_pass_the_rows_checks(row):
+    """A row checked against the paper's value passes at that value: the paper's numbers are
+    the references of the checks and its tolerances contain them."""
+    values = {k: np.asarray(v) if isinstance(v, list) else v for k, v in PAPER_VALUES[row.id].items()}
+    measurement = fw.Measurement(values.get("value"), values)
+    checked = [check for check in row.checks if check.field in values]
+    assert checked, "the paper's values reach none of the row's checks"
+    for check in checked:
+        assert check.passes(measurement, Criteria()), (check, values)
+
+
+def test_the_papers_two_times_for_the_hertz_onset_agree_under_the_tolerance():
+    """Sec. III B has P start to grow after t ~ 2e2, Sec. III C at t ~ 3e2, together with the
+    gaps: each of the paper's times passes the other's check."""
+    rows = {row.id: row for row in CATALOGUE}
+    c = Criteria()
+    for row, other in (("spread-H1.8-onset", 3e2), ("gaps-H1.8-spread", 2e2), ("chaos-H1.8-onset", 3e2)):
+        assert all(check.passes(fw.Measurement(other), c) for check in rows[row].checks), row
+
+
+def test_the_windows_before_an_onset_end_before_the_earliest_onset_the_tolerance_accepts():
+    """A level the paper reads before something happens at time T ("P < 3 up to t ~ 2e2", "eta
+    has a plateau [...] then falls at t ~ 5e3") is measured up to plateau_end <= T / time_factor,
+    so an onset the time tolerance still calls "at T" cannot fall inside the window."""
+    c = Criteria()
+    paper_times = {"hertz_H1.8": 2e2, "fput_H2.9": 5e3, "fput_H4": 1e3, "fput_H8.7381": 1e4}
+    for scene, T in paper_times.items():
+        assert c.plateau_end[scene] * c.tolerance.time_factor <= T * (1 + 1e-12), scene

@@ -12,33 +12,52 @@ from dataclasses import dataclass, field, fields
 class Tolerances:
     """How far a measured value may lie from the paper's and still count as reproduced.
 
+    Each follows from how the paper gives the number it is applied to; a bound of the paper
+    ("for H > 1.8 always", "P < 3") and a range ("0.5 <~ H <~ 1.8") take none: they are checked as
+    the bound or range they are (``chainchaos.paper.claims.catalogue``).
+
     displacement
-        absolute, for u_21(0) and the overlaps delta_21, delta_22: exact properties of the chain
-        and the initial state, which the paper quotes to 0.01.
+        absolute, for u_21(0) = 1.01 and delta_{21,22} ~ 1.06: exact properties of the chain and the
+        initial state that the paper prints to 0.01; one unit of that digit rather than the half
+        unit of rounding, because the paper writes one approximate value for two different
+        overlaps, and u_21(0) depends only on them (docs/conventions.md, Units).
     mode_participation
-        absolute, for participation numbers of linear modes (mode 34, the Fig. 1(a) levels): exact
-        linear algebra, quoted to 0.1.
+        absolute, for P ~ 2.5 of mode 34: exact linear algebra printed to 0.1, one unit of that digit.
     participation_relative
-        relative, for participation numbers read from the paper's (smoothed) time series and from
-        the Fig. 1(a) curve: P ~ 1.8, P ~ 26, P_D ~ 20.
+        relative, for participation numbers read off curves: P ~ 1.8 and P ~ 26 off the (LOWESS-
+        smoothed, unstated settings) P(t) of Figs. 2(c), 4(c), <P> ~ 2 and P ~ 26 off Fig. 1(a),
+        P_D ~ 20 off Fig. 3(e,f). The paper prints them with one or two significant digits; 10 %
+        is about two units of the second digit, the precision of reading a curve. Also what
+        "almost overlap" (two P curves) and a "drop" of P_D (beyond it) mean.
     count
-        absolute, for "about 10 modes".
+        absolute, for "about 10 modes": a round count of the tail of the Fig. 1(a) curves, whose
+        edge ("strongly localized") the paper does not define; 7 to 13 is "about 10" and neither
+        "about 5" nor "about 15".
     time_factor
-        multiplicative, for times read off the paper's logarithmic time axes (t ~ 2e2, 4e3):
-        reproduced when measured/paper lies in [1/f, f].
+        multiplicative, for times the paper reads off logarithmic time axes and prints with one
+        significant digit (t ~ 2e2, 3e2, 4e3): reproduced when measured/paper lies in [1/f, f]. A
+        time marks where a curve changes behaviour (P starts to increase, Lambda leaves the t^-1
+        line), which the eye places on such an axis to a fraction of a decade, not to the printed
+        digit; the paper itself gives the Hertz H = 1.8 onset as 2e2 and as 3e2, a factor 1.5 apart.
     mlce_factor
-        multiplicative, for the order-of-magnitude statement Lambda ~ 1e-3.
+        multiplicative, for "Lambda(t) ~ 10^-3", a bare power of ten read off a logarithmic axis,
+        i.e. the nearest decade: 3 is just under half a decade (sqrt(10) ~ 3.16), where a value
+        would round to the neighbouring power of ten.
     eta_plateau
-        absolute, for entropy plateaus read from the paper's eta(t) plots (0.5, 0.7, 0.8, 0.82).
+        absolute, for the levels of a fluctuating eta(t) (normalised to [0, 1]) read off plots and
+        printed with one digit (0.5, 0.7, 0.8) and once with two (0.82): one unit of the one-digit
+        values, wider than the rounding of 0.82.
     eta_equipartition
-        absolute, for "close to <eta>" at the end of a run.
+        absolute, for "close to <eta>" (and, beyond it, "not yet at equipartition") at the end of
+        a run: the paper gives no number.
     limiting_curve_relative
-        relative, for "<P> reaches a limiting curve for alpha >= 4": largest rank-wise relative
-        difference between the alpha >= 4 curves.
+        relative, for "<P> reaches a limiting curve for alpha >= 4" (no number): largest rank-wise
+        relative difference between the alpha >= 4 curves.
     threshold_factor
-        multiplicative, for the threshold energies of Sec. III (H ~ 1.8, 2.8, 2.9): the paper ran a
-        handful of energies, so its thresholds are bracketed by neighbouring runs (Hertz: between
-        0.5 and 1.8), not measured; reproduced when the scan's threshold / paper's lies in [1/f, f].
+        multiplicative, for "the first energy at which the FPUT model's wave-packet is
+        delocalized [...] is around H = 2.9": a value among the few energies the paper ran, whose
+        nearest runs on either side are 1.8 and 4 (factors 1.6 and 1.4 from 2.9); reproduced when
+        the scan's first delocalized energy / 2.9 lies in [1/f, f].
     """
 
     displacement: float = 0.01

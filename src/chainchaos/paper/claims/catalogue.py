@@ -1,14 +1,35 @@
 """The paper's quantitative statements as data: one :class:`ClaimRow` per claim, in table order.
 
-Each row names the paper's statement and value, the measure that reads the stored results
+Each row quotes the paper's words it encodes (``quote``: passages of the paper's LaTeX source, from
+the section its ``where`` names; tests/test_claims_catalogue.py finds them in the paper) and names
+the statement and value, the measure that reads the stored results
 (:data:`chainchaos.paper.claims.measures.MEASURES`), the checks of the verdict, the time the statement
 needs and the texts of the claims table (templates, see :mod:`chainchaos.paper.claims.framework`). The
 only numbers here are the paper's values, printed in its text, and the times its statements are
 about; every threshold comes from the config block ``claims:``.
 
+A criterion says what the quoted sentence says, no more and no less:
+
+* a bound stays a bound: "for energies $H > 1.8$ [...] always [...] a delocalized chaotic state" is
+  checked at every scanned energy above 1.8 and says nothing below it (the paper's own Hertz orbit
+  at $H = 0.5$ is chaotic); "$P < 3$" is an upper bound;
+* a range stays a range: "$0.5 \\lesssim H \\lesssim 1.8$" is an interval whose ends are bracketed by
+  the paper's own runs (the next one below 0.5 is 0.25, where the packet stays localized);
+* a value gets the tolerance of how the paper gives it (:class:`chainchaos.paper.criteria.Tolerances`
+  says why each is what it is): an exact quantity printed to a digit (u_21(0) = 1.01,
+  delta ~ 1.06, P ~ 2.5 of mode 34) one unit of that digit; a participation number read off a curve
+  (P ~ 1.8, 26, <P> ~ 2, P_D ~ 20) ``participation_relative``; a time read off a logarithmic time axis
+  (t ~ 2e2, 3e2, 4e3) ``time_factor``; a bare power of ten (Lambda ~ 1e-3) ``mlce_factor``; an entropy
+  level read off an eta(t) plot ``eta_plateau``; "around H = 2.9" among the paper's few energies
+  ``threshold_factor``; a statement without a number ("almost overlap", "close to <eta>") the
+  tolerance its row names;
+* a statement about the whole run ("a constant value", "the curves almost overlap", "remains
+  regular") needs the paper's $t = 10^5$ and is refuted by a shorter run that already breaks it.
+
 Families of rows that differ only by scene (a packet stays localized, an orbit is chaotic) are
 built by the functions below, as ``statements._pair`` builds the statements; :func:`statement_rows`
-adds a row for every statement of ``statements.STATEMENTS`` that no row here rests on.
+adds a row for every statement of ``statements.STATEMENTS`` that no row here rests on, quoting
+:data:`STATEMENT_QUOTES`.
 """
 
 from chainchaos.output.formatting import tex_parameter
@@ -29,6 +50,27 @@ HZ18, FP18 = panels.HZ[1.8].name, panels.FP[1.8].name
 HZ3 = panels.HZ[3.0].name
 FP29, FP4, FP87 = panels.FP[2.9].name, panels.FP[4.0].name, panels.FP[8.7381].name
 
+# ---- the paper's words, passages of its LaTeX source (section in the row's `where`) --------------
+
+#: Sec. III B 2: the Hertz threshold, a bound (nothing is said below 1.8).
+HERTZ_ALWAYS = (r"For energies  $ H >1.8 $ we have found that the dynamics of the Hertzian model always lead to a "
+                r"delocalized chaotic state.")
+#: Sec. III B 3: the FPUT chaos threshold, a bound.
+FPUT_ALWAYS_CHAOTIC = (r"regarding the chaoticity of the FPUT system, we found that for high energies, $H>2.8$, the "
+                       r"system is always chaotic irrespectively of the localized or delocalized nature of the "
+                       r"wave-packet")
+#: Sec. III B 3: the first FPUT energy that delocalizes.
+FPUT_FIRST = (r"The first energy at which the FPUT model's wave-packet is delocalized, exhibiting also a chaotic "
+              r"behavior, is around $H = 2.9$")
+#: Sec. III B 1: the Hertz packet at H = 1.8.
+HERTZ_18_LOCALIZED = r"although up to $t\approx 2\times 10^2$ the wave-packet is localized"
+HERTZ_18_SPREADS = r"it then rapidly spreads until $t\approx 4\times 10^{3}$"
+#: Sec. III C: the Hertz entropy at H >= 1.8.
+HERTZ_ETA = r"The entropy $\eta(t)$ features a plateau at a value around $\eta\approx 0.5$"
+HERTZ_ETA_FINAL = (r"The asymptotic value of $\eta(t)$ approaches the theoretically predicted value of "
+                   r"$\langle\eta\rangle$ with $H \geq 1.8$")
+BOTH_LOCALIZED_05 = r"The energy distribution for both models is still found to be localized for $H = 0.5$."
+
 
 def _label(scene: str) -> str:
     return model_label(panels.scenes()[scene].model)
@@ -45,24 +87,29 @@ def _statement_id(kind: str, scene: str) -> str:
 
 
 def _final_p_of_h025(scene: str) -> ClaimRow:
+    """"A constant value of P ~ 1.8" is about the whole run: it needs the paper's t = 1e5, and a
+    shorter run whose final P already differs refutes it."""
     return ClaimRow(
         f"P-H0.25-{panels.scenes()[scene].model}", "Fig. 2(c), Sec. III A",
         f"At $H = 0.25$ the {_label(scene)} packet keeps a constant $P \\approx 1.8$", "$1.8$",
         "final_value", "1", "final $P$ within ${tol.participation_relative:param%}\\,\\%$ of 1.8", "{value:math}",
         (Check("value", "near_relative", 1.8, RELATIVE_P),), (scene,), {"variable": "participation"},
-        variables=("participation",), t_required=1e2,
+        variables=("participation",), t_required=T_PAPER, refutable_early=True,
         reason=("the paper plots a LOWESS-smoothed $P$ under an unstated energy density; the mean of the raw "
-                "$P$, which oscillates with the mode between about 1.2 and 2.8, is larger"))
+                "$P$, which oscillates with the mode between about 1.2 and 2.8, is larger"),
+        quote=(r"the time evolution of the participation number which gives a constant value of $ P \approx 1.8 $ "
+               r"for both models",))
 
 
-def _chaos(id: str, where: str, scene: str, chaotic: bool = True, extra: str = "", statements=None) -> ClaimRow:
+def _chaos(id: str, where: str, scene: str, chaotic: bool, extra: str, quote: tuple,
+           statements=None) -> ClaimRow:
     """The orbit of ``scene`` is chaotic (or regular) at the end of the paper's run."""
     state = "chaotic" if chaotic else "regular"
     return ClaimRow(
         id, where, f"At $H = {_energy(scene)}$ the {_label(scene)} orbit is {state}{extra}", state,
         "chaos", "1", CHAOS if chaotic else f"not: {CHAOS}", CHAOS_TEXT,
         (Check("chaotic", "==", chaotic),), (scene,), variables=("mlce",), t_required=T_PAPER,
-        refutable_early=not chaotic, statements=statements or (id,))
+        refutable_early=not chaotic, statements=statements or (id,), quote=quote)
 
 
 def _dvd_participation_of_h025(scene: str) -> ClaimRow:
@@ -73,28 +120,29 @@ def _dvd_participation_of_h025(scene: str) -> ClaimRow:
         "mean $P_D$ over $10^2 \\le t \\le 10^3$: {value:math}",
         (Check("value", "near_relative", 20, RELATIVE_P),), (scene,),
         {"variable": "dvd_participation", "start": 1e2, "end": 1e3}, variables=("dvd_participation",),
-        t_required=1e3, reason="$P_D$ fluctuates strongly from sample to sample; its mean over the decade is lower")
+        t_required=1e3, reason="$P_D$ fluctuates strongly from sample to sample; its mean over the decade is lower",
+        quote=(r"although up to $t\approx 10^3$ both DVDs exhibit approximately  $P_{\rm D}\approx 20$",))
 
 
-def _eta_of_h025(scene: str) -> ClaimRow:
+def _eta_of_h025(scene: str, quote: str) -> ClaimRow:
     return ClaimRow(
         f"eta-H0.25-{panels.scenes()[scene].model}", "Fig. 8(a)/9(a), Sec. III C",
         f"At $H = 0.25$ the {_label(scene)} $\\eta$ stays close to 1", "close to 1",
         "final_value", "1", "final $\\eta \\ge {c.eta_near_one:param}$", "{value:math}",
         (Check("value", ">=", "eta_near_one"),), (scene,), {"variable": "eta"}, variables=("eta",),
-        t_required=T_PAPER, refutable_early=True)
+        t_required=T_PAPER, refutable_early=True, quote=(quote,))
 
 
-def _localized(id: str, where: str, scene: str) -> ClaimRow:
+def _localized(id: str, where: str, scene: str, quote: str) -> ClaimRow:
     """The packet of ``scene`` stays localized to the end of the paper's run."""
     return ClaimRow(
         id, where, f"At $H = {_energy(scene)}$ the {_label(scene)} packet stays localized", "localized",
         "final_value", "1", "final $P \\le {c.localized_p_max:param}$", "final $P = {value:tex}$",
         (Check("value", "<=", "localized_p_max"),), (scene,), {"variable": "participation"},
-        variables=("participation",), t_required=T_PAPER, refutable_early=True, statements=(id,))
+        variables=("participation",), t_required=T_PAPER, refutable_early=True, statements=(id,), quote=(quote,))
 
 
-def _delocalized_and_chaotic(id: str, where: str, scene: str, extra: str = "") -> ClaimRow:
+def _delocalized_and_chaotic(id: str, where: str, scene: str, extra: str, quote: str) -> ClaimRow:
     """The packet of ``scene`` spreads and its orbit is chaotic at the end of the paper's run."""
     return ClaimRow(
         id, where, f"At $H = {_energy(scene)}$ the {_label(scene)} packet is delocalized and chaotic{extra}",
@@ -102,22 +150,22 @@ def _delocalized_and_chaotic(id: str, where: str, scene: str, extra: str = "") -
         f"final $P \\ge {{c.delocalized_p_min:param}}$ and {CHAOS}", f"final $P = {{value:tex}}$, {CHAOS_TEXT}",
         (Check("value", ">=", "delocalized_p_min"), Check("chaotic", "==", True)), (scene,),
         variables=("participation", "mlce"), t_required=T_PAPER,
-        statements=(_statement_id("deloc", scene), _statement_id("chaos", scene)))
+        statements=(_statement_id("deloc", scene), _statement_id("chaos", scene)), quote=(quote,))
 
 
 def _chaos_onset(id: str, where: str, scene: str, statement: str, paper_t: float, paper_tex: str,
-                 t_required: float, statement_id: str) -> ClaimRow:
-    """The orbit of ``scene`` turns chaotic at about ``paper_t``."""
+                 t_required: float, statement_id: str, quote: str) -> ClaimRow:
+    """The orbit of ``scene`` turns chaotic at about ``paper_t``, a time read off a log axis."""
     return ClaimRow(
         id, where, statement, f"${paper_tex}$", "chaos_onset", "time",
         "onset of chaos within a factor {tol.time_factor:param} of " + literal(f"${paper_tex}$"),
         {"": "chaotic from $t = {value:tex}$ on", "never": "not chaotic at the end"},
         (Check("value", "within_factor", paper_t, "tolerance.time_factor"),), (scene,), variables=("mlce",),
-        t_required=t_required, statements=(statement_id,))
+        t_required=t_required, statements=(statement_id,), quote=(quote,))
 
 
-def _eta_plateau(scene: str, level: float, where: str) -> ClaimRow:
-    """The eta of ``scene`` has a plateau near ``level``."""
+def _eta_plateau(scene: str, level: float, where: str, quote: str) -> ClaimRow:
+    """The eta of ``scene`` has a plateau near ``level``, read off an eta(t) plot."""
     return ClaimRow(
         f"eta-plateau-{scene}", f"{where}, Sec. III C",
         f"At $H = {_energy(scene)}$ the {_label(scene)} $\\eta$ has a plateau near {tex_parameter(level)}",
@@ -126,10 +174,11 @@ def _eta_plateau(scene: str, level: float, where: str) -> ClaimRow:
         "median $\\eta$ over ${start:param} \\le t \\le {end:param}$: {value:math}",
         (Check("value", "near", level, "tolerance.eta_plateau"),), (scene,), {"variable": "eta"}, target=level,
         variables=("eta",), t_required=f"plateau_end[{scene}]",
-        reason=("follows", _statement_id("deloc", scene), "the entropy follows the packet, which stays localized"))
+        reason=("follows", _statement_id("deloc", scene), "the entropy follows the packet, which stays localized"),
+        quote=(quote,))
 
 
-def _eta_equipartition(scene: str, where: str) -> ClaimRow:
+def _eta_equipartition(scene: str, where: str, quote: str) -> ClaimRow:
     """The eta of ``scene`` ends close to its equipartition value."""
     return ClaimRow(
         f"eta-final-{scene}", f"{where}, Sec. III C",
@@ -139,21 +188,26 @@ def _eta_equipartition(scene: str, where: str) -> ClaimRow:
         "final $\\eta = {value:tex}$, $\\langle\\eta\\rangle = {equipartition:tex}$",
         (Check("excess", "near", 0.0, "tolerance.eta_equipartition"),), (scene,), variables=("eta",),
         t_required=T_PAPER, reason=("follows", _statement_id("deloc", scene),
-                                    "a packet that stays localized does not reach equipartition"))
+                                    "a packet that stays localized does not reach equipartition"),
+        quote=(quote,))
 
 
-def _scan_always(id: str, model: str, key: str, H: float) -> ClaimRow:
-    """Above about H the packet of ``model`` is always ``key`` on the energy scan."""
+def _scan_always(id: str, model: str, key: str, H: float, quote: str) -> ClaimRow:
+    """"For H > H_paper the packet of ``model`` is always ``key``", a bound, on the energy scan: it
+    holds at every scanned energy above H. Below H the sentence says nothing, so the lowest scanned
+    energy H* from which it always holds is shown, not compared with H: the threshold lies between
+    the highest scanned energy where it fails and H*, and it can lie at or below H exactly when the
+    check passes."""
     return ClaimRow(
-        id, "Sec. III B, IV", f"Above $H \\approx {tex_parameter(H)}$ the {model_label(model)} packet is always {key}",
-        f"$H^* \\approx {tex_parameter(H)}$", "scan_always", "energy",
-        "{scan_criterion[" + key + "]} at every scanned $H \\ge {H:param}$, and the lowest $H^*$ above which "
-        "this holds at every scanned energy within a factor {tol.threshold_factor:param} of {H:param}",
-        {"": "{key} at {count} of the {above} scanned $H \\ge {H:param}$; at every scanned $H \\ge H^* = {star:tex}$",
-         "nowhere": "{key} at {count} of the {above} scanned $H \\ge {H:param}$; not at the highest"},
-        (Check("holds_above", "==", True), Check("star", "within_factor", H, "tolerance.threshold_factor")),
+        id, "Sec. III B, IV", f"For $H > {tex_parameter(H)}$ the {model_label(model)} packet is always {key}",
+        f"$H > {tex_parameter(H)}$", "scan_always", "energy",
+        "{scan_criterion[" + key + "]} at every scanned $H > {H:param}$ (a bound: the sentence says nothing "
+        "below it)",
+        {"": "{key} at {count} of the {above} scanned $H > {H:param}$; at every scanned $H \\ge H^* = {star:tex}$",
+         "nowhere": "{key} at {count} of the {above} scanned $H > {H:param}$; not at the highest"},
+        (Check("holds_above", "==", True),),
         (ENERGY_SCAN,), {"model": model, "key": key, "H": H}, variables=("delocalized", "chaotic", "valid"),
-        t_required=T_PAPER, reason=("scan_always_reason", model, key, H))
+        t_required=T_PAPER, reason=("scan_always_reason", model, key, H), quote=(quote,))
 
 
 CATALOGUE: tuple[ClaimRow, ...] = (
@@ -164,63 +218,80 @@ CATALOGUE: tuple[ClaimRow, ...] = (
              "$\\langle P\\rangle \\le {c.localized_mode_p_max:param}$",
              "{lowest}--{highest} modes with $\\langle P\\rangle \\le {c.localized_mode_p_max:param}$ "
              "($\\alpha = {alpha_low:param}$--${alpha_high:param}$)",
-             (Check("counts", "near", 10, "tolerance.count"),), args={"alpha_min": 4.0}),
+             (Check("counts", "near", 10, "tolerance.count"),), args={"alpha_min": 4.0},
+             quote=(r"for values of $\alpha \geq 4$ the averaged participation number reaches a limiting curve "
+                    r"with about $10$ strongly localized modes",)),
+    # <P> ~ 2 is read off the curves of Fig. 1(a), as P ~ 26 of rank 1 is, and printed as an integer
     ClaimRow("fig1-level", "Fig. 1(a), Sec. II A", r"Those modes have $\langle P\rangle \approx 2$", "$2$",
-             "localized_levels", "1", "$|\\langle P\\rangle - 2| \\le {tol.mode_participation:param}$ for every "
+             "localized_levels", "1", "within ${tol.participation_relative:param%}\\,\\%$ of 2 for every "
              "$\\alpha \\ge 4$",
              "${lowest:tex}$--${highest:tex}$ (mean of the {c.n_localized_modes} most localized ranks); chosen "
              "chain, period-averaged: {period_averaged:math}",
-             (Check("levels", "near", 2.0, "tolerance.mode_participation"),), args={"alpha_min": 4.0},
-             reason=("convention: with the potential energy density of a mode (docs/conventions.md, Mode energy density) no bead holds more than "
-                     "half of an interior mode's energy, so $P \\ge 2$ and a mode on one bead has "
-                     "$2 \\le P \\le 8/3$; a mean of exactly 2 is out of reach. The paper does not define its "
-                     "energy density of a mode.")),
+             (Check("levels", "near_relative", 2.0, RELATIVE_P),), args={"alpha_min": 4.0},
+             reason=("convention: with the potential energy density of a mode (docs/conventions.md, Mode energy "
+                     "density) no bead holds more than half of an interior mode's energy, so $P \\ge 2$, and a "
+                     "mode on one bead has $2 \\le P \\le 8/3$, with $P$ near 2 only when one of its two bonds "
+                     "carries almost all of its energy. The paper does not define its energy density of a mode."),
+             quote=(r"with about $10$ strongly localized modes with  $\langle P \rangle \approx 2$",)),
     ClaimRow("fig1-limit", "Fig. 1(a), Sec. II A",
              r"For $\alpha \ge 4$ the curve $\langle P\rangle(k)$ reaches a limiting curve", "limiting curve",
              "limiting_curve", "1", "spread $\\le {tol.limiting_curve_relative:param%}\\,\\%$",
              "largest rank-wise spread of the $\\alpha \\ge 4$ curves: {value:math%2}\\,\\%",
-             (Check("value", "<=", "tolerance.limiting_curve_relative"),), args={"alpha_min": 4.0}),
+             (Check("value", "<=", "tolerance.limiting_curve_relative"),), args={"alpha_min": 4.0},
+             quote=(r"for values of $\alpha \geq 4$ the averaged participation number reaches a limiting curve",)),
     ClaimRow("fig1-extended", "Sec. III B, Fig. 1(a)",
              r"The most extended mode of a disordered chain has $P \approx 26$", "$26$", "most_extended_mode", "1",
              "within ${tol.participation_relative:param%}\\,\\%$ of 26",
              "rank-1 $\\langle P\\rangle = {value:tex}$ ($\\alpha = {alpha:param}$); chosen chain's most extended "
              "mode {chain_largest:math}",
-             (Check("value", "near_relative", 26.0, RELATIVE_P),)),
+             (Check("value", "near_relative", 26.0, RELATIVE_P),),
+             quote=(r"saturates to a value  $ P \approx 26 $.",
+                    r"it also corresponds to the participation number of the most extended mode of a disordered "
+                    r"lattice")),
     ClaimRow("mode34-P", "Fig. 1(b), Sec. II A", r"Mode 34 of the chosen chain is strongly localized, $P \approx 2.5$",
              "$2.5$", "mode_participation", "1",
              "$|P - 2.5| \\le {tol.mode_participation:param}$ (potential convention)",
              "{value:math} (potential); {period_averaged:math} (period-averaged)",
              (Check("value", "near", 2.5, "tolerance.mode_participation"),), args={"mode": 34},
              reason=("convention: the paper's realization and its energy density of a mode are unpublished; under "
-                     "the potential convention (docs/conventions.md, Mode energy density) a mode whose neighbours move has "
-                     "$P \\gtrsim 8/3$, and the selection window is $2.2 \\le P \\le 2.8$; the period-averaged "
-                     "convention gives the other value shown")),
+                     "the potential convention (docs/conventions.md, Mode energy density) a mode whose neighbours "
+                     "move has $P \\gtrsim 8/3$, and the selection window is $2.2 \\le P \\le 2.8$; the "
+                     "period-averaged convention gives the other value shown"),
+             quote=(r"we identify the $ 34^{th} $ mode of this chain as a strongly localized  mode "
+                    r"($P \approx 2.5$)",)),
     ClaimRow("mode34-site", "Fig. 1(b), Sec. II A", r"Mode 34 is centred on site $n = 21$", "$21$", "mode_peak", "site",
              "the mode's energy maximum is on site 21 (a selection requirement, docs/conventions.md, Realization)",
-             "energy maximum at site ${value}$", (Check("value", "==", 21),), args={"mode": 34}),
+             "energy maximum at site ${value}$", (Check("value", "==", 21),), args={"mode": 34},
+             quote=(r"around the middle of the chain and in particular at site $n=21$",)),
     ClaimRow("overlaps", "Sec. III A", r"The static overlaps next to site 21 are $\delta_{21,22} \approx 1.06$",
              "$1.06$", "excited_overlaps", "length unit",
              "both within ${tol.displacement:param}$ of 1.06 (the selection prefers them near 1.06)",
              "$\\delta_{{21}} = {left:tex}$, $\\delta_{{22}} = {right:tex}$",
-             (Check("overlaps", "near", 1.06, "tolerance.displacement"),), args={"around": 1.06}),
-    ClaimRow("u0", "Sec. III A", r"At $H = 0.25$ the Hertz initial displacement is $u_{21}(0) \approx 1.01$",
+             (Check("overlaps", "near", 1.06, "tolerance.displacement"),), args={"around": 1.06},
+             quote=(r"with the neighboring static overlaps being $\delta_{21,22}\approx 1.06$",)),
+    ClaimRow("u0", "Sec. III A", r"At $H = 0.25$ the Hertz initial displacement is $u_{21}(0) = 1.01$",
              "$1.01$", "initial_displacement", "length unit",
              "$|u_{{21}}(0) - 1.01| \\le {tol.displacement:param}$", "{value:math4}",
              (Check("value", "near", 1.01, "tolerance.displacement"),), (HZ25,),
              reason=("units: in these units $u_{21}(0)$ depends only on the two overlaps next to bead 21, and "
                      "overlaps of 1.06 give $u_{21}(0) \\approx 1.04$; 1.01 would need overlaps near 1.0 "
-                     "(docs/conventions.md, Units). The units are not tuned to hide this")),
+                     "(docs/conventions.md, Units). The units are not tuned to hide this"),
+             quote=(r"this energy corresponds for the Hertzian model to a initial displacement of $u_{21}(0)=1.01$",)),
 
     # ---------------- H = 0.25 ----------------
     *(_final_p_of_h025(scene) for scene in (HZ25, FP25)),
+    # about the whole run, as "a constant value" above
     ClaimRow("P-H0.25-overlap", "Fig. 2(c), Sec. III A",
              r"At $H = 0.25$ the $P(t)$ curves of the two models almost overlap", "overlap",
              "relative_difference", "1", "relative difference $\\le {tol.participation_relative:param%}\\,\\%$",
              "final $P$: Hertz {first:math}, FPUT {second:math}",
              (Check("value", "<=", RELATIVE_P),), (HZ25, FP25), {"variable": "participation"},
-             variables=("participation",), t_required=1e2),
-    _chaos("regular-H0.25-hertz", "Fig. 2(d), Sec. III A", HZ25, False, ", $\\Lambda \\propto t^{-1}$"),
-    _chaos("regular-H0.25-fput", "Fig. 2(d), Sec. III A", FP25, False, ", $\\Lambda \\propto t^{-1}$"),
+             variables=("participation",), t_required=T_PAPER, refutable_early=True,
+             quote=(r"The curves of the Hertzian (red curve) and the FPUT (blue curve) models almost overlap.",)),
+    *(_chaos(f"regular-H0.25-{panels.scenes()[scene].model}", "Fig. 2(d), Sec. III A", scene, False,
+             ", $\\Lambda \\propto t^{-1}$",
+             (r"confirms that the dynamics is regular as $ \Lambda (t) $ follows the power law "
+              r"$\Lambda(t)\propto t^{-1}$",)) for scene in (HZ25, FP25)),
     *(_dvd_participation_of_h025(scene) for scene in (HZ25, FP25)),
     ClaimRow("PD-H0.25-drop", "Fig. 3(e,f), Sec. III A",
              r"After $t \approx 10^3$ the Hertz $P_D$ drops, the FPUT one does not", "drop (Hertz only)",
@@ -229,32 +300,47 @@ CATALOGUE: tuple[ClaimRow, ...] = (
              "final/early $P_D$: Hertz {first:math2}, FPUT {second:math2}",
              (Check("first", "<", f"1 - {RELATIVE_P}"), Check("second", ">=", f"1 - {RELATIVE_P}")),
              (HZ25, FP25), {"variable": "dvd_participation", "start": 1e2, "end": 1e3},
-             variables=("dvd_participation",), t_required=T_PAPER),
-    *(_eta_of_h025(scene) for scene in (HZ25, FP25)),
+             variables=("dvd_participation",), t_required=T_PAPER,
+             quote=(r"although up to $t\approx 10^3$ both DVDs exhibit approximately  $P_{\rm D}\approx 20$, for "
+                    r"the case of the Hertzian chain [panel  (e)] it starts to drop to a smaller value",)),
+    _eta_of_h025(HZ25, r"the normalized entropy initially has a value of $\eta=1$ and only slightly decreases from "
+                       r"that value"),
+    _eta_of_h025(FP25, r"$\eta(t)$ saturates to a finite value close to 1"),
 
     # ---------------- H = 0.5 ----------------
-    _localized("loc-H0.5-hertz", "Fig. 4(a,c), Sec. III B", HZ05),
+    _localized("loc-H0.5-hertz", "Fig. 4(a,c), Sec. III B", HZ05, BOTH_LOCALIZED_05),
     _chaos("chaos-H0.5-hertz", "Fig. 4(d), Sec. III B", HZ05, True, " (localized chaos, in the last decade)",
+           (r"deviates from the $ \Lambda (t) \propto t^{-1}$ curve, at the last decade, and attains an almost "
+            r"constant value. This signals that the system is chaotic.",),
            statements=("chaos-H0.5-hertz", "chaos-late-H0.5-hertz")),
-    _localized("loc-H0.5-fput", "Fig. 4(c), Sec. III B", FP05),
-    _chaos("regular-H0.5-fput", "Fig. 4(d), Sec. III B", FP05, False),
+    _localized("loc-H0.5-fput", "Fig. 4(c), Sec. III B", FP05, BOTH_LOCALIZED_05),
+    _chaos("regular-H0.5-fput", "Fig. 4(d), Sec. III B", FP05, False, "",
+           (r"In contrast, for the same energy the FPUT model's orbit remains regular",)),
     ClaimRow("dvd-H0.5-site21", "Fig. 5(a,b), Sec. III B",
              r"At $H = 0.5$ the Hertz DVD stays attached to site 21 in the last decade", "site 21", "dvd_at_site", "1",
              "fraction $\\ge {c.dvd_site_fraction:param%}\\,\\%$",
              "DVD maximum within {c.dvd_site_halfwidth} site of 21 in {value:math%2}\\,\\% of the final samples",
-             (Check("value", ">=", "dvd_site_fraction"),), (HZ05,), variables=("dvd",), t_required=T_PAPER),
+             (Check("value", ">=", "dvd_site_fraction"),), (HZ05,), variables=("dvd",), t_required=T_PAPER,
+             quote=(r"Finally for the rest of the simulation the profile of the DVD is strongly localized around "
+                    r"site $n=21$ as also confirmed by two different profiles during the last decade",)),
     ClaimRow("gaps-H0.5-one", "Fig. 7(a,c), Sec. III C", r"At $H = 0.5$ at most one gap is open at any instant",
              r"$\le 1$", "max_gaps", "gaps", "largest number of simultaneously open gaps $\\le 1$",
              "at most {value} open at once (checked every step)", (Check("value", "<=", 1),), (HZ05,),
              variables=("n_gaps",), t_required=T_PAPER, refutable_early=True,
-             reason=("follows", "loc-H0.5-hertz", "the gaps follow the packet, which spreads on this chain")),
+             reason=("follows", "loc-H0.5-hertz", "the gaps follow the packet, which spreads on this chain"),
+             quote=(r"At this energy no more than one gap is open at any instant",)),
+    # "only": at H = 1.8, by contrast, gaps start "moving" away from site 21 (the same section)
     ClaimRow("gaps-H0.5-site21", "Fig. 7(a), Sec. III C", r"At $H = 0.5$ gaps open only beside site 21",
              "bonds 21, 22", "gaps_beside_site", "bonds", "every bond that opens is one of the two bonds of bead 21",
              "bonds ever open: {bonds:bonds}", (Check("opened", ">", 0), Check("distances", "==", 0)), (HZ05,),
              variables=("gap_fraction",), t_required=T_PAPER, refutable_early=True,
-             reason=("follows", "loc-H0.5-hertz", "the gaps follow the packet, which spreads on this chain")),
+             reason=("follows", "loc-H0.5-hertz", "the gaps follow the packet, which spreads on this chain"),
+             quote=(r"on the left and right side of site $n=21$ a gap often opens during the system's evolution",
+                    r"For  the energy $H=1.8$ shown in  Fig.~\ref{gaps}(b), we find that more gaps start to "
+                    r"open``moving'' away from site $n=21$")),
 
     # ---------------- H = 1.8 ----------------
+    # the window ends at plateau_end = 2e2 / time_factor: before the earliest onset spread-H1.8-onset accepts
     ClaimRow("spread-H1.8-level", "Fig. 4(b,c), Sec. III B",
              r"At $H = 1.8$ the Hertz packet is first localized with $P < 3$", r"$< 3$", "plateau_average", "1",
              "mean $P < {c.spreading_p_threshold:param}$ over that window (before the paper's onset)",
@@ -263,7 +349,9 @@ CATALOGUE: tuple[ClaimRow, ...] = (
              variables=("participation",), t_required=f"plateau_end[{HZ18}]",
              statements=("spread-level-H1.8-hertz",),
              reason=("the packet's early participation number is larger than the paper's; the paper's energy "
-                     "density and smoothing are not stated (see the $H = 0.25$ claims)")),
+                     "density and smoothing are not stated (see the $H = 0.25$ claims)"),
+             quote=(HERTZ_18_LOCALIZED, r"with a participation  number $P<3$")),
+    # Sec. III C puts this onset at t ~ 3e2 (gaps-H1.8-spread): within the time factor of 2e2 too
     ClaimRow("spread-H1.8-onset", "Fig. 4(b,c), Sec. III B",
              r"At $H = 1.8$ the Hertz packet starts to spread at $t \approx 2\times 10^2$", r"$2\times 10^{2}$",
              "spreading_onset", "time", "onset within a factor {tol.time_factor:param} of $2\\times 10^2$",
@@ -272,27 +360,31 @@ CATALOGUE: tuple[ClaimRow, ...] = (
               "never": "the smoothed $P$ never doubles"},
              (Check("value", "within_factor", 2e2, "tolerance.time_factor"),), (HZ18,),
              variables=("participation",), t_required="2e2 * tolerance.time_factor", refutable_early=True,
-             statements=("spread-onset-H1.8-hertz",)),
+             statements=("spread-onset-H1.8-hertz",), quote=(HERTZ_18_LOCALIZED, r"it then rapidly spreads")),
     ClaimRow("spread-H1.8-saturation", "Fig. 4(c), Sec. III B", r"At $H = 1.8$ the Hertz $P$ saturates near 26",
              "$26$", "final_value", "1", "within ${tol.participation_relative:param%}\\,\\%$ of 26",
              "final $P = {value:tex}$", (Check("value", "near_relative", 26, RELATIVE_P),), (HZ18,),
              {"variable": "participation"}, variables=("participation",), t_required=4e4,
-             reason=("spread_of_values", "deloc-H1.8-hertz", "the final $P$")),
+             reason=("spread_of_values", "deloc-H1.8-hertz", "the final $P$"),
+             quote=(r"when eventually the participation number saturates to a value  $ P \approx 26 $",)),
     ClaimRow("spread-H1.8-until", "Fig. 4(c), Sec. III B",
              r"At $H = 1.8$ the spreading goes on until $t \approx 4\times 10^3$", r"$4\times 10^{3}$",
              "saturation_time", "time", "within a factor {tol.time_factor:param} of $4\\times 10^3$",
              "smoothed $P$ reaches {c.saturation_fraction:param%}\\,\\% of its final value at $t = {value:tex}$",
              (Check("value", "within_factor", 4e3, "tolerance.time_factor"),), (HZ18,),
-             variables=("participation",), t_required=4e4, statements=("spread-until-H1.8-hertz",)),
+             variables=("participation",), t_required=4e4, statements=("spread-until-H1.8-hertz",),
+             quote=(HERTZ_18_SPREADS,)),
     ClaimRow("mlce-H1.8", "Fig. 4(d), Sec. III B",
              r"At $H = 1.8$ the Hertz $\Lambda$ levels off at $\Lambda \approx 10^{-3}$", r"$10^{-3}$",
              "final_mlce", "1/time", "within a factor {tol.mlce_factor:param} of $10^{{-3}}$",
              "$\\Lambda(t_\\mathrm{{end}}) = {value:tex}$",
              (Check("value", "within_factor", 1e-3, "tolerance.mlce_factor"),), (HZ18,), variables=("mlce",),
-             t_required=1e4, statements=("mlce-H1.8-hertz",)),
+             t_required=1e4, statements=("mlce-H1.8-hertz",),
+             quote=(r"acquiring an almost constant positive value of $ \Lambda (t) \approx 10^{-3} $",)),
     _chaos_onset("chaos-H1.8-onset", "Fig. 4(d), Sec. III B", HZ18,
                  r"At $H = 1.8$ the Hertz orbit is chaotic from $t \approx 2\times 10^2$ on",
-                 2e2, r"2\times 10^{2}", 2e3, "chaos-onset-H1.8-hertz"),
+                 2e2, r"2\times 10^{2}", 2e3, "chaos-onset-H1.8-hertz",
+                 r"the system becomes  chaotic as early as $t\approx 2\times 10^2$"),
     ClaimRow("gaps-H1.8-spread", "Fig. 7(b), Sec. III C",
              r"At $H = 1.8$ gaps leave site 21 at $t \approx 3\times 10^2$, when $P$ starts to grow",
              r"$3\times 10^{2}$", "gap_spread", "time", "within a factor {tol.time_factor:param} of $3\\times 10^2$",
@@ -301,12 +393,17 @@ CATALOGUE: tuple[ClaimRow, ...] = (
                             "spreading onset $t = {onset:tex}$",
               "never": "no gap leaves bead 21"},
              (Check("value", "within_factor", 3e2, "tolerance.time_factor"),), (HZ18,),
-             variables=("gap_fraction",), t_required="3e2 * tolerance.time_factor", refutable_early=True),
+             variables=("gap_fraction",), t_required="3e2 * tolerance.time_factor", refutable_early=True,
+             quote=(r"the wave-packet starts to delocalize (as quantified by $ P $) at the same time that additional "
+                    r"gaps start to move away from site  $n=21$",
+                    r"this happens around $t\approx 3\times10^2$ which is the same time that $P$")),
     ClaimRow("gaps-H1.8-cover", "Fig. 7(b), Sec. III C", r"At $H = 1.8$ gaps eventually cover the whole lattice",
              "whole lattice", "bond_coverage", "1",
              "at least ${c.gap_coverage:param%}\\,\\%$ of the bonds open at some time",
              "{value:math%2}\\,\\% of the bonds have opened", (Check("value", ">=", "gap_coverage"),), (HZ18,),
-             variables=("gap_fraction",), t_required=T_PAPER),
+             variables=("gap_fraction",), t_required=T_PAPER,
+             quote=(r"more gaps start to open``moving'' away from site $n=21$, covering eventually the whole "
+                    r"lattice",)),
 
     # ---------------- FPUT: regular up to 1.8, then alternation ----------------
     ClaimRow("fput-regular-to-1.8", "Fig. 4(c,d), Sec. III B",
@@ -316,40 +413,72 @@ CATALOGUE: tuple[ClaimRow, ...] = (
              (Check("P", "<=", "localized_p_max"), Check("chaotic", "==", False)), (FP25, FP05, FP18),
              variables=("participation", "mlce"), t_required=T_PAPER, refutable_early=True,
              statements=tuple(_statement_id(kind, scene) for scene in (FP25, FP05, FP18)
-                              for kind in ("loc", "regular"))),
-    _delocalized_and_chaotic("fput-H2.9", "Fig. 6(a--d), Sec. III B", FP29, " (the first such energy)"),
+                              for kind in ("loc", "regular")),
+             quote=(r"the dynamics of the FPUT model appears to remain localized and regular up to $H=1.8$",)),
+    _delocalized_and_chaotic("fput-H2.9", "Fig. 6(a--d), Sec. III B", FP29, " (the first such energy)", FPUT_FIRST),
+    # "t >~ 4e3" gives where Lambda leaves the t^-1 line (regular before it): an onset, not a bound
     _chaos_onset("chaos-H2.9-onset", "Fig. 6(d), Sec. III B", FP29,
                  r"At $H = 2.9$ the FPUT orbit is chaotic for $t \gtrsim 4\times 10^3$",
-                 4e3, r"4\times 10^{3}", 4e4, "chaos-onset-H2.9-fput"),
-    _localized("loc-H4-fput", "Fig. 6(e,f), Sec. III B", FP4),
-    _chaos("chaos-H4-fput", "Sec. III B", FP4, True, " (FPUT is chaotic for all $H > 2.8$)"),
-    _delocalized_and_chaotic("fput-H8.7381", "Fig. 6(i--l), Sec. III B", FP87),
+                 4e3, r"4\times 10^{3}", 4e4, "chaos-onset-H2.9-fput",
+                 r"significantly deviates from the  $ \Lambda (t) \propto t^{-1}$ line, indicating chaotic dynamics "
+                 r"for $t \gtrsim 4\times 10^3$"),
+    _localized("loc-H4-fput", "Fig. 6(e,f), Sec. III B", FP4,
+               r"In this case the wave-packet remains well localized and the participation number hardly changes"),
+    _chaos("chaos-H4-fput", "Sec. III B", FP4, True, " (FPUT is chaotic for all $H > 2.8$)", (FPUT_ALWAYS_CHAOTIC,)),
+    _delocalized_and_chaotic("fput-H8.7381", "Fig. 6(i--l), Sec. III B", FP87, "",
+                             r"another example for $H=8.7381$ in the bottom row of Fig.~\ref{dynms29} which exhibits "
+                             r"a delocalized and chaotic final energy profile"),
 
     # ---------------- entropy ----------------
-    _eta_plateau(HZ18, 0.5, "Fig. 8(c)"),
-    _eta_plateau(HZ3, 0.5, "Fig. 8(d)"),
-    _eta_plateau(FP29, 0.7, "Fig. 9(b)"),
-    _eta_plateau(FP4, 0.82, "Fig. 9(c)"),
-    _eta_plateau(FP87, 0.8, "Fig. 9(d)"),
-    _eta_equipartition(HZ18, "Fig. 8(c)"),
-    _eta_equipartition(HZ3, "Fig. 8(d)"),
-    _eta_equipartition(FP29, "Fig. 9(b)"),
-    _eta_equipartition(FP87, "Fig. 9(d)"),
+    _eta_plateau(HZ18, 0.5, "Fig. 8(c)", HERTZ_ETA),
+    _eta_plateau(HZ3, 0.5, "Fig. 8(d)", HERTZ_ETA),
+    _eta_plateau(FP29, 0.7, "Fig. 9(b)", r"the entropy exhibits a plateau at  $\eta\approx 0.7$"),
+    _eta_plateau(FP4, 0.82, "Fig. 9(c)", r"the entropy saturates for most of the evolution around a relatively large "
+                                         r"value $\eta\approx 0.82$"),
+    _eta_plateau(FP87, 0.8, "Fig. 9(d)", r"the entropy saturates for a long time interval at a value "
+                                         r"$\eta\approx 0.8$"),
+    _eta_equipartition(HZ18, "Fig. 8(c)", HERTZ_ETA_FINAL),
+    _eta_equipartition(HZ3, "Fig. 8(d)", HERTZ_ETA_FINAL),
+    _eta_equipartition(FP29, "Fig. 9(b)", r"finally reaches a minimum value which is found to be close to the "
+                                          r"analytical result for equipartition"),
+    _eta_equipartition(FP87, "Fig. 9(d)", r"at the end of the simulation reaches a minimal value well captured by the "
+                                          r"analytical prediction"),
+    # not at equipartition: the complement of "close to <eta>" of the rows above, with their tolerance
     ClaimRow("eta-final-fput_H4", "Fig. 9(c,g), Sec. III C",
-             r"At $H = 4$ the FPUT $\eta$ is still far from equipartition at the end", r"$\gg\langle\eta\rangle$",
-             "eta_final", "1", "$\\eta_\\mathrm{{final}} - \\langle\\eta\\rangle > {tol.eta_plateau:param}$",
+             r"At $H = 4$ the FPUT $\eta$ has not reached equipartition at the end", r"$>\langle\eta\rangle$",
+             "eta_final", "1", "$\\eta_\\mathrm{{final}} - \\langle\\eta\\rangle > {tol.eta_equipartition:param}$",
              "final $\\eta = {value:tex}$, $\\langle\\eta\\rangle = {equipartition:tex}$",
-             (Check("excess", ">", "tolerance.eta_plateau"),), (FP4,), variables=("eta",), t_required=T_PAPER,
+             (Check("excess", ">", "tolerance.eta_equipartition"),), (FP4,), variables=("eta",), t_required=T_PAPER,
              refutable_early=True,
-             reason=("follows", "loc-H4-fput", "a packet that spreads approaches equipartition")),
+             reason=("follows", "loc-H4-fput", "a packet that spreads approaches equipartition"),
+             quote=(r"not all modes have been excited at the end of the simulation",
+                    r"it is expected,  that for larger timescales the system will reach equipartition, and $\eta$ "
+                    r"will eventually drop")),
 
     # ---------------- thresholds of Sec. III and IV, on the energy scan ----------------
-    _scan_always("scan-hertz-deloc", "hertz", "delocalized", 1.8),
-    _scan_always("scan-hertz-chaos", "hertz", "chaotic", 1.8),
-    _scan_always("scan-fput-chaos", "fput", "chaotic", 2.8),
+    _scan_always("scan-hertz-deloc", "hertz", "delocalized", 1.8, HERTZ_ALWAYS),
+    _scan_always("scan-hertz-chaos", "hertz", "chaotic", 1.8, HERTZ_ALWAYS),
+    # a range whose ends are the paper's runs: the packet stays localized at 0.25 (Sec. III A) and
+    # is delocalized at 1.8, so delocalization sets in within (0.25, 1.8]
+    ClaimRow("scan-hertz-onset", "Sec. III C",
+             r"The Hertz packet starts to delocalize in the energy region $0.5 \lesssim H \lesssim 1.8$",
+             r"$0.5 \lesssim H \lesssim 1.8$", "scan_onset", "energy",
+             "the lowest scanned $H$ with {scan_criterion[delocalized]} lies above 0.25 (the paper's energy "
+             "below the region, where the packet stays localized) and the scanned $H$ below it is at most 1.8",
+             {"": "first delocalized at $H = {first:tex}$, not at the scanned $H = {before:tex}$ below it",
+              "lowest": "delocalized from the lowest scanned $H = {first:tex}$ on",
+              "never": "never delocalized"},
+             (Check("first", ">", 0.25), Check("before", "<=", 1.8)), (ENERGY_SCAN,),
+             {"model": "hertz", "key": "delocalized", "high": 1.8}, variables=("delocalized", "chaotic", "valid"),
+             t_required=T_PAPER,
+             reason="on this chain delocalization sets in outside the paper's region (the energies measured)",
+             quote=(r"for the energy region $0.5\lesssim H \lesssim1.8$ the wave-packet starts to delocalize (as "
+                    r"quantified by $ P $)",)),
+    _scan_always("scan-fput-chaos", "fput", "chaotic", 2.8, FPUT_ALWAYS_CHAOTIC),
     ClaimRow("scan-fput-alternation", "Sec. III B, IV",
-             r"Above $H \approx 2.9$ the FPUT packet alternates between localized and delocalized states",
-             r"from $H \approx 2.9$", "scan_alternation", "energy",
+             r"The FPUT packet first delocalizes around $H = 2.9$; above it, it alternates between localized and "
+             r"delocalized states",
+             r"first around $H = 2.9$", "scan_alternation", "energy",
              "the lowest scanned $H$ with {scan_criterion[delocalized]} lies within a factor "
              "{tol.threshold_factor:param} of 2.9, and above it the state changes at least twice (delocalized, "
              "localized, delocalized)",
@@ -358,8 +487,50 @@ CATALOGUE: tuple[ClaimRow, ...] = (
               "never": "never delocalized"},
              (Check("first", "within_factor", 2.9, "tolerance.threshold_factor"), Check("switches", ">=", 2)),
              (ENERGY_SCAN,), {"model": "fput"}, variables=("delocalized", "chaotic", "valid"), t_required=T_PAPER,
-             reason=("scan_alternation_reason", "fput", 2.9)),
+             reason=("scan_alternation_reason", "fput", 2.9),
+             quote=(FPUT_FIRST,
+                    r"instead of an energy threshold above which all initial excitations lead to delocalization of "
+                    r"the wave-packet, we observe alternations between localized and extended final states")),
 )
+
+#: The paper's words each statement of ``statements.STATEMENTS`` encodes (the statement rows quote
+#: them; the rows of CATALOGUE that rest on a statement quote their own).
+STATEMENT_QUOTES: dict[str, tuple[str, ...]] = {
+    "loc-H0.25-hertz": (r"the energy density for both models is completely localized around the initially excited "
+                        r"site $ n =21 $",),
+    "regular-H0.25-hertz": (r"confirms that the dynamics is regular as $ \Lambda (t) $ follows",),
+    "loc-H0.5-hertz": (BOTH_LOCALIZED_05,),
+    "chaos-H0.5-hertz": (r"This signals that the system is chaotic.",),
+    "chaos-late-H0.5-hertz": (r"deviates from the $ \Lambda (t) \propto t^{-1}$ curve, at the last decade",),
+    "spread-level-H1.8-hertz": (HERTZ_18_LOCALIZED, r"with a participation  number $P<3$"),
+    "spread-onset-H1.8-hertz": (HERTZ_18_LOCALIZED, r"it then rapidly spreads"),
+    "deloc-H1.8-hertz": (r"the initially localized wave-packet gradually spreads throughout the lattice",),
+    "chaos-H1.8-hertz": (r"for this energy the chaoticity of the system is extended featuring strongly chaotic spots "
+                         r"throughout the whole lattice",),
+    "chaos-onset-H1.8-hertz": (r"the system becomes  chaotic as early as $t\approx 2\times 10^2$",),
+    "spread-until-H1.8-hertz": (HERTZ_18_SPREADS,),
+    "mlce-H1.8-hertz": (r"acquiring an almost constant positive value of $ \Lambda (t) \approx 10^{-3} $",),
+    "deloc-H3-hertz": (HERTZ_ALWAYS,
+                       r"at the last decade all modes appear to participate in the dynamics"),
+    "chaos-H3-hertz": (HERTZ_ALWAYS,),
+    "loc-H0.25-fput": (r"the energy density for both models is completely localized around the initially excited "
+                       r"site $ n =21 $",),
+    "regular-H0.25-fput": (r"confirms that the dynamics is regular as $ \Lambda (t) $ follows",),
+    "loc-H0.5-fput": (BOTH_LOCALIZED_05,),
+    "regular-H0.5-fput": (r"In contrast, for the same energy the FPUT model's orbit remains regular",),
+    "loc-H1.8-fput": (r"the dynamics of the FPUT model appears to remain localized and regular up to $H=1.8$",),
+    "regular-H1.8-fput": (r"the dynamics of the FPUT model appears to remain localized and regular up to $H=1.8$",),
+    "deloc-H2.9-fput": (FPUT_FIRST, r"appears to spread during the last decade of the simulation"),
+    "chaos-H2.9-fput": (FPUT_FIRST,),
+    "chaos-onset-H2.9-fput": (r"indicating chaotic dynamics for $t \gtrsim 4\times 10^3$",),
+    "loc-H4-fput": (r"In this case the wave-packet remains well localized and the participation number hardly "
+                    r"changes",),
+    "chaos-H4-fput": (FPUT_ALWAYS_CHAOTIC,),
+    "eta-H4-fput": (r"the entropy saturates for most of the evolution around a relatively large value "
+                    r"$\eta\approx 0.82$",),
+    "deloc-H8.7381-fput": (r"which exhibits a delocalized and chaotic final energy profile",),
+    "chaos-H8.7381-fput": (r"which exhibits a delocalized and chaotic final energy profile",),
+}
 
 
 def statement_rows(catalogue=CATALOGUE) -> tuple[ClaimRow, ...]:
@@ -376,7 +547,8 @@ def statement_rows(catalogue=CATALOGUE) -> tuple[ClaimRow, ...]:
             f"stmt-{st.id}", "Sec. III", st.text, st.kind.replace("_", " "), "ensemble_statement", unit,
             literal(criterion),
             "chaotic in {chaotic} of {orbits} orbits" if yes_no else "median over the ensemble: {median:math}",
-            scenes=(st.scene.name,), args={"statement": st.id}, t_required=required(st), statements=(st.id,)))
+            scenes=(st.scene.name,), args={"statement": st.id}, t_required=required(st), statements=(st.id,),
+            quote=STATEMENT_QUOTES[st.id]))
     return tuple(rows)
 
 

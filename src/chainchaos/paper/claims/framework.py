@@ -1,6 +1,7 @@
 """What a claim is: a row of the catalogue, what its measure returns, and the verdict it gets.
 
-A :class:`ClaimRow` is data: the paper's statement and value, the name of the measure that reads
+A :class:`ClaimRow` is data: the paper's words it encodes (``quote``, passages of the paper's
+LaTeX source, found there by the tests), its statement and value, the name of the measure that reads
 the stored results (:data:`chainchaos.paper.claims.measures.MEASURES`), the :class:`Check` s its
 measurement must pass, the time the statement needs, and LaTeX templates for the criterion and the
 measured text. Evaluating a row (:mod:`chainchaos.paper.claims.evaluation`) gives a :class:`Claim`, one
@@ -178,6 +179,7 @@ class ClaimRow:
     refutable_early: bool = False   # holds for the whole run: a shorter run can refute it
     statements: tuple = ()          # ids of statements.STATEMENTS whose ensemble verdicts decide it
     reason: str | tuple = ""        # why it differs: a text, or (name, *args) of evidence.REASONS
+    quote: tuple = ()               # the paper's words it encodes: passages of the paper's LaTeX, in `where`
 
 
 # --------------------------------------------------------------------------------------------

@@ -241,15 +241,22 @@ def bond_coverage(inputs: Inputs, scene: str) -> Measurement:
 # ---- the energy scan ---------------------------------------------------------------------------
 
 
-def scan_always(inputs: Inputs, scan: str, model: str, key: str, H: float) -> Measurement:
-    """Where the energy scan's valid runs of ``model`` satisfy ``key`` (delocalized, chaotic) at
-    energies >= H: ``count`` of ``above``, the lowest H* above which it holds at every scanned
-    energy (headline, None if it fails at the highest), ``failing`` energies >= H; undecided when
-    no scanned energy reaches H (case ``nowhere``: it fails at the highest energy)."""
+def _scan_flags(inputs: Inputs, scan: str, model: str, key: str) -> tuple[np.ndarray, np.ndarray]:
+    """The energies of the scan's valid runs of ``model`` and where they satisfy ``key``
+    (delocalized, chaotic); an invalid run (energy error above the bound) is neither."""
     ds = inputs.scenes[scan]
-    E = ds.energy.values
-    flag = criterion_holds(ds, model, key)
-    above = E >= H * (1 - 1e-9)
+    valid = ds["valid"].sel(model=model).values == 1
+    return ds.energy.values[valid], criterion_holds(ds, model, key)[valid]
+
+
+def scan_always(inputs: Inputs, scan: str, model: str, key: str, H: float) -> Measurement:
+    """The paper's "for H > H_paper it is always ``key``" on the energy scan's valid runs of
+    ``model``: ``holds_above``, whether every scanned energy strictly above H satisfies it,
+    ``count`` of the ``above`` ones that do and the ``failing`` ones; the lowest scanned H* above
+    which it holds at every scanned energy (headline; None, case ``nowhere``, when it fails at the
+    highest). Undecided when no valid run lies above H."""
+    E, flag = _scan_flags(inputs, scan, model, key)
+    above = E > H * (1 + 1e-9)
     star = always_above(E, flag)
     holds_above = bool(flag[above].all()) if above.any() else None
     return Measurement(star if np.isfinite(star) else None,
@@ -258,12 +265,26 @@ def scan_always(inputs: Inputs, scan: str, model: str, key: str, H: float) -> Me
                        case="" if np.isfinite(star) else "nowhere", decided=holds_above is not None)
 
 
+def scan_onset(inputs: Inputs, scan: str, model: str, key: str, high: float) -> Measurement:
+    """Where ``key`` first holds on the energy scan's valid runs of ``model``: the lowest such
+    energy ``first`` (headline; None, case ``never``: nowhere) and the scanned energy ``before``
+    it (0 when ``first`` is the lowest; case ``lowest``), so that it sets in within (before, first].
+    Undecided when it holds nowhere and no valid run lies above ``high`` (the top of the range the
+    paper places the onset in)."""
+    E, flag = _scan_flags(inputs, scan, model, key)
+    first = first_energy(E, flag)
+    if not np.isfinite(first):
+        return Measurement(None, {"first": first, "before": np.nan}, case="never",
+                           decided=bool((E > high * (1 + 1e-9)).any()))
+    lower = E[E < first]
+    before = float(lower[-1]) if lower.size else 0.0
+    return Measurement(first, {"first": first, "before": before}, case="" if lower.size else "lowest")
+
+
 def scan_alternation(inputs: Inputs, scan: str, model: str) -> Measurement:
     """The lowest scanned energy where ``model`` is delocalized (headline; case ``never``: none),
     how often the state changes above it (``switches``) and where it is localized again."""
-    ds = inputs.scenes[scan]
-    E = ds.energy.values
-    flag = criterion_holds(ds, model, "delocalized")
+    E, flag = _scan_flags(inputs, scan, model, "delocalized")
     first = first_energy(E, flag)
     if not np.isfinite(first):
         return Measurement(None, {"first": first, "switches": 0}, case="never")
@@ -291,4 +312,4 @@ MEASURES = {f.__name__: f for f in (
     excited_overlaps, initial_displacement, final_value, window_average, plateau_average, plateau_median,
     spreading_onset, saturation_time, final_mlce, chaos, participation_and_chaos, localized_and_regular,
     chaos_onset, early_and_late, relative_difference, eta_final, dvd_at_site, max_gaps, gaps_beside_site,
-    gap_spread, bond_coverage, scan_always, scan_alternation, ensemble_statement)}
+    gap_spread, bond_coverage, scan_always, scan_onset, scan_alternation, ensemble_statement)}
