@@ -104,7 +104,7 @@ def _joint_macros(population: xr.Dataset, criteria: Criteria) -> dict[str, str]:
         "search.onsetlevelboth": str(c["both"]),
         "search.onsetleveldecided": str(c["decided"]),
         "search.lowestlevel": tex_number(c["lowest_level_with_onset"]) if np.isfinite(c["lowest_level_with_onset"])
-        else "--",
+        else "\\mbox{--}",
     }
 
 
