@@ -297,8 +297,9 @@ def test_ensemble_statement_counts_orbits_and_takes_the_median():
 
 # ------------------------------------------------------------------ the paper's words
 
-#: The paper's LaTeX source (a directory with a .tex file, or a text file holding it).
-PAPER_DIR = Path(os.environ.get("CHAINCHAOS_PAPER_DIR", "/work/shared/paper"))
+#: The paper's LaTeX source (a directory with a .tex file, or a text file holding it): by default
+#: ../shared/paper beside the checkout, where CI puts it.
+PAPER_DIR = Path(os.environ.get("CHAINCHAOS_PAPER_DIR", Path(__file__).resolve().parents[2] / "shared" / "paper"))
 ROMAN = ("I", "II", "III", "IV", "V", "VI")
 
 

@@ -8,9 +8,9 @@ import xarray as xr
 from chainchaos.output.formatting import plain_number
 from chainchaos.system.models import model_label
 
-#: The paper's thresholds (section III): Hertz chaotic from H ~ 0.5 (localized chaos), always
-#: delocalized and chaotic for H >= 1.8; FPUT delocalized and chaotic first at H = 2.9, always
-#: chaotic for H > 2.8 (delocalization alternates with localization above).
+#: The paper's energies (section III): Hertz H = 0.5 the lowest it shows chaotic (localized chaos,
+#: not a bound), always delocalized and chaotic for H > 1.8; FPUT delocalized first around H = 2.9,
+#: always chaotic for H > 2.8 (delocalization alternates with localization above).
 PAPER_THRESHOLDS = {
     ("hertz", "chaos"): 0.5,
     ("hertz", "delocalization"): 1.8,
