@@ -126,3 +126,32 @@ def test_the_joint_figure_marks_every_exclusive_pair(tmp_path):
     crosses = [line for line in matrix.lines if line.get_marker() == "x"]
     assert len(crosses) == 1 and sorted(crosses[0].get_xdata()) == [0, 1]
     assert matrix.get_xlabel() == "" and fig.axes[2].get_xlabel() and fig.axes[3].get_yscale() == "log"
+
+
+def test_the_archive_sums_the_jobs_costs_per_stage_and_names_its_machines(tmp_path):
+    from chainchaos.studies.search import archive
+
+    header = "s\th:m:s\tmax_rss\tmax_vms\tmax_uss\tmax_pss\tio_in\tio_out\tmean_load\tcpu_time\n"
+
+    def row(wall, cpu):
+        return header + f"{wall}\t0\t0\t0\t0\t0\t0\t0\t0\t{cpu}\n"
+
+    runs = {"search_seeds": [(2.0, 1.5), (3.0, 2.5)], "search_filter": [(10.0, 9.0)], "search_merge": [(1.0, 0.5)]}
+    for stage, rows in runs.items():
+        (tmp_path / stage).mkdir()
+        for k, (wall, cpu) in enumerate(rows):
+            (tmp_path / stage / f"search_full-{k:03d}.tsv").write_text(row(wall, cpu))
+        (tmp_path / stage / "search-000.tsv").write_text(row(99, 99))  # the other search's job
+    costs = archive.job_costs(tmp_path)
+    assert costs["search_seeds"] == {"jobs": 2, "wall_seconds": 5.0, "cpu_seconds": 4.0}
+    assert costs["search_score"] == {"jobs": 0, "wall_seconds": 0.0, "cpu_seconds": 0.0}
+    assert costs["total"]["jobs"] == 4 and costs["total"]["cpu_seconds"] == 13.5
+    assert costs["total"]["span_seconds"] >= 10.0  # the longest job at least
+
+    stage_file = tmp_path / "stage.nc"
+    xr.Dataset(attrs={"git_commit": "abc", "cpu_model": "CPU X", "numba_target_cpu": "znver4"}).to_netcdf(stage_file)
+    machines = archive.stage_machines([stage_file, stage_file])
+    assert machines == {"stage_commits": "abc", "stage_cpus": "CPU X (znver4)"}
+    ds = archive.archive_dataset(xr.Dataset(attrs={"chosen_seed": 7}), costs, machines)
+    assert ds.attrs["cost_search_seeds_jobs"] == 2 and ds.attrs["cost_total_cpu_seconds"] == 13.5
+    assert ds.attrs["chosen_seed"] == 7 and ds.attrs["stage_cpus"] == "CPU X (znver4)"
