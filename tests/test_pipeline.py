@@ -99,12 +99,25 @@ def test_paper_scale_dry_run_plans_every_scene(tmp_path):
     # scenes that share their settings run together, one SIMD block per job
     per_model = [sum(s.model == model for s in panels.scenes().values()) for model in ("hertz", "fput")]
     assert jobs["simulate_scenes"] == sum(-(-n // LANES) for n in per_model)
-    # the realization search: the archived full search's chain (data/search/search_full.nc, part of
-    # the repository) re-scored alone, no filter; one verdict per scene
-    assert (ROOT / "data" / "search" / "search_full.nc").is_file()
-    assert jobs["search_seeds"] == 1 and jobs["search_candidates"] == 1 and "search_filter" not in jobs
-    assert jobs["search_score"] == 1 and jobs["search_merge"] == 1
+    # the realization search: stage 0 (its size decides stage 1: a checkpoint), one verdict per scene
+    assert jobs["search_seeds"] == 1 and jobs["search_candidates"] == 1 and jobs["search_merge"] == 1
     assert jobs["ensemble_verdicts"] == len(statements.statement_scenes())
+
+
+def test_an_archived_full_search_pins_its_chain_and_none_searches(tmp_path):
+    """With search.archive naming an existing file, `all` re-scores the archive's chain alone; with
+    none (or a missing file) it searches, its filter planned once stage 0 has run."""
+    archive = tmp_path / "search_full.nc"
+    xr.Dataset(attrs={"chosen_seed": 879}).to_netcdf(archive)
+    for path, pinned in ((archive, True), (tmp_path / "missing.nc", False), ("", False)):
+        config = tmp_path / "archive.yaml"
+        config.write_text(f"search:\n  archive: '{path}'\n")
+        code, out = snakemake("-n", "--configfile", "config/config.yaml", str(config),
+                              "--config", f"results={tmp_path / 'results'}")
+        assert code == 0, out[-4000:]
+        jobs = planned_jobs(out)
+        assert "search_filter" not in jobs and jobs["search_candidates"] == 1
+        assert ("search_score" in jobs) == pinned, (path, jobs)
 
 
 def test_a_pinned_seed_rescores_that_chain_without_a_search(tmp_path):
