@@ -26,6 +26,7 @@ PRODUCT_KINDS = {
     "disorder group": "scan/groups/disorder/*.nc",
     "energy scan": "scan/energy_scan.nc",
     "disorder statistics": "scan/disorder_statistics.nc",
+    "search seed job": "search/seeds/*.nc",
     "search candidates": "search/candidates.nc",
     "search filter job": "search/filter/*.nc",
     "search score job": "search/score/*.nc",

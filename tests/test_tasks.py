@@ -32,7 +32,7 @@ def rules() -> dict[str, tuple[Path, str]]:
     found = {}
     for path in RULE_FILES:
         text = path.read_text()
-        for m in re.finditer(r"^rule (\w+):", text, re.M):
+        for m in re.finditer(r"^(?:rule|checkpoint) (\w+):", text, re.M):
             end = re.search(r"^\S", text[m.end():], re.M)  # the next line at the top level
             found[m.group(1)] = (path, text[m.start():m.end() + (end.start() if end else len(text))])
     return found
