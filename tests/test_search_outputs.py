@@ -68,6 +68,21 @@ def test_the_search_figure_shows_every_statement_and_boxes_the_chosen_chain(sear
         plots.plot_search(search, tmp_path / "c.pdf", tmp_path / "d.png")
 
 
+def test_the_search_figure_of_many_scored_candidates_labels_the_chosen_seed_only(search_results):
+    from chainchaos.studies.search import plots
+
+    first = search_results[0]
+    n = plots.LABELLED_COLUMNS + 1  # more scored columns than can be labelled: the first one, repeated
+    search = first.isel(candidate=np.full(n, int(np.flatnonzero(first["scored"].values == 1)[0])))
+    search = search.assign_coords(candidate=np.arange(n))
+    search["seed"] = ("candidate", 1000 + np.arange(n))
+    search.attrs["chosen_candidate"] = 2
+    right = plots.search_figure(search).axes[1]
+    assert [t.get_text() for t in right.get_xticklabels()] == ["1002"]
+    left = plots.search_figure(search).axes[0]
+    assert left.get_xlim() == (0.0, 1.0)  # fractions of each stage's candidates
+
+
 @pytest.mark.parametrize("model", ["hertz", "fput"])
 def test_the_benchmark_problem_is_a_production_one(model):
     problem = bench.benchmark_problem(model)

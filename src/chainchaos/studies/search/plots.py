@@ -15,6 +15,9 @@ from chainchaos.output.plotting.style import PAGE_WIDTH, context, save_figure
 from chainchaos.paper.verdicts import HOLDS
 from chainchaos.studies.search.joint import joint_statements, onset_and_level
 
+#: up to this many scored candidates, each column of the search figure is labelled with its seed
+LABELLED_COLUMNS = 16
+
 
 def search_figure(ds):
     statements = [str(s) for s in ds.statement.values]
@@ -25,23 +28,30 @@ def search_figure(ds):
         fig = Figure(figsize=(PAGE_WIDTH, 0.16 * S + 1.2))
         ax, bx = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.0, 1.3]}, sharey=True)
         y = np.arange(S)
-        not_broken = (ds["filter_outcome"].values != 0).sum(axis=0)
-        holds = (ds["verdict"].values[scored] == HOLDS).sum(axis=0)
+        # fractions, so that stage 1 (every candidate) and stage 2 (the scored few) share one axis
+        not_broken = (ds["filter_outcome"].values != 0).mean(axis=0)
+        holds = (ds["verdict"].values[scored] == HOLDS).mean(axis=0) if scored.size else np.zeros(S)
         ax.barh(y + 0.2, not_broken, height=0.4, color="#90a4ae",
-                label=f"not broken by $t = {ds.attrs['filter_t_final']:g}$ ({ds.sizes['candidate']} candidates)")
+                label=f"not broken by $t = {ds.attrs['filter_t_final']:g}$ (of {ds.sizes['candidate']} candidates)")
         ax.barh(y - 0.2, holds, height=0.4, color="#2e7d32",
-                label=f"holds on the ensemble ({scored.size} scored)")
+                label=f"holds on the ensemble (of {scored.size} scored)")
         ax.set_yticks(y, statements)
         ax.invert_yaxis()
-        ax.set_xlabel("candidates")
+        ax.set_xlim(0, 1)
+        ax.set_xlabel("fraction of candidates")
         ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.0), fontsize=5.5, borderaxespad=0.2)
         frac = ds["fraction"].values[scored]
         im = bx.imshow(frac.T, aspect="auto", cmap="RdYlGn", vmin=0, vmax=1, interpolation="nearest",
                        extent=(-0.5, scored.size - 0.5, S - 0.5, -0.5))
-        bx.set_xticks(np.arange(scored.size), [str(int(s)) for s in ds["seed"].values[scored]], rotation=90)
-        bx.set_xlabel("seed of the scored candidate (chosen: boxed)")
-        if chosen in scored:
-            k = int(np.flatnonzero(scored == chosen)[0])
+        seeds = [str(int(s)) for s in ds["seed"].values[scored]]
+        k = int(np.flatnonzero(scored == chosen)[0]) if chosen in scored else None
+        if scored.size <= LABELLED_COLUMNS:
+            bx.set_xticks(np.arange(scored.size), seeds, rotation=90)
+            bx.set_xlabel("seed of the scored candidate (chosen: boxed)")
+        else:  # too many to read: only the chosen one's seed
+            bx.set_xticks([] if k is None else [k], [] if k is None else [seeds[k]], rotation=90)
+            bx.set_xlabel(f"{scored.size} scored candidates (chosen: boxed)")
+        if k is not None:
             bx.add_patch(Rectangle((k - 0.5, -0.5), 1, S, fill=False, lw=1.2, ec="black"))
         cb = fig.colorbar(im, ax=bx, fraction=0.05, pad=0.02)
         cb.set_label("fraction of lanes satisfying it")
