@@ -13,6 +13,7 @@ import pytest
 import xarray as xr
 
 from chainchaos.studies.search.archive import STAGES, chosen_seed
+from test_compliance import cf_problems
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -78,6 +79,8 @@ def test_a_killed_full_search_resumes_without_redoing_a_finished_chunk(tmp_path)
     resumed = n_filter - len([p for p in before if p.parent.name == "filter"])
     assert resumed <= ds.attrs["cost_search_filter_jobs"] <= n_filter  # a killed job may leave no benchmark
     assert ds.attrs["stage_cpus"] and ds.attrs["stage_commits"]
+    # the files a pinned run does not write pass the CF checker here (tests/test_compliance.py)
+    assert cf_problems(archive) == [] and cf_problems(sorted(filters.glob("*.nc"))[0]) == []
 
     # `all` pins the archive's chain: its search's candidates are that chain alone, and no filter runs
     pinned = tmp_path / "all"
