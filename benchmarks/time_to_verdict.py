@@ -29,7 +29,6 @@ import time
 from pathlib import Path
 
 import numpy as np
-import xarray as xr
 import yaml
 
 from chainchaos import random_chain
@@ -40,6 +39,7 @@ from chainchaos.paper.criteria import Criteria
 from chainchaos.paper.statements import statement_scenes
 from chainchaos.run import driver
 from chainchaos.run.orbits import OrbitSettings, lane_factor, sample_schedule
+from chainchaos.studies.search.archive import chosen_seed as archive_seed
 from chainchaos.system.initial import (
     extra_deviations,
     initial_deviation,
@@ -55,8 +55,7 @@ def chosen_seed() -> int:
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     archive = ROOT / config["search"]["archive"]
     if archive.exists():
-        with xr.open_dataset(archive) as ds:
-            return int(ds.attrs["chosen_seed"])
+        return archive_seed(archive)
     return int(config["search"].get("pinned_seed") or 879)
 
 

@@ -126,7 +126,8 @@ def test_the_joint_analysis_finds_exclusive_statements_and_ranks_the_chosen_chai
     assert j.exclusive_pairs() == [(ids[0], ids[1])]
     assert j.both[0, 2] == 3 and j.both[2, 2] == 4 and j.both[3, 3] == 0
     assert j.all_held() == 0 and j.at_least_as_good() == 2
-    c = joint.onset_level_consistency(ds, 2e2, 1e-3, 2.0, 3.0)
+    assert joint.paper_onset_and_level() == (2e2, 1e-3)  # the paper: chaotic from t ~ 2e2, Lambda ~ 1e-3
+    c = joint.onset_level_consistency(ds, 2.0, 3.0)
     # onsets within x2 of 2e2: candidates 0 and 1; levels within x3 of 1e-3: 1 and 2 (3 has no onset)
     assert c == {"onset_near": 2, "level_near": 3, "both": 1, "lowest_level_with_onset": 1e-3, "decided": 3}
 

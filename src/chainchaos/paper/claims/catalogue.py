@@ -70,6 +70,14 @@ HERTZ_ETA = r"The entropy $\eta(t)$ features a plateau at a value around $\eta\a
 HERTZ_ETA_FINAL = (r"The asymptotic value of $\eta(t)$ approaches the theoretically predicted value of "
                    r"$\langle\eta\rangle$ with $H \geq 1.8$")
 BOTH_LOCALIZED_05 = r"The energy distribution for both models is still found to be localized for $H = 0.5$."
+#: Sec. III A: both models at H = 0.25 (said once of both).
+BOTH_LOCALIZED_025 = (r"the energy density for both models is completely localized around the initially excited "
+                      r"site $ n =21 $")
+BOTH_REGULAR_025 = r"confirms that the dynamics is regular as $ \Lambda (t) $ follows"
+#: Sec. III B 3: FPUT up to H = 1.8, localized and regular in one sentence.
+FPUT_LOCALIZED_REGULAR_TO_18 = r"the dynamics of the FPUT model appears to remain localized and regular up to $H=1.8$"
+#: Sec. III B 3: FPUT at H = 8.7381, delocalized and chaotic in one sentence.
+FPUT_87_FINAL = r"which exhibits a delocalized and chaotic final energy profile"
 
 
 def _label(scene: str) -> str:
@@ -414,7 +422,7 @@ CATALOGUE: tuple[ClaimRow, ...] = (
              variables=("participation", "mlce"), t_required=T_PAPER, refutable_early=True,
              statements=tuple(_statement_id(kind, scene) for scene in (FP25, FP05, FP18)
                               for kind in ("loc", "regular")),
-             quote=(r"the dynamics of the FPUT model appears to remain localized and regular up to $H=1.8$",)),
+             quote=(FPUT_LOCALIZED_REGULAR_TO_18,)),
     _delocalized_and_chaotic("fput-H2.9", "Fig. 6(a--d), Sec. III B", FP29, " (the first such energy)", FPUT_FIRST),
     # "t >~ 4e3" gives where Lambda leaves the t^-1 line (regular before it): an onset, not a bound
     _chaos_onset("chaos-H2.9-onset", "Fig. 6(d), Sec. III B", FP29,
@@ -496,9 +504,8 @@ CATALOGUE: tuple[ClaimRow, ...] = (
 #: The paper's words each statement of ``statements.STATEMENTS`` encodes (the statement rows quote
 #: them; the rows of CATALOGUE that rest on a statement quote their own).
 STATEMENT_QUOTES: dict[str, tuple[str, ...]] = {
-    "loc-H0.25-hertz": (r"the energy density for both models is completely localized around the initially excited "
-                        r"site $ n =21 $",),
-    "regular-H0.25-hertz": (r"confirms that the dynamics is regular as $ \Lambda (t) $ follows",),
+    "loc-H0.25-hertz": (BOTH_LOCALIZED_025,),
+    "regular-H0.25-hertz": (BOTH_REGULAR_025,),
     "loc-H0.5-hertz": (BOTH_LOCALIZED_05,),
     "chaos-H0.5-hertz": (r"This signals that the system is chaotic.",),
     "chaos-late-H0.5-hertz": (r"deviates from the $ \Lambda (t) \propto t^{-1}$ curve, at the last decade",),
@@ -513,13 +520,12 @@ STATEMENT_QUOTES: dict[str, tuple[str, ...]] = {
     "deloc-H3-hertz": (HERTZ_ALWAYS,
                        r"at the last decade all modes appear to participate in the dynamics"),
     "chaos-H3-hertz": (HERTZ_ALWAYS,),
-    "loc-H0.25-fput": (r"the energy density for both models is completely localized around the initially excited "
-                       r"site $ n =21 $",),
-    "regular-H0.25-fput": (r"confirms that the dynamics is regular as $ \Lambda (t) $ follows",),
+    "loc-H0.25-fput": (BOTH_LOCALIZED_025,),
+    "regular-H0.25-fput": (BOTH_REGULAR_025,),
     "loc-H0.5-fput": (BOTH_LOCALIZED_05,),
     "regular-H0.5-fput": (r"In contrast, for the same energy the FPUT model's orbit remains regular",),
-    "loc-H1.8-fput": (r"the dynamics of the FPUT model appears to remain localized and regular up to $H=1.8$",),
-    "regular-H1.8-fput": (r"the dynamics of the FPUT model appears to remain localized and regular up to $H=1.8$",),
+    "loc-H1.8-fput": (FPUT_LOCALIZED_REGULAR_TO_18,),
+    "regular-H1.8-fput": (FPUT_LOCALIZED_REGULAR_TO_18,),
     "deloc-H2.9-fput": (FPUT_FIRST, r"appears to spread during the last decade of the simulation"),
     "chaos-H2.9-fput": (FPUT_FIRST,),
     "chaos-onset-H2.9-fput": (r"indicating chaotic dynamics for $t \gtrsim 4\times 10^3$",),
@@ -528,8 +534,8 @@ STATEMENT_QUOTES: dict[str, tuple[str, ...]] = {
     "chaos-H4-fput": (FPUT_ALWAYS_CHAOTIC,),
     "eta-H4-fput": (r"the entropy saturates for most of the evolution around a relatively large value "
                     r"$\eta\approx 0.82$",),
-    "deloc-H8.7381-fput": (r"which exhibits a delocalized and chaotic final energy profile",),
-    "chaos-H8.7381-fput": (r"which exhibits a delocalized and chaotic final energy profile",),
+    "deloc-H8.7381-fput": (FPUT_87_FINAL,),
+    "chaos-H8.7381-fput": (FPUT_87_FINAL,),
 }
 
 

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
+from chainchaos.paper.statements import STATEMENTS
 from chainchaos.paper.verdicts import HOLDS, UNTESTABLE
 
 #: Hertz H = 1.8's chaos: its onset "from t ~ 2e2" and its level "Lambda ~ 1e-3" (statements.STATEMENTS).
@@ -67,6 +68,18 @@ def unbroken_counts(ds: xr.Dataset) -> np.ndarray:
     return (ds["filter_outcome"].values != 0).sum(axis=0)
 
 
+def held_counts(ds: xr.Dataset) -> np.ndarray:
+    """Per statement: the scored candidates on whose ensemble it holds."""
+    return joint_statements(ds).holds.sum(axis=0)
+
+
+def paper_onset_and_level() -> tuple[float, float]:
+    """The paper's Hertz H = 1.8 pair: chaos from t ~ 2e2 and Lambda ~ 1e-3, the values of the
+    statements ONSET and LEVEL."""
+    value = {st.id: st.value for st in STATEMENTS}
+    return value[ONSET], value[LEVEL]
+
+
 def onset_and_level(ds: xr.Dataset) -> tuple[np.ndarray, np.ndarray]:
     """Per scored candidate: the median over its lanes of Hertz H = 1.8's chaos onset time and of
     its final Lambda (NaN where no lane decided)."""
@@ -75,11 +88,12 @@ def onset_and_level(ds: xr.Dataset) -> tuple[np.ndarray, np.ndarray]:
     return median.sel(statement=ONSET).values[scored], median.sel(statement=LEVEL).values[scored]
 
 
-def onset_level_consistency(ds: xr.Dataset, onset: float, level: float, time_factor: float,
-                            level_factor: float) -> dict:
-    """Whether the scored candidates show the paper's pair (chaos from t ~ ``onset``, Lambda levels
-    off near ``level``): how many have an onset within ``time_factor`` of it, how many a level
-    within ``level_factor``, how many both, and the lowest level among those with such an onset."""
+def onset_level_consistency(ds: xr.Dataset, time_factor: float, level_factor: float) -> dict:
+    """Whether the scored candidates show the paper's pair (:func:`paper_onset_and_level`: chaos
+    from t ~ onset, Lambda levels off near level): how many have an onset within ``time_factor`` of
+    it, how many a level within ``level_factor``, how many both, and the lowest level among those
+    with such an onset."""
+    onset, level = paper_onset_and_level()
     t, lam = onset_and_level(ds)
     near_t = np.isfinite(t) & (t >= onset / time_factor) & (t <= onset * time_factor)
     near_l = np.isfinite(lam) & (lam >= level / level_factor) & (lam <= level * level_factor)

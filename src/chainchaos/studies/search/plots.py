@@ -1,8 +1,8 @@
 """The realization-search figures, drawn from a merged search (``stages.merge``) only.
 
-``search``: per statement of the paper, how many candidates the short run leaves (not broken), and
-how many scored candidates satisfy it on their ensemble (verdict ``holds``); every scored
-candidate's fraction of lanes satisfying each statement, the chosen chain marked.
+``search``: per statement of the paper, the fraction of the candidates that the short run leaves
+(not broken) and of the scored candidates that satisfy it on their ensemble (verdict ``holds``);
+every scored candidate's fraction of lanes satisfying each statement, the chosen chain marked.
 ``search_joint`` (``joint``): which statements hold together, the scores, and Hertz H = 1.8's chaos
 onset against its level.
 """
@@ -12,8 +12,14 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
 
 from chainchaos.output.plotting.style import PAGE_WIDTH, context, save_figure
-from chainchaos.paper.verdicts import HOLDS
-from chainchaos.studies.search.joint import joint_statements, onset_and_level
+from chainchaos.paper.criteria import Tolerances
+from chainchaos.studies.search.joint import (
+    held_counts,
+    joint_statements,
+    onset_and_level,
+    paper_onset_and_level,
+    unbroken_counts,
+)
 
 #: up to this many scored candidates, each column of the search figure is labelled with its seed
 LABELLED_COLUMNS = 16
@@ -29,8 +35,8 @@ def search_figure(ds):
         ax, bx = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.0, 1.3]}, sharey=True)
         y = np.arange(S)
         # fractions, so that stage 1 (every candidate) and stage 2 (the scored few) share one axis
-        not_broken = (ds["filter_outcome"].values != 0).mean(axis=0)
-        holds = (ds["verdict"].values[scored] == HOLDS).mean(axis=0) if scored.size else np.zeros(S)
+        not_broken = unbroken_counts(ds) / ds.sizes["candidate"]
+        holds = held_counts(ds) / scored.size if scored.size else np.zeros(S)
         ax.barh(y + 0.2, not_broken, height=0.4, color="#90a4ae",
                 label=f"not broken by $t = {ds.attrs['filter_t_final']:g}$ (of {ds.sizes['candidate']} candidates)")
         ax.barh(y - 0.2, holds, height=0.4, color="#2e7d32",
@@ -87,7 +93,8 @@ def _score_panel(ax, joint, n_statements: int):
     ax.set_title("(b) scores", fontsize=6.5)
 
 
-def _onset_panel(ax, ds, onset: float, level: float, time_factor: float, level_factor: float):
+def _onset_panel(ax, ds, time_factor: float, level_factor: float):
+    onset, level = paper_onset_and_level()
     t, lam = onset_and_level(ds)
     ok = np.isfinite(t) & np.isfinite(lam)
     chosen = np.flatnonzero(ds["scored"].values == 1) == int(ds.attrs["chosen_candidate"])
@@ -103,17 +110,17 @@ def _onset_panel(ax, ds, onset: float, level: float, time_factor: float, level_f
     ax.set_title(f"(c) {int(ok.sum())} candidates with an onset and a level", fontsize=6.5)
 
 
-def joint_figure(ds, onset: float = 2e2, level: float = 1e-3, time_factor: float = 2.0, level_factor: float = 3.0):
+def joint_figure(ds, time_factor: float = Tolerances.time_factor, level_factor: float = Tolerances.mlce_factor):
     """Co-occurrence of the statements over the scored candidates, the scores, and Hertz H = 1.8's
-    onset of chaos against its final Lambda with the paper's values (``onset``, ``level``) and
-    the claims' tolerances on them."""
+    onset of chaos against its final Lambda with the paper's values (``joint.paper_onset_and_level``)
+    and the claims' tolerances on them."""
     joint = joint_statements(ds)
     with context():
         fig = Figure(figsize=(PAGE_WIDTH, 0.55 * PAGE_WIDTH + 2.2))
         grid = fig.add_gridspec(2, 2, height_ratios=[1.6, 1.0])
         _cooccurrence_panel(fig.add_subplot(grid[0, :]), fig, joint)
         _score_panel(fig.add_subplot(grid[1, 0]), joint, len(joint.statements))
-        _onset_panel(fig.add_subplot(grid[1, 1]), ds, onset, level, time_factor, level_factor)
+        _onset_panel(fig.add_subplot(grid[1, 1]), ds, time_factor, level_factor)
         fig.tight_layout()
     return fig
 

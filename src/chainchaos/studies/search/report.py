@@ -13,15 +13,22 @@ import xarray as xr
 from chainchaos.output.formatting import tex_number, tex_parameter
 from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
-from chainchaos.paper.verdicts import HOLDS, VERDICT_NAMES, verdict_code
+from chainchaos.paper.verdicts import VERDICT_NAMES, verdict_code
 from chainchaos.studies.scan.merge import probability_at
 from chainchaos.studies.scan.thresholds import criterion_holds, first_energy
-from chainchaos.studies.search.joint import joint_statements, onset_level_consistency
+from chainchaos.studies.search.joint import (
+    held_counts,
+    joint_statements,
+    onset_level_consistency,
+    unbroken_counts,
+)
 from chainchaos.system.models import model_label
 
 
 def _statement_rows(population: xr.Dataset, search: xr.Dataset, verdicts: dict) -> list[dict]:
-    scored = population["scored"].values == 1
+    ids = [str(s) for s in population.statement.values]
+    not_broken = dict(zip(ids, unbroken_counts(population)))
+    held = dict(zip(ids, held_counts(population)))
     chosen = int(search.attrs["chosen_candidate"])
     rows = []
     for st in statements.STATEMENTS:
@@ -29,8 +36,8 @@ def _statement_rows(population: xr.Dataset, search: xr.Dataset, verdicts: dict) 
         v = verdicts.get(st.scene.name)
         row = {
             "id": i,
-            "not_broken": int((population["filter_outcome"].sel(statement=i).values != 0).sum()),
-            "held": int((population["verdict"].sel(statement=i).values[scored] == HOLDS).sum()),
+            "not_broken": int(not_broken[i]),
+            "held": int(held[i]),
             "search_fraction": float(search["fraction"].sel(statement=i).values[chosen]),
             "fraction": float(v["fraction"].sel(statement=i)) if v is not None else float("nan"),
             "lanes": int(v["n_decided"].sel(statement=i)) if v is not None else 0,
@@ -91,7 +98,7 @@ def _joint_macros(population: xr.Dataset, criteria: Criteria) -> dict[str, str]:
     joint = joint_statements(population)
     pairs = joint.exclusive_pairs()
     tol = criteria.tolerance
-    c = onset_level_consistency(population, 2e2, 1e-3, tol.time_factor, tol.mlce_factor)
+    c = onset_level_consistency(population, tol.time_factor, tol.mlce_factor)
     listed = "; ".join(f"\\texttt{{{a}}} and \\texttt{{{b}}}" for a, b in pairs) or "none"
     return {
         "search.exclusive": str(len(pairs)),
@@ -127,11 +134,12 @@ def search_macros(population: xr.Dataset, search: xr.Dataset, verdicts: dict, en
     the joint analysis (``joint``) and, for an archived search, its cost and machine."""
     agreement = criteria.agreement
     a = population.attrs
+    archived = "cost_total_cpu_seconds" in a  # only search_full writes its cost
     scored = population["scored"].values == 1
     held = population["statements_held"].values[scored]
     out = {
         "search.pinned": "yes" if int(search.attrs["pinned"]) else "no",
-        "search.archived": "yes" if "cost_total_cpu_seconds" in a else "no",
+        "search.archived": "yes" if archived else "no",
         "search.candidates": str(population.sizes["candidate"]),
         "search.scored": str(int(scored.sum())),
         "search.statements": str(int(a["n_statements"])),
@@ -153,7 +161,7 @@ def search_macros(population: xr.Dataset, search: xr.Dataset, verdicts: dict, en
         "search.rescorelanes": str(int(search.attrs["lanes"])),
     }
     out.update(_joint_macros(population, criteria))
-    if "cost_total_cpu_seconds" in a:
+    if archived:
         out.update({"search.cost.cpuhours": tex_number(a["cost_total_cpu_seconds"] / 3600, 2),
                     "search.cost.jobs": str(int(a["cost_total_jobs"])),
                     "search.cost.cpu": str(a["stage_cpus"]).replace("_", "\\_"),
