@@ -350,6 +350,27 @@ def test_the_threshold_statements_are_judged_on_the_energy_scan(chain_and_ensemb
     assert all(c[key].verdict == cl.UNTESTABLE and "energy_scan missing" in c[key].reason for key in SCAN_ROWS)
 
 
+def test_a_scan_claim_on_chaos_is_undecided_where_lambda_and_gali_answer_differently(chain_and_ensemble):
+    """With the scan's second indicator (chaotic_gali): "for H > 2.8 always chaotic" holds by both,
+    fails by both, or is undecided when only one indicator says it holds; the reason gives both."""
+    def claims(gali_fput):
+        scan = synthetic_scan(*PAPER_STORY)
+        gali = np.stack([scan["chaotic"].values[0], np.array([int(ch) for ch in gali_fput], dtype=np.int8)])
+        scan["chaotic_gali"] = (("model", "energy"), gali)
+        scan.attrs["gali_order"] = 4
+        return by_id(cl.evaluate_claims(synthetic_scenes(), *chain_and_ensemble, energy_scan=scan))
+
+    assert claims("000000001111")["scan-fput-chaos"].verdict == cl.REPRODUCED
+    split = claims("000000001011")["scan-fput-chaos"]
+    assert split.verdict == cl.UNDECIDED
+    assert "GALI" in split.reason and "3 of the 4" in split.reason
+    assert "GALI" in split.criterion
+    scan = synthetic_scan(PAPER_STORY[0], ("000000001011", "000000001011"))
+    scan["chaotic_gali"] = scan["chaotic"].copy()
+    c = by_id(cl.evaluate_claims(synthetic_scenes(), *chain_and_ensemble, energy_scan=scan))
+    assert c["scan-fput-chaos"].verdict == cl.DIFFERS  # both say it fails
+
+
 # ------------------------------------------------------------------ the paper against itself
 
 #: The energies the paper simulates (both models share the scan's grid), and two between them.

@@ -295,6 +295,34 @@ def test_ensemble_statement_counts_orbits_and_takes_the_median():
     assert none.value is None and math.isnan(none["median"])
 
 
+def test_an_ensemble_verdict_where_lambda_and_gali_disagree_is_undecided():
+    """Hertz H = 3's ensemble: every orbit chaotic by Λ; by GALI_4 all (agree), or none (the
+    statement is undecided, the claim too, and the text names both indicators' counts)."""
+    from chainchaos.paper import verdicts as vd
+    from chainchaos.paper.claims import evidence
+
+    c = Criteria()
+    t = np.concatenate([[0.0], np.logspace(0, 5, 101)])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        chaotic_growth = 1e-3 * t + np.log1p(t)
+
+    def ensemble(gali_crosses: bool):
+        runs = [{"participation": np.full(t.size, 20.0), "log_growth": chaotic_growth, "eta": np.ones(t.size),
+                 "energy_error": np.zeros(t.size), "u0": 1.0, "valid": True, "max_gaps": 3,
+                 "log_gali": np.where(t > 1e3, -30.0, -1.0) if gali_crosses else np.full(t.size, -1.0)}
+                for _ in range(8)]
+        ds = vd.verdict_dataset("hertz_H3", t, runs, c, {"gali_order": 4})
+        return inputs({"s": xr.Dataset()}, verdicts={"hertz_H3": ds})
+
+    agree = ensemble(True)
+    assert evidence.ensemble_verdict(agree, ["chaos-H3-hertz"]) == (fw.REPRODUCED, "$\\Lambda$ 8/8, $\\mathrm{GALI}_{4}$ 8/8")
+    assert evidence.ensemble_verdict(agree, ["deloc-H3-hertz"]) == (fw.REPRODUCED, "8/8")  # P: one reading
+    split = ensemble(False)
+    verdict, text = evidence.ensemble_verdict(split, ["chaos-H3-hertz"])
+    assert verdict == fw.UNDECIDED and text == "$\\Lambda$ 8/8, $\\mathrm{GALI}_{4}$ 0/8"
+    assert evidence.indicators_disagree(split, ["chaos-H3-hertz", "deloc-H3-hertz"]) == ["chaos-H3-hertz"]
+
+
 # ------------------------------------------------------------------ the paper's words
 
 #: The paper's LaTeX source (a directory with a .tex file, or a text file holding it): by default

@@ -8,7 +8,9 @@ import numpy as np
 import pytest
 
 from chainchaos.engine import exactmath
-from chainchaos.observe import formulas
+from chainchaos.engine.simd import LANES
+from chainchaos.errors import ParameterError
+from chainchaos.observe import formulas, reductions
 from chainchaos.run import driver
 from chainchaos.run.settings import RunSettings
 from chainchaos.system.chain import chain_from_radii, random_chain
@@ -172,3 +174,67 @@ def test_the_tangent_map_needs_no_correction_where_a_contact_opens():
         fd = np.concatenate([plus.q[:, 0] - minus.q[:, 0], plus.p[:, 0] - minus.p[:, 0]]) / (2 * eps)
         errors.append(np.abs(fd - tangent).max() / np.abs(tangent).max())
     assert max(errors) < 1e-8  # central differences to round-off: no jump where the contact opened
+
+
+def _regular_and_chaotic(lanes_each=LANES):
+    """A batch of Hertz orbits: lanes 0..lanes_each-1 at H = 3 (chaotic), the rest at H = 0.05
+    (near-linear, regular), with GALI_3's vectors; (problem, state, extra vectors, steps)."""
+    chain = random_chain(879, 5.0)
+    model = get_model("hertz")
+    energies = [3.0] * lanes_each + [0.05] * lanes_each
+    problem = Problem(model, [chain] * len(energies), "SRKN6b", 0.01, True, False, 10, gali=3)
+    N, B = chain.N, len(energies)
+    Q, P, DQ, DP = (np.zeros((N, B)) for _ in range(4))
+    for j, H in enumerate(energies):
+        Q[:, j], P[:, j] = _excited(model, chain, H, 21)
+        DQ[:, j], DP[:, j] = initial_deviation(N, j)
+    xq, xp = RunSettings(t_final=1.0, dt=0.01).extra_deviations(problem)
+    XQ, XP = np.repeat(xq[:, :, None], B, axis=2), np.repeat(xp[:, :, None], B, axis=2)
+    return problem, (Q, P, DQ, DP), (XQ, XP), driver.sample_steps(2e3, 0.01, 10, 1.0)
+
+
+def test_gali_vectors_stop_once_decided_and_nothing_else_changes():
+    """driver.sample's gali_stop: a lane's ln GALI_k is recorded up to the first sample below the
+    threshold and NaN after; the orbits, mLCE vectors and the records of undecided lanes are those
+    of the run without a stop, bit for bit; the vectors of a block whose lanes all stopped stay
+    as they were (the saved work)."""
+    problem, state, (XQ, XP), steps = _regular_and_chaotic()
+    full = driver.sample(problem, *state, steps, xq0=XQ, xp0=XP)
+    stop = np.log(1e-5)
+    stopped = driver.sample(problem, *state, steps, xq0=XQ, xp0=XP, gali_stop=stop)
+    for key in ("Q", "P", "DQ", "DP", "log_growth"):
+        assert np.array_equal(getattr(full, key), getattr(stopped, key)), key
+    chaotic, regular = slice(0, LANES), slice(LANES, 2 * LANES)
+    assert np.all(full.log_gali[chaotic, -1] < stop) and np.all(full.log_gali[regular] > np.log(1e-2))
+    assert np.array_equal(full.log_gali[regular], stopped.log_gali[regular])
+    for j in range(LANES):
+        first = np.flatnonzero(full.log_gali[j] < stop)[0]
+        assert np.array_equal(full.log_gali[j, :first + 1], stopped.log_gali[j, :first + 1])
+        assert np.all(np.isnan(stopped.log_gali[j, first + 1:]))
+    # the stopped block's vectors are left where the last chaotic lane crossed
+    engine = problem.engine(*state, xq=XQ, xp=XP)
+    engine.stop_vectors(range(LANES))
+    before = engine.xq.copy()
+    engine.advance(100)
+    assert np.array_equal(engine.xq[:, :, chaotic], before[:, :, chaotic])
+    assert not np.array_equal(engine.xq[:, :, regular], before[:, :, regular])
+
+
+def test_a_stop_needs_gali_vectors_and_no_spectrum():
+    chain = random_chain(879, 5.0)
+    q, p = _excited("hertz", chain, 0.1, 21)
+    dq, dp = initial_deviation(chain.N, 0)
+    steps = driver.sample_steps(10.0, 0.01, 2, 1.0)
+    with pytest.raises(ParameterError, match="gali_stop"):
+        driver.sample(Problem("hertz", [chain], dt=0.01), q[:, None], p[:, None], dq[:, None], dp[:, None], steps,
+                      gali_stop=-18.0)
+
+
+def test_gali_crossing_reads_the_first_sample_below_the_threshold():
+    t = np.array([1.0, 10.0, 100.0, 1000.0])
+    log_gali = np.log([0.5, 1e-3, 1e-9, np.nan])
+    assert reductions.gali_crossing(t, log_gali, 1e-8) == 100.0
+    assert np.isnan(reductions.gali_crossing(t, log_gali, 1e-8, end=50.0))
+    assert np.isnan(reductions.gali_crossing(t, log_gali, 1e-12))  # NaN is not below
+    with pytest.raises(ParameterError, match="threshold"):
+        reductions.gali_crossing(t, log_gali, 2.0)

@@ -91,6 +91,51 @@ def test_ensemble_verdicts_need_agreement():
     assert verdicts.ensemble_verdict([np.nan] * 3, 0.875)[2] == verdicts.UNTESTABLE
 
 
+def test_two_indicators_decide_together_and_disagreement_is_undecided():
+    both = verdicts.two_indicator_verdict([1] * 8, [1] * 7 + [0], 0.875)
+    assert both["verdict"] == both["verdict_lambda"] == both["verdict_gali"] == verdicts.HOLDS
+    assert both["fraction"] == 7 / 8 and both["n_decided"] == 8  # the orbits on which both say it holds
+    split = verdicts.two_indicator_verdict([1] * 8, [0] * 8, 0.875)
+    assert (split["verdict_lambda"], split["verdict_gali"], split["verdict"]) == (
+        verdicts.HOLDS, verdicts.FAILS, verdicts.UNDECIDED)
+    assert split["fraction"] == 0.0
+    fails = verdicts.two_indicator_verdict([0] * 8, [0] * 8, 0.875)
+    assert fails["verdict"] == verdicts.FAILS
+    alone = verdicts.two_indicator_verdict([1, 1, np.nan], [np.nan] * 3, 0.875, read=False)
+    assert (alone["verdict"], alone["fraction"], alone["n_decided"]) == (verdicts.HOLDS, 1.0, 2)
+    assert alone["verdict_gali"] == verdicts.NOT_READ and np.isnan(alone["fraction_gali"])
+    # the orbits both decide: an orbit one indicator leaves undecided is not counted
+    partial = verdicts.two_indicator_verdict([1, 1, 1], [1, 1, np.nan], 0.6)
+    assert partial["n_decided"] == 2 and partial["verdict"] == verdicts.HOLDS
+
+
+def test_gali_decides_the_chaos_statements_and_reports_the_onset():
+    """Per orbit GALI_k gives its own outcome for the chaos statements (below the threshold by the
+    end: chaotic; by ``until``: not regular up to it) and only reports its crossing time for an
+    onset; without a log_gali series no statement is read by it."""
+    c = Criteria()
+    t = np.concatenate([[0.0], np.logspace(0, 5, 101)])
+    by_id = {s.id: s for s in statements.STATEMENTS}
+    crossing = 3e3
+    with np.errstate(divide="ignore"):
+        run = synthetic_run(t, np.full(t.size, 2.0), np.log1p(t))
+    run["log_gali"] = np.where(t < crossing, -1.0, np.log(c.gali_threshold) - 1.0)
+    assert verdicts.gali_outcome(by_id["chaos-H3-hertz"], t, run, c)[1] == 1.0
+    assert verdicts.gali_outcome(by_id["regular-H0.25-hertz"], t, run, c)[1] == 0.0
+    assert verdicts.gali_outcome(by_id["chaos-late-H0.5-hertz"], t, run, c)[1] == 0.0  # chaotic before 1e4
+    late = dict(run, log_gali=np.where(t < 2e4, -1.0, np.log(c.gali_threshold) - 1.0))
+    assert verdicts.gali_outcome(by_id["chaos-late-H0.5-hertz"], t, late, c)[1] == 1.0
+    assert verdicts.gali_outcome(by_id["chaos-late-H0.5-hertz"], t, late, c)[0] == 0.0  # not below by 1e4
+    value, out = verdicts.gali_outcome(by_id["chaos-onset-H1.8-hertz"], t, run, c)
+    assert value == pytest.approx(t[t >= crossing][0]) and np.isnan(out)  # reported, not judged
+    assert np.isnan(verdicts.gali_outcome(by_id["loc-H0.25-hertz"], t, run, c)[1])
+    plain = {k: v for k, v in run.items() if k != "log_gali"}
+    assert np.isnan(verdicts.gali_outcome(by_id["chaos-H3-hertz"], t, plain, c)[1])
+    ev = verdicts.evaluate([by_id["chaos-H3-hertz"], by_id["deloc-H3-hertz"]], t, [run, run], c)
+    assert list(ev["read_gali"]) == [True, False]
+    assert not verdicts.evaluate([by_id["chaos-H3-hertz"]], t, [plain], c)["read_gali"][0]
+
+
 def synthetic_run(t, P, log_growth, eta=None):
     return {"participation": P, "log_growth": log_growth, "eta": np.ones_like(t) if eta is None else eta,
             "energy_error": np.zeros_like(t), "valid": True}

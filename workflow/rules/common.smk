@@ -102,20 +102,35 @@ SCAN = config["scan"]
 
 
 def scan_params(kind):
-    """The part of the scan block a kind's jobs depend on: a change elsewhere reruns nothing here."""
-    return {"settings": SCAN.get("settings", {}), kind: SCAN[kind]}
+    """The part of the scan block a kind's jobs depend on: a change elsewhere reruns nothing here.
+    A kind that extends another (disorder_full) gets the other's block with its own keys."""
+    base, scan = scan_runs.scan_config(kind, SCAN)
+    return {"settings": SCAN.get("settings", {}), base: scan[base]}
 
 
 def scan_group_files(kind):
+    base, scan = scan_runs.scan_config(kind, SCAN)
     return [
-        result("scan", "groups", kind, f"{g:04d}.nc") for g in range(scan_runs.n_groups(kind, SCAN))
+        result("scan", "groups", kind, f"{g:04d}.nc") for g in range(scan_runs.n_groups(base, scan))
     ]
 
 
 def scan_runtime(kind):
     """Minutes a group job of a scan may take."""
-    s = scan_runs.settings_for(kind, SCAN)
-    return cluster_runtime(SCAN[kind]["trajectories_per_job"], s.t_final, s.dt)
+    base, scan = scan_runs.scan_config(kind, SCAN)
+    s = scan_runs.settings_for(base, scan)
+    return cluster_runtime(scan[base]["trajectories_per_job"], s.t_final, s.dt)
+
+
+# The full disorder statistics kept in the repository (`snakemake disorder_full` writes them):
+# when the file exists, `all` takes its disorder statistics from it and runs no disorder group.
+DISORDER_ARCHIVE = SCAN["disorder"].get("archive") or None
+
+
+def disorder_inputs():
+    if DISORDER_ARCHIVE and os.path.exists(DISORDER_ARCHIVE):
+        return {"archive": DISORDER_ARCHIVE}
+    return {"groups": scan_group_files("disorder")}
 
 
 # ---- the realization search and the ensemble verdicts (workflow/rules/search.smk) --------------

@@ -9,6 +9,7 @@
 
 wildcard_constraints:
     group=r"\d+",
+    disorder="disorder|disorder_full",
 
 
 # Seconds of work each: on a cluster they run on the submitting host rather than wait in the queue.
@@ -41,21 +42,22 @@ rule scan_energy_group:
 
 
 rule scan_disorder_group:
-    """One group of (model, realization, energy) trajectories on alpha = 5 realizations."""
+    """One group of (model, realization, energy) trajectories on alpha = 5 realizations, of the
+    disorder statistics of `all` or of the full ones (`disorder_full`)."""
     input:
         kernels=result("kernels_compiled.txt"),
     output:
-        group=result("scan", "groups", "disorder", "{group}.nc"),
+        group=result("scan", "groups", "{disorder}", "{group}.nc"),
     params:
-        scan=scan_params("disorder"),
+        scan=lambda wildcards: scan_params(wildcards.disorder),
         N=config["chain"]["N"],
     log:
-        log_file("scan_disorder_group", "{group}"),
+        log_file("scan_disorder_group", "{disorder}-{group}"),
     benchmark:
-        benchmark_file("scan_disorder_group", "{group}")
+        benchmark_file("scan_disorder_group", "{disorder}-{group}")
     resources:
         mem_mb=1000,
-        runtime=scan_runtime("disorder"),
+        runtime=lambda wildcards: scan_runtime(wildcards.disorder),
     script:
         "../scripts/scan_disorder_group.py"
 
@@ -80,8 +82,9 @@ rule merge_energy_scan:
 
 
 rule merge_disorder:
+    """The disorder statistics on their grid: merged from the groups, or the archived full ones."""
     input:
-        groups=scan_group_files("disorder"),
+        **disorder_inputs(),
     output:
         merged=result("scan", "disorder_statistics.nc"),
     params:
@@ -95,6 +98,21 @@ rule merge_disorder:
         runtime=15,
     script:
         "../scripts/merge_disorder.py"
+
+
+rule disorder_full:
+    """The full disorder statistics (config scan.disorder_full), with their cost and provenance,
+    written to scan.disorder.archive (a file of the repository that `all` reads)."""
+    input:
+        groups=scan_group_files("disorder_full"),
+    params:
+        scan=scan_params("disorder_full"),
+        archive=DISORDER_ARCHIVE,
+        benchmarks=result("benchmarks"),
+    log:
+        log_file("disorder_full"),
+    script:
+        "../scripts/disorder_full.py"
 
 
 rule plot_energy_scan:

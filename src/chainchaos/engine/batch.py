@@ -293,7 +293,7 @@ def _advance_block(model, tangent, N, Z, kicks, drifts, dt, n_steps, check_every
 
 @njit(cache=True, error_model="numpy")
 def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, tangent, check_every, track_gaps,
-                  gap_steps, log_growth, max_gaps, bad, lanes, xq, xp, orthogonal, x_growth):
+                  gap_steps, log_growth, max_gaps, bad, lanes, xq, xp, orthogonal, x_growth, vectors_on):
     """Advance the first ``lanes`` of the B trajectories (q, p) of ``model`` (a ``chainchaos.system.models``
     Model), shape (N, B), and, if ``tangent``, their deviation vectors (dq, dp) by n_steps steps of
     the scheme (kicks, drifts), in blocks of LANES (the last padded by repeating its last lane).
@@ -308,8 +308,9 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
     more deviation vectors of every trajectory, evolved by the same tangent map with the
     trajectory's stiffnesses (computed once for all its vectors); at every check the first
     ``orthogonal`` of them are orthonormalised against (dq, dp) and each other (modified
-    Gram-Schmidt) and the others normalised, ln of each norm added to ``x_growth[k, j]``. All
-    arrays are updated in place.
+    Gram-Schmidt) and the others normalised, ln of each norm added to ``x_growth[k, j]``; a block
+    whose lanes all have ``vectors_on[j]`` False leaves its K vectors as they are (the orbit and
+    the mLCE vector run the same either way). All arrays are updated in place.
     """
     N = q.shape[0]
     B = lanes
@@ -344,10 +345,14 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
             block_bad[lane] = bad[j]
             for k in range(extra):
                 block_x_growth[k, lane] = x_growth[k, j]
+        block_extra = 0
+        for j in range(first, min(first + LANES, B)):
+            if vectors_on[j]:
+                block_extra = extra
         # the tangent flag literal: each case compiles to its own code without these branches
         if tangent:
-            _advance_block(model, True, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
-                           block_gaps, block_growth, block_max_gaps, block_bad, V, extra, orthogonal, block_x_growth)
+            _advance_block(model, True, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, block_gaps,
+                           block_growth, block_max_gaps, block_bad, V, block_extra, orthogonal, block_x_growth)
         else:
             _advance_block(model, False, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
                            block_gaps, block_growth, block_max_gaps, block_bad, V, 0, 0, block_x_growth)
@@ -380,7 +385,8 @@ class Batch:
     ``gap_steps`` (N+1, B) and ``max_gaps`` (B,) accumulate the gap counts (the caller resets them).
     ``xq, xp`` (K, N, B) are the problem's ``extra_vectors`` more deviation vectors per lane (its
     spectrum's, orthonormalised, then GALI's, normalised, at every renormalisation) and
-    ``x_growth`` (K, B) their accumulated ln of the norms; they run in SIMD blocks only.
+    ``x_growth`` (K, B) their accumulated ln of the norms; they run in SIMD blocks only, and stop in
+    a block once ``vectors_on`` (B,) is False for all its lanes (:meth:`stop_vectors`).
     """
 
     def __init__(self, problem, q, p, dq=None, dp=None, serial_lanes: int = 0, xq=None, xp=None):
@@ -403,6 +409,7 @@ class Batch:
         require(self.xq.shape == self.xp.shape == (K, N, B), "extra deviation vectors", self.xq.shape,
                 f"(K, N, B) = {(K, N, B)}")
         self.x_growth = np.zeros((K, B))
+        self.vectors_on = np.ones(B, dtype=np.bool_)
         self.gap_steps = np.zeros((N + 1, B), dtype=np.int64)
         self.max_gaps = np.zeros(B, dtype=np.int64)
         self.log_growth = np.zeros(B)
@@ -424,12 +431,20 @@ class Batch:
             advance_batch(self.model, self.q, self.p, self.dq, self.dp, self.inv_mass, self.bonds, self.scheme.kicks,
                           self.scheme.drifts, pr.dt, int(n_steps), pr.tangent, pr.check_every, pr.track_gaps,
                           self.gap_steps, self.log_growth, self.max_gaps, bad, self.block_lanes, self.xq, self.xp,
-                          pr.spectrum - 1, self.x_growth)
+                          pr.spectrum - 1, self.x_growth, self.vectors_on)
         for j, lane in self._serial.items():
             bad[j] = self._advance_serial(j, lane, int(n_steps))
         newly = (bad >= 0) & (self.bad < 0)
         self.bad[newly] = self.steps + bad[newly]
         self.steps += int(n_steps)
+
+    def stop_vectors(self, lanes) -> None:
+        """Stop evolving the extra deviation vectors of ``lanes`` (they stay as they are): the work
+        is saved in every SIMD block all of whose lanes are stopped. Only GALI's vectors may stop;
+        the spectrum's are orthonormalised together."""
+        require(self.problem.spectrum == 1, "stop_vectors", self.problem.spectrum,
+                "a problem without Lyapunov spectrum vectors")
+        self.vectors_on[np.asarray(lanes, dtype=np.int64)] = False
 
     def _advance_serial(self, j: int, lane: tuple, n_steps: int) -> int:
         """Lane j on the single-trajectory engine; returns its ``bad`` of this call."""

@@ -10,7 +10,10 @@ not by sample:
   paper's reading of Lambda(t): a regular orbit follows Lambda ~ ln(t)/t (slope near -1), a
   chaotic one levels off (slope near 0) while its deviation vector grows faster than linearly;
 - :func:`sustained_onset`: the first time from which a series stays above a threshold for a given
-  span of log time, so that one oscillation peak cannot set an onset.
+  span of log time, so that one oscillation peak cannot set an onset;
+- :func:`gali_crossing`: the time at which GALI_k first falls below its threshold, the second
+  indicator's "chaotic" (on an N-torus GALI_k with k <= N stays of order one; on a chaotic orbit it
+  decays exponentially).
 
 All times are in units of 1/omega_max; every function takes 1-d arrays of sample times ``t`` and
 values ``y`` and ignores t <= 0 where a logarithm is taken.
@@ -132,6 +135,21 @@ def chaos_onset(t, log_growth, slope_threshold: float = -0.5, growth_margin: flo
     regular = np.flatnonzero(~chaotic)
     first = 0 if regular.size == 0 else regular[-1] + 1
     return float(ends[first] * 10.0 ** (-decades / 2))
+
+
+def gali_crossing(t, log_gali, threshold: float, end: float | None = None) -> float:
+    """The first sample time t_i <= ``end`` (default: the last) at which ln GALI_k < ln(threshold):
+    when GALI_k calls the orbit chaotic (Skokos, Bountis & Antonopoulos, Physica D 231, 30 (2007)).
+    NaN when it stays at or above the threshold (regular by GALI_k up to ``end``); a sample where
+    ln GALI_k is NaN (not recorded) is not below."""
+    require(0 < threshold < 1, "threshold", threshold, "0 < threshold < 1 (GALI_k is at most 1)")
+    t = np.asarray(t, dtype=float)
+    with np.errstate(invalid="ignore"):
+        below = np.asarray(log_gali, dtype=float) < np.log(threshold)
+    if end is not None:
+        below &= t <= end * (1 + 1e-12)
+    first = np.flatnonzero(below)
+    return float(t[first[0]]) if first.size else float("nan")
 
 
 def within_factor(x, target: float, factor: float) -> bool:

@@ -110,6 +110,11 @@ class Criteria:
         ln(10^decades) + ``chaos_growth_margin`` (more than the linear growth a regular orbit
         allows). Chaotic at the end: over the last such window; the onset of chaos is where this
         starts to hold for good.
+    gali_threshold
+        the second chaos indicator of the verdicts: an orbit is chaotic by GALI_k (k the
+        ``gali_order`` of the orbits' settings) once GALI_k falls below this before the window's
+        end (``reductions.gali_crossing``; 1e-8, the usual threshold of SALI and GALI, far below
+        the order-one values of GALI_k, k <= N, on an N-torus).
     localized_mode_p_max
         Fig. 1(a): a mode (rank) counts as strongly localized when its mean P is at most this.
     n_localized_modes
@@ -150,6 +155,7 @@ class Criteria:
     chaos_slope: float = -0.5
     chaos_growth_margin: float = 2.0
     chaos_window_decades: float = 1.0
+    gali_threshold: float = 1e-8
     localized_mode_p_max: float = 3.0
     n_localized_modes: int = 10
     gap_spread_distance: int = 2

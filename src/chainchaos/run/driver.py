@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from chainchaos.engine import exactmath
-from chainchaos.errors import SimulationError
+from chainchaos.errors import SimulationError, require
 from chainchaos.observe.formulas import log_volume, sali
 from chainchaos.observe.registry import SampledRun
 from chainchaos.system.models import open_bonds
@@ -84,22 +84,28 @@ class Samples:
                           self.problem.gali)
 
 
-def _alignment(engine, samples: Samples, i: int) -> None:
-    """ln GALI_k and SALI of every lane's mLCE vector and GALI vectors (unit vectors after every
-    call of the engine) at sample i."""
+def _alignment(engine, samples: Samples, i: int, lanes) -> None:
+    """ln GALI_k and SALI of the mLCE vector and GALI vectors (unit vectors after every call of the
+    engine) of ``lanes`` at sample i."""
     first = engine.problem.spectrum - 1
-    for j in range(engine.problem.lanes):
+    for j in lanes:
         W = np.concatenate([np.concatenate([engine.dq[:, j], engine.dp[:, j]])[None, :],
                             np.concatenate([engine.xq[first:, :, j], engine.xp[first:, :, j]], axis=1)])
         samples.log_gali[j, i] = log_volume(W)
         samples.sali[j, i] = sali(W[0], W[1])
 
 
-def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq0=None, xp0=None) -> Samples:
+def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq0=None, xp0=None,
+           gali_stop: float | None = None) -> Samples:
     """Integrate the lanes of ``problem`` from q0, p0, dq0, dp0 ((N, B) each) on the engine of
     ``kind`` (``Problem.engine``) and record them at the step indices ``steps`` (increasing, from
     0); call every monitor after every sample. ``xq0, xp0`` (K, N, B) are the problem's extra
-    deviation vectors (``Problem.extra_vectors``: the spectrum's, then GALI's), unit vectors."""
+    deviation vectors (``Problem.extra_vectors``: the spectrum's, then GALI's), unit vectors.
+
+    ``gali_stop``: a lane whose ln GALI_k falls below this value at a sample is decided (chaotic by
+    GALI_k): its GALI vectors stop there (``Batch.stop_vectors``; the work is saved once a whole
+    SIMD block has stopped) and its later ln GALI_k and SALI are NaN. The orbit, its mLCE vector
+    and every lane's record up to its crossing are the same as without the stop."""
     engine = problem.engine(q0, p0, dq0, dp0, kind, xq0, xp0)
     N, B, S = problem.N, problem.lanes, len(steps)
     Q, P, DQ, DP = (np.empty((B, S, N)) for _ in range(4))
@@ -108,8 +114,20 @@ def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq
                       np.zeros(B), engine.bad, np.zeros((B, S, problem.spectrum - 1)), np.full((B, S), np.nan),
                       np.full((B, S), np.nan))
     Q[:, 0], P[:, 0], DQ[:, 0], DP[:, 0] = engine.q.T, engine.p.T, engine.dq.T, engine.dp.T
-    if problem.gali > 1:
-        _alignment(engine, samples, 0)
+    aligning = np.full(B, problem.gali > 1)
+    if gali_stop is not None:
+        require(problem.gali > 1 and problem.spectrum == 1, "gali_stop", gali_stop,
+                "None without GALI vectors, or with a spectrum's")
+
+    def alignment(i):
+        if aligning.any():
+            _alignment(engine, samples, i, np.flatnonzero(aligning))
+            if gali_stop is not None:
+                decided = aligning & (samples.log_gali[:, i] < gali_stop)
+                engine.stop_vectors(np.flatnonzero(decided))
+                aligning[decided] = False
+
+    alignment(0)
     samples.H0[:] = problem.energies(Q[:, 0], P[:, 0])
     if problem.track_gaps:
         samples.max_gaps[:, 0] = [open_bonds(problem.model, c, Q[j, 0]).sum() for j, c in enumerate(problem.chains)]
@@ -122,8 +140,7 @@ def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq
         Q[:, i], P[:, i], DQ[:, i], DP[:, i] = engine.q.T, engine.p.T, engine.dq.T, engine.dp.T
         samples.log_growth[:, i] = engine.log_growth
         samples.extra_growth[:, i] = engine.x_growth[:problem.spectrum - 1].T
-        if problem.gali > 1:
-            _alignment(engine, samples, i)
+        alignment(i)
         samples.gap_steps[:, i] = engine.gap_steps.T
         samples.max_gaps[:, i] = engine.max_gaps
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):

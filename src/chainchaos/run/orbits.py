@@ -12,7 +12,10 @@ initial state, which is what separates a property of the scene from one of a sin
 
 Orbits of one model share a batch (``chainchaos.engine.batch``, any mix of chains, energies and lanes)
 or run one after the other on ``integrators.advance`` (``engine: single``); both give identical
-numbers. At every sample the series of :data:`SERIES` are recorded per orbit.
+numbers. At every sample the series of :data:`SERIES` are recorded per orbit; with ``alignment``,
+also ln GALI_k (:data:`ALIGNMENT_SERIES`) of the mLCE vector and ``gali_order`` - 1 more vectors
+(lane j's from ``deviation_seed + j``, ``initial.extra_deviations``), the second chaos indicator
+of the verdicts (docs/conventions.md#chaos-indicators).
 """
 
 from dataclasses import dataclass, field, fields
@@ -23,13 +26,15 @@ from chainchaos.errors import ParameterError, require
 from chainchaos.observe.registry import REGISTRY
 from chainchaos.run import driver
 from chainchaos.run.settings import RunSettings
-from chainchaos.system.initial import initial_deviation, initial_displacement
+from chainchaos.system.initial import extra_deviations, initial_deviation, initial_displacement
 from chainchaos.system.models import MODELS, get_model
 
 #: Per-orbit series on the sample times, observables of the registry (``observe.registry``), with
 #: their value at samples where the state is not measured (no initial state, or non-finite);
 #: None: kept as the engine recorded it.
 SERIES = {"participation": np.nan, "log_growth": None, "eta": np.nan, "energy_error": np.inf}
+#: The series of runs with ``alignment``: NaN after a stop (``driver.sample``'s ``gali_stop``).
+ALIGNMENT_SERIES = {"log_gali": None}
 
 
 @dataclass(frozen=True)
@@ -49,7 +54,8 @@ class OrbitSettings(RunSettings):
     and the engine they run on.
 
     Samples: those of :meth:`RunSettings.sample_steps` plus ``final_samples`` evenly spaced over
-    the last decade, so that time averages over it see the fast oscillations of a packet evenly."""
+    the last decade, so that time averages over it see the fast oscillations of a packet evenly.
+    ``alignment``: evolve GALI_``gali_order``'s vectors too and record ln GALI_k."""
 
     samples_per_decade: int = 10
     t_first_sample: float = 1.0
@@ -58,9 +64,12 @@ class OrbitSettings(RunSettings):
     perturbation_seed: int = 0
     batch_size: int = 32
     engine: str = "batch"
+    alignment: bool = False
 
     def __post_init__(self):
         super().__post_init__()
+        require(isinstance(self.alignment, bool) and not (self.alignment and self.engine == "single"), "alignment",
+                self.alignment, "true or false; true only with engine 'batch' (GALI's vectors run in SIMD blocks)")
         require(self.engine in ("batch", "single"), "engine", self.engine, "'batch' or 'single'")
         require(int(self.batch_size) >= 1, "batch_size", self.batch_size, ">= 1")
         require(int(self.final_samples) >= 0, "final_samples", self.final_samples, "an integer >= 0")
@@ -92,19 +101,23 @@ def lane_factor(lane: int, settings: OrbitSettings) -> float:
     return 1.0 + settings.perturbation * xi
 
 
-def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None) -> tuple[np.ndarray, list[dict]]:
+def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None,
+              gali_stop: float | None = None) -> tuple[np.ndarray, list[dict]]:
     """Integrate every orbit with its tangent map (and gap counting where bonds open) and sample it.
 
     Returns the sample times and, per orbit in input order, a dict with the :data:`SERIES` arrays
-    and ``u0``, ``max_gaps`` (-1 for a model without gaps) and ``valid`` (the initial state exists, the run
-    stayed finite and its energy error stayed <= ``max_energy_error``)."""
+    (and :data:`ALIGNMENT_SERIES` with ``settings.alignment``) and ``u0``, ``max_gaps`` (-1 for a
+    model without gaps) and ``valid`` (the initial state exists, the run stayed finite and its
+    energy error stayed <= ``max_energy_error``). ``gali_stop``: an orbit's GALI vectors stop once
+    its ln GALI_k is below it (``driver.sample``); results do not depend on which orbits share a
+    batch."""
     results = [None] * len(orbits)
     times = sample_schedule(settings) * settings.dt
     for name in MODELS:
         index = [i for i, o in enumerate(orbits) if o.model == name]
         for start in range(0, len(index), int(settings.batch_size)):
             chunk = index[start:start + int(settings.batch_size)]
-            for i, r in zip(chunk, _integrate_model(name, [orbits[i] for i in chunk], settings)):
+            for i, r in zip(chunk, _integrate_model(name, [orbits[i] for i in chunk], settings, gali_stop)):
                 results[i] = r
             if progress is not None:
                 progress(sum(r is not None for r in results), len(orbits))
@@ -113,11 +126,13 @@ def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None) -> tu
     return times, results
 
 
-def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings) -> list[dict]:
+def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, gali_stop) -> list[dict]:
     model = get_model(name)
-    problem = settings.problem(model, [o.chain for o in orbits], tangent=True, track_gaps=model.has_gaps)
-    N, B = problem.N, problem.lanes
+    problem = settings.problem(model, [o.chain for o in orbits], tangent=True, track_gaps=model.has_gaps,
+                               alignment=settings.alignment)
+    N, B, K = problem.N, problem.lanes, problem.extra_vectors
     Q0, P0, DQ0, DP0 = (np.zeros((N, B)) for _ in range(4))
+    XQ0, XP0 = np.zeros((K, N, B)), np.zeros((K, N, B))
     u0s, ok0 = np.full(B, np.nan), np.zeros(B, dtype=bool)
     for j, (o, c) in enumerate(zip(orbits, problem.chains)):
         try:
@@ -127,14 +142,17 @@ def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings) ->
         except ParameterError:
             pass
         DQ0[:, j], DP0[:, j] = initial_deviation(N, settings.deviation_seed + o.lane)
-    samples = driver.sample(problem, Q0, P0, DQ0, DP0, sample_schedule(settings), kind=settings.engine)
+        XQ0[:, :, j], XP0[:, :, j] = extra_deviations(N, settings.deviation_seed + o.lane, K, 2)
+    samples = driver.sample(problem, Q0, P0, DQ0, DP0, sample_schedule(settings), kind=settings.engine,
+                            xq0=XQ0 if K else None, xp0=XP0 if K else None,
+                            gali_stop=gali_stop if settings.alignment else None)
 
     out = []
     for j in range(B):
         run = samples.run(j)
         # a sample is measured where the initial state existed and the state is still finite
         measured = ok0[j] & np.all(np.isfinite(run.Q), axis=-1) & np.all(np.isfinite(run.P), axis=-1)
-        series = _series(run, measured)
+        series = _series(run, measured, {**SERIES, **(ALIGNMENT_SERIES if settings.alignment else {})})
         out.append({
             **series,
             "u0": float(u0s[j]),
@@ -145,11 +163,12 @@ def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings) ->
     return out
 
 
-def _series(run, measured: np.ndarray) -> dict:
-    """The :data:`SERIES` of one lane's run, each with its fill value where ``measured`` is False."""
+def _series(run, measured: np.ndarray, wanted: dict) -> dict:
+    """The ``wanted`` series (name -> fill, as :data:`SERIES`) of one lane's run, each with its fill
+    value where ``measured`` is False."""
     out = {}
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
-        for key, fill in SERIES.items():
+        for key, fill in wanted.items():
             values = REGISTRY[key].compute(run)
             out[key] = values if fill is None else np.where(measured, values, fill)
     return out

@@ -4,10 +4,17 @@ import xarray as xr
 
 from chainchaos.output.formatting import tex_number, tex_parameter
 from chainchaos.paper.claims.catalogue import CATALOGUE, STATEMENT_ROWS
-from chainchaos.paper.claims.evidence import REASONS, ensemble_verdict, search_evidence, statement_result
+from chainchaos.paper.claims.evidence import (
+    REASONS,
+    ensemble_verdict,
+    indicators_disagree,
+    search_evidence,
+    statement_result,
+)
 from chainchaos.paper.claims.framework import (
     DIFFERS,
     ENERGY_SCAN,
+    REPRODUCED,
     UNDECIDED,
     UNTESTABLE,
     Claim,
@@ -74,13 +81,21 @@ def evaluate_row(row: ClaimRow, inputs: Inputs) -> Claim:
         decidable = measurement is not None and measurement.decided and row.checks
         passed = all(check.passes(measurement, c) for check in row.checks) if decidable else None
         verdict = decide(passed, t_final, t_required, row.refutable_early)
+        if verdict in (REPRODUCED, DIFFERS) and measurement.split:
+            verdict = UNDECIDED
     reason = ""
-    if verdict == UNTESTABLE:
+    if verdict == UNDECIDED and measurement is not None and measurement.split:
+        reason = measurement.split
+    elif verdict == UNTESTABLE:
         reason = (f"needs the run to reach $t = {tex_parameter(t_required)}$; it ends at $t = {tex_number(t_final)}$"
                   if t_final is not None and t_required is not None and t_final < t_required
                   else "nothing to measure")
     elif verdict == UNDECIDED:
-        reason = (f"the perturbed orbits disagree ({fraction} satisfy it): the answer depends on the orbit, "
+        split = ", ".join(f"\\texttt{{{i}}}" for i in indicators_disagree(inputs, row.statements))
+        reason = (f"the two chaos indicators disagree on {split} "
+                  f"({fraction} of the orbits say it holds): whether the orbits are chaotic by $t_\\mathrm{{end}}$ "
+                  f"depends on the indicator" if split else
+                  f"the perturbed orbits disagree ({fraction} satisfy it): the answer depends on the orbit, "
                   f"not only on the scene")
     elif verdict == DIFFERS:
         evidence = search_evidence(inputs, row.statements)

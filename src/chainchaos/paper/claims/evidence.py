@@ -22,16 +22,48 @@ def statement_result(inputs: Inputs, statement_id: str):
     return None
 
 
+def indicator_text(inputs: Inputs, statement_id: str) -> str:
+    """The orbits that satisfy a statement, as text: "7/8", or for one that Λ and GALI_k both
+    decide "Λ 7/8, GALI_4 8/8" (each over the orbits it decides)."""
+    for ds in inputs.verdicts.values():
+        if statement_id not in ds["statement"].values:
+            continue
+        row = ds.sel(statement=statement_id)
+        n = int(row["n_decided"])
+        if "verdict_gali" not in row or int(row["verdict_gali"]) == _verdicts.NOT_READ:
+            return f"{round(float(row['fraction']) * n)}/{n}" if n else "--"
+        parts = []
+        for name, key in (("\\Lambda", "outcome"), (f"\\mathrm{{GALI}}_{{{ds.attrs.get('gali_order', 'k')}}}",
+                                                      "outcome_gali")):
+            x = row[key].values
+            decided = np.isfinite(x)
+            parts.append(f"${name}$ {int(np.nansum(x))}/{int(decided.sum())}")
+        return ", ".join(parts)
+    return "--"
+
+
+def indicators_disagree(inputs: Inputs, ids) -> list[str]:
+    """The statements among ``ids`` whose verdicts by Λ and by GALI_k differ."""
+    out = []
+    for ds in inputs.verdicts.values():
+        for i in ids:
+            if i in ds["statement"].values and "verdict_gali" in ds:
+                row = ds.sel(statement=i)
+                if int(row["verdict_gali"]) != _verdicts.NOT_READ and int(row["verdict_gali"]) != int(row["verdict_lambda"]):
+                    out.append(i)
+    return out
+
+
 def ensemble_verdict(inputs: Inputs, ids) -> tuple[str, str] | None:
     """The claim's verdict from the ensemble verdicts of its statements: reproduced when all
-    hold, differs when one fails, undecided when none fails and one is undecided, not
-    testable otherwise; and the fractions as text (e.g. "8/8; 7/8"). None when a statement has
-    no ensemble verdict."""
+    hold, differs when one fails, undecided when none fails and one is undecided (the orbits
+    disagree, or the two chaos indicators do), not testable otherwise; and the fractions as text
+    (e.g. "8/8; $\\Lambda$ 7/8, $\\mathrm{GALI}_4$ 8/8"). None when a statement has no ensemble verdict."""
     rows = [statement_result(inputs, i) for i in ids]
     if not rows or any(r is None for r in rows):
         return None
     codes = [r[2] for r in rows]
-    text = "; ".join(f"{round(f * n)}/{n}" if n else "--" for f, n, _ in rows)
+    text = "; ".join(indicator_text(inputs, i) for i in ids)
     if any(code == _verdicts.FAILS for code in codes):
         return DIFFERS, text
     if any(code == _verdicts.UNDECIDED for code in codes):

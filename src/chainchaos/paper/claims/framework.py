@@ -123,6 +123,7 @@ class Measurement:
     details: dict = field(default_factory=dict)  # further numbers, named, for the checks and texts
     case: str = ""                   # which of the row's measured texts applies (e.g. "never")
     decided: bool = True             # False: the numbers cannot decide the claim (nothing to test)
+    split: str = ""                  # why two chaos indicators lead to different answers (undecided)
 
     def __getitem__(self, name: str):
         return self.value if name == "value" else self.details[name]
@@ -218,8 +219,11 @@ class Inputs:
         scan = self.scenes.get(ENERGY_SCAN)
         if scan is None or not all(v in scan for v in ("delocalized", "chaotic", "valid")):
             return {"delocalized": "delocalized", "chaotic": "chaotic"}
-        return {"delocalized": f"final $P > {tex_parameter(scan.attrs['p_delocalized'])}$",
-                "chaotic": CHAOS_CRITERION_TEXT}
+        chaotic = CHAOS_CRITERION_TEXT
+        if int(scan.attrs.get("gali_order", 0)) > 1:
+            chaotic += (f" (and, the second indicator, GALI$_{{{int(scan.attrs['gali_order'])}}}$ below "
+                        f"\\cc{{crit.galithreshold}} by the end)")
+        return {"delocalized": f"final $P > {tex_parameter(scan.attrs['p_delocalized'])}$", "chaotic": chaotic}
 
 
 # The chaos criterion as printed (\cc{...} reads the criteria's values from macros.tex).

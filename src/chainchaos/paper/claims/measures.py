@@ -10,6 +10,7 @@ what to compute and with which of the criteria.
 
 import numpy as np
 
+from chainchaos.output.formatting import tex_number, tex_parameter
 from chainchaos.paper.claims import quantities as q
 from chainchaos.paper.claims.framework import Inputs, Measurement
 from chainchaos.studies.scan.thresholds import always_above, criterion_holds, first_energy, switches
@@ -254,15 +255,31 @@ def scan_always(inputs: Inputs, scan: str, model: str, key: str, H: float) -> Me
     ``model``: ``holds_above``, whether every scanned energy strictly above H satisfies it,
     ``count`` of the ``above`` ones that do and the ``failing`` ones; the lowest scanned H* above
     which it holds at every scanned energy (headline; None, case ``nowhere``, when it fails at the
-    highest). Undecided when no valid run lies above H."""
+    highest). Undecided when no valid run lies above H. For "chaotic" on a scan that also judged
+    chaos by GALI_k (``chaotic_gali``): the same by GALI_k, and ``split`` when the two answers differ."""
     E, flag = _scan_flags(inputs, scan, model, key)
     above = E > H * (1 + 1e-9)
     star = always_above(E, flag)
     holds_above = bool(flag[above].all()) if above.any() else None
+    split = ""
+    if key == "chaotic" and _reads_gali(inputs.scenes[scan], model):
+        _, by_gali = _scan_flags(inputs, scan, model, "chaotic_gali")
+        holds_gali = bool(by_gali[above].all()) if above.any() else None
+        if holds_gali is not None and holds_gali != holds_above:
+            star_gali = always_above(E, by_gali)
+            split = (f"by $\\Lambda$ the packet is chaotic at {int(flag[above].sum())} and by GALI$_k$ at "
+                     f"{int(by_gali[above].sum())} of the {int(above.sum())} scanned $H > {tex_parameter(H)}$ "
+                     f"(always from $H^* = {tex_number(star)}$ and ${tex_number(star_gali)}$): the two "
+                     f"indicators answer differently")
     return Measurement(star if np.isfinite(star) else None,
                        {"star": star, "holds_above": holds_above, "count": int(flag[above].sum()),
                         "above": int(above.sum()), "failing": E[above & ~flag]},
-                       case="" if np.isfinite(star) else "nowhere", decided=holds_above is not None)
+                       case="" if np.isfinite(star) else "nowhere", decided=holds_above is not None, split=split)
+
+
+def _reads_gali(ds, model: str) -> bool:
+    """The scan judged ``model``'s runs by GALI_k too."""
+    return "chaotic_gali" in ds and bool((ds["chaotic_gali"].sel(model=model).values >= 0).any())
 
 
 def scan_onset(inputs: Inputs, scan: str, model: str, key: str, high: float) -> Measurement:

@@ -47,7 +47,9 @@ def claims_table_tex(claims: list[Claim]) -> str:
         r"measured. ``Error'' is the largest relative energy error $|H(t)-H(0)|/H(0)$ of the scenes "
         r"the claim rests on. A verdict with a fraction was decided on an ensemble of orbits of the "
         r"scene, perturbed at the $10^{-9}$ level: the fraction of them that satisfy each statement "
-        r"the claim rests on. Criteria and reasons follow the table.}\\",
+        r"the claim rests on; a statement about chaos is decided by $\Lambda$ and by GALI$_k$ separately "
+        r"(each fraction over the orbits it decides), and is undecided where they disagree. Criteria and "
+        r"reasons follow the table.}\\",
         r"\hline\hline",
         head,
         r"\endfirsthead",
@@ -215,26 +217,28 @@ def scan_macros(energy_scan: xr.Dataset, disorder: xr.Dataset) -> dict[str, str]
                     f"{prefix}.chaosslope": tex_parameter(a["chaos_slope"])})
         out[f"{prefix}.invalid"] = str(int((ds["valid"].values != 1).sum()))
         out[f"{prefix}.maxerr"] = tex_number(q.max_energy_error(ds), 2)
-    flags = {"delocalization": "delocalized", "chaos": "chaotic"}
+    # criterion of the thresholds table -> (macro key, adjective in the text)
+    flags = {"delocalization": ("delocalized", "delocalized"), "chaos": ("chaotic", "chaotic"),
+             "chaos by GALI": ("chaoticgali", "chaotic by GALI$_k$")}
     top = float(energy_scan.energy.values[-1])
     for row in thresholds_table(energy_scan):
-        adjective = flags[row["criterion"]]
-        key = f"scan.{row['model']}.{adjective}"
+        name, adjective = flags[row["criterion"]]
+        key = f"scan.{row['model']}.{name}"
         out[f"{key}.first"] = _first_phrase(adjective, row["first_energy"])
         out[f"{key}.always"] = _always_phrase(adjective, row["always_above"], row["first_energy"], top)
     out["disorder.realizations"] = str(disorder.sizes["realization"])
     out["disorder.alpha"] = tex_parameter(disorder.attrs["alpha"])
     E = disorder.energy.values
-    verbs = {"delocalized": "delocalize", "chaotic": "turn chaotic"}
+    verbs = {"delocalized": "delocalize", "chaotic": "turn chaotic", "chaotic_gali": "turn chaotic by GALI$_k$"}
     for model in disorder.model.values:
-        for key in ("delocalized", "chaotic"):
+        for key in (k for k in verbs if f"probability_{k}" in disorder):
             p = disorder[f"probability_{key}"].sel(model=model).values
             lo = disorder[f"probability_{key}_lower"].sel(model=model).values
             hi = disorder[f"probability_{key}_upper"].sel(model=model).values
             share, low, high = (tex_number(100 * x[-1], 2) for x in (p, lo, hi))
-            out[f"disorder.{model}.{key}.top"] = f"{share}\\,\\% ({low}--{high}\\,\\%)"
+            out[f"disorder.{model}.{key.replace('_', '')}.top"] = f"{share}\\,\\% ({low}--{high}\\,\\%)"
             half = E[np.nan_to_num(p) >= 0.5]
-            out[f"disorder.{model}.{key}.half"] = _half_phrase(str(model), verbs[key],
+            out[f"disorder.{model}.{key.replace('_', '')}.half"] = _half_phrase(str(model), verbs[key],
                                                                float(half[0]) if half.size else np.nan)
     return out
 

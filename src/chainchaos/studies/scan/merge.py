@@ -120,7 +120,8 @@ def merge_disorder(groups: list[xr.Dataset], scan_cfg: dict) -> xr.Dataset:
     valid = data["valid"][1] == 1
     n = valid.sum(axis=-1)
     quantiles = np.array([0.1, 0.25, 0.5, 0.75, 0.9])
-    for what in ("delocalized", "chaotic"):
+    flags = ("delocalized", "chaotic", *(("chaotic_gali",) if (data["chaotic_gali"][1] >= 0).any() else ()))
+    for what in flags:
         k = ((data[what][1] == 1) & valid).sum(axis=-1)
         lo, hi = wilson_interval(k, n)
         with np.errstate(invalid="ignore", divide="ignore"):
@@ -134,8 +135,9 @@ def merge_disorder(groups: list[xr.Dataset], scan_cfg: dict) -> xr.Dataset:
         data[f"count_{what}"] = (("model", "energy"), k.astype(np.int32),
                                  {"units": "1", "long_name": f"number of valid realizations {what}"})
     data["count_valid"] = (("model", "energy"), n.astype(np.int32), {"units": "1", "long_name": "valid realizations"})
-    for what, key, flag in (("delocalization", "delocalization_onset", "delocalized"),
-                            ("chaos", "chaos_onset", "chaotic")):
+    onsets = (("delocalization", "delocalization_onset", "delocalized"), ("chaos", "chaos_onset", "chaotic"),
+              ("chaos_gali", "gali_onset", "chaotic_gali"))
+    for what, key, flag in (o for o in onsets if o[2] in flags):
         # over the valid runs classified delocalized (chaotic) at t_final only
         onset = np.where(valid & (data[flag][1] == 1), data[key][1], np.nan)
         q = np.full((len(models), grid.size, quantiles.size), np.nan)

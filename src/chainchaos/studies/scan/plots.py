@@ -68,6 +68,9 @@ def energy_scan_figure(ds):
     return fig
 
 
+ONSET_LABELS = {"delocalization": "delocalization", "chaos": r"chaos ($\Lambda$)", "chaos_gali": "chaos (GALI)"}
+
+
 def disorder_figure(ds):
     """Probability of delocalization and of chaos against H per model with Wilson 95% bands, and
     the spread of the onset times (median, 25-75% and 10-90% over the realizations)."""
@@ -84,15 +87,22 @@ def disorder_figure(ds):
                 ax.fill_between(E, d[f"probability_{what}_lower"].values, d[f"probability_{what}_upper"].values,
                                 color=c, alpha=0.2, lw=0)
                 ax.plot(E, d[f"probability_{what}"].values, "o-", color=c, ms=2.5, label=model_label(m))
+                if what == "chaotic" and "probability_chaotic_gali" in d:
+                    ax.plot(E, d["probability_chaotic_gali"].values, "s--", color=c, ms=2.5, mfc="white", lw=0.8,
+                            label=f"{model_label(m)}, GALI$_{{{int(ds.attrs['gali_order'])}}}$")
             _paper_lines(ax, models, "delocalization" if what == "delocalized" else "chaos")
             ax.set_ylim(-0.03, 1.03)
             ax.set_xscale("log")
             ax.set_xlabel(ENERGY_LABEL)
             ax.set_ylabel(f"probability {what}")
         axes[0].legend(loc="upper left")
+        if "probability_chaotic_gali" in ds:
+            axes[1].legend(loc="upper left", fontsize=5.5, title=r"solid: $\Lambda$", title_fontsize=5.5)
         ax = axes[2]
         for m in models:
-            for what, marker, shift in (("delocalization", "o", 0.97), ("chaos", "s", 1.03)):
+            for what, marker, shift in (("delocalization", "o", 0.95), ("chaos", "s", 1.0), ("chaos_gali", "D", 1.05)):
+                if f"{what}_onset_quantiles" not in ds:
+                    continue
                 Q = ds[f"{what}_onset_quantiles"].sel(model=m).values
                 med = Q[:, q.index(0.5)]
                 ok = np.isfinite(med)
@@ -102,8 +112,8 @@ def disorder_figure(ds):
                 c = model_colour(m)
                 ax.vlines(x, Q[ok, q.index(0.1)], Q[ok, q.index(0.9)], color=c, lw=0.6)
                 ax.vlines(x, Q[ok, q.index(0.25)], Q[ok, q.index(0.75)], color=c, lw=2.0, alpha=0.6)
-                ax.plot(x, med[ok], marker, color=c, ms=3, ls="none", mfc="white" if what == "chaos" else c,
-                        label=f"{model_label(m)}, {what}")
+                ax.plot(x, med[ok], marker, color=c, ms=3, ls="none", mfc=c if what == "delocalization" else "white",
+                        label=f"{model_label(m)}, {ONSET_LABELS[what]}")
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel(ENERGY_LABEL)

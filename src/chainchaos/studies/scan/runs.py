@@ -11,7 +11,9 @@ Many short trajectories, each reduced to a handful of numbers:
 - ``max_gaps``: the largest number of simultaneously open Hertz bonds over the run (FPUT: -1);
 - ``delocalization_onset``: the first sample time from which P(t) stays above ``p_delocalized``
   for ``onset_hold_decades`` (``reductions.sustained_onset``; NaN if never);
-- ``chaos_onset``: the onset of chaos (``reductions.chaos_onset``; NaN if not chaotic at the end).
+- ``chaos_onset``: the onset of chaos (``reductions.chaos_onset``; NaN if not chaotic at the end);
+- with ``alignment``, the second chaos indicator: ``chaotic_gali`` (GALI_k below ``gali_threshold``
+  by t_final; -1 without GALI_k) and ``gali_onset``, the time it crosses (NaN: never).
 
 Criteria (config values, stated in every output file):
 
@@ -22,6 +24,8 @@ Criteria (config values, stated in every output file):
   chaotic one levels off) and ln|v| grew by more than ln 10 + ``chaos_growth_margin`` (faster than
   the linear growth a regular orbit allows). A chaotic orbit with mLCE lambda is seen once
   lambda t_final is of order 10, so a short scan (quick scale, t = 1e3) reports only strong chaos.
+  With ``alignment`` each run is also judged by GALI_k, and a claim that reads "chaotic" from the
+  scan is undecided where the two indicators lead to different answers (``claims.measures``).
 
 Trajectories are integrated by ``orbits.integrate`` (the batch engine, ``batch_size`` at a time,
 or one at a time with ``engine: single``: identical numbers). A trajectory whose state turns
@@ -43,7 +47,7 @@ import xarray as xr
 
 from chainchaos.engine import exactmath
 from chainchaos.errors import require, require_finite_positive
-from chainchaos.observe.reductions import chaos_onset, final_average, is_chaotic, sustained_onset
+from chainchaos.observe.reductions import chaos_onset, final_average, gali_crossing, is_chaotic, sustained_onset
 from chainchaos.observe.registry import REGISTRY
 from chainchaos.output.provenance import provenance_attrs
 from chainchaos.paper import panels
@@ -63,10 +67,12 @@ class ScanSettings(OrbitSettings):
     chaos_slope: float = -0.5
     chaos_growth_margin: float = 2.0
     onset_hold_decades: float = 0.5
+    gali_threshold: float = 1e-8
 
     def __post_init__(self):
         super().__post_init__()
         require_finite_positive(self, "p_delocalized")
+        require(0 < self.gali_threshold < 1, "gali_threshold", self.gali_threshold, "0 < gali_threshold < 1")
         require(np.isfinite(self.chaos_slope) and self.chaos_slope <= 0, "chaos_slope", self.chaos_slope, "<= 0")
         for key in ("chaos_growth_margin", "onset_hold_decades"):
             require(np.isfinite(getattr(self, key)) and getattr(self, key) >= 0, key, getattr(self, key), ">= 0")
@@ -113,7 +119,7 @@ def select_excitation(chain, high_frequency_modes: int = 14, centre_window: int 
 def run_trajectories(trajectories: list[Orbit], settings: ScanSettings, progress=None) -> list[dict]:
     """Integrate every trajectory (``orbits.integrate``) and reduce it to the scan observables
     (module docstring). Returns one dict per trajectory, in the input order."""
-    times, runs = integrate(trajectories, settings, progress)
+    times, runs = integrate(trajectories, settings, progress, gali_stop=math.log(settings.gali_threshold))
     out = []
     with np.errstate(invalid="ignore", divide="ignore"):
         for r in runs:
@@ -131,6 +137,7 @@ def run_trajectories(trajectories: list[Orbit], settings: ScanSettings, progress
                 "delocalization_onset": sustained_onset(times, P, settings.p_delocalized,
                                                         settings.onset_hold_decades),
                 "chaos_onset": chaos_onset(times, g, settings.chaos_slope, settings.chaos_growth_margin),
+                **_gali_reading(times, r, settings),
                 "energy_error_max": float(np.max(r["energy_error"])),
                 "u0": r["u0"],
                 "valid": r["valid"],
@@ -140,6 +147,14 @@ def run_trajectories(trajectories: list[Orbit], settings: ScanSettings, progress
                 "eta": r["eta"],
             })
     return out
+
+
+def _gali_reading(times, run: dict, settings: ScanSettings) -> dict:
+    """``chaotic_gali`` (1, 0; -1 without GALI_k) and ``gali_onset`` of one run."""
+    if "log_gali" not in run:
+        return {"chaotic_gali": -1, "gali_onset": float("nan")}
+    onset = gali_crossing(times, run["log_gali"], settings.gali_threshold)
+    return {"chaotic_gali": int(np.isfinite(onset)), "gali_onset": onset}
 
 
 # ----------------------------------------------------------------------------------------------
@@ -186,6 +201,22 @@ def group_items(kind: str, scan_cfg: dict, group: int) -> list[tuple]:
     return all_items[group * per:(group + 1) * per]
 
 
+#: Scan kinds whose block extends another's: the full disorder statistics, kept in the repository
+#: (``scan.disorder.archive``, written by ``snakemake disorder_full``), are the disorder statistics
+#: with the keys of ``scan.disorder_full`` (more realizations and energies) in place of its own.
+EXTENDS = {"disorder_full": "disorder"}
+
+
+def scan_config(kind: str, scan_cfg: dict) -> tuple[str, dict]:
+    """(the kind the jobs run, the scan block as they see it): for a kind of :data:`EXTENDS`, its
+    base with the base's block updated by the kind's own (without ``archive``)."""
+    base = EXTENDS.get(kind)
+    if base is None:
+        return kind, scan_cfg
+    block = {k: v for k, v in {**scan_cfg[base], **scan_cfg[kind]}.items() if k != "archive"}
+    return base, {**scan_cfg, base: block}
+
+
 def settings_for(kind: str, scan_cfg: dict) -> ScanSettings:
     """The ``scan.settings`` block overridden by the kind's own keys (t_final, dt, ...)."""
     merged = {**scan_cfg.get("settings", {}), **scan_cfg[kind]}
@@ -219,6 +250,8 @@ SCALARS = {
     "chaotic": ("1 if chaotic over the last decade (chaos_criterion)", "i1"),
     "delocalization_onset": ("first time from which P(t) > p_delocalized for onset_hold_decades (NaN: never)", "f8"),
     "chaos_onset": ("onset of chaos: from it on the chaos criterion holds to the end (NaN: never)", "f8"),
+    "chaotic_gali": ("1 if GALI_k fell below gali_threshold by t_final, 0 if not, -1 without GALI_k", "i1"),
+    "gali_onset": ("first time GALI_k < gali_threshold (NaN: never, or without GALI_k)", "f8"),
     "energy_error_max": ("largest relative energy error |H(t) - H(0)|/H(0) at the samples", "f8"),
     "u0": ("initial displacement of the excited bead", "f8"),
     "valid": ("1 if the run stayed finite with energy error <= max_energy_error", "i1"),
@@ -247,6 +280,8 @@ def criteria_attrs(settings: ScanSettings) -> dict:
         "chaos_slope": float(settings.chaos_slope),
         "chaos_growth_margin": float(settings.chaos_growth_margin),
         "onset_hold_decades": float(settings.onset_hold_decades),
+        "gali_order": int(settings.gali_order) if settings.alignment else 0,
+        "gali_threshold": float(settings.gali_threshold),
         "delocalization_criterion": (f"delocalized if the time average of P over the last decade "
                                      f"(t >= t_final/10) exceeds p_delocalized = {settings.p_delocalized:g}"),
         "chaos_criterion": (f"chaotic if over the last decade the log-log slope of Lambda(t) exceeds "

@@ -42,7 +42,8 @@ def switches(flag: np.ndarray) -> int:
 
 
 def criterion_holds(ds: xr.Dataset, model: str, key: str) -> np.ndarray:
-    """Where a valid run of ``model`` satisfies ``key`` ("delocalized" or "chaotic"), per grid energy."""
+    """Where a valid run of ``model`` satisfies ``key`` ("delocalized", "chaotic" by Λ or
+    "chaotic_gali" by GALI_k), per grid energy."""
     return (ds[key].sel(model=model).values == 1) & (ds["valid"].sel(model=model).values == 1)
 
 
@@ -53,16 +54,21 @@ def thresholds_table(ds: xr.Dataset) -> list[dict]:
     rows = []
     E = ds.energy.values
     for m in ds.model.values:
-        for what, key in (("delocalization", "delocalized"), ("chaos", "chaotic")):
+        criteria = [("delocalization", "delocalized", "delocalization"), ("chaos", "chaotic", "chaos")]
+        if "chaotic_gali" in ds and (ds["chaotic_gali"].sel(model=m).values >= 0).any():
+            criteria.append(("chaos by GALI", "chaotic_gali", "chaos"))
+        for what, key, paper in criteria:
             flag = criterion_holds(ds, m, key)
             rows.append({"model": str(m), "criterion": what, "first_energy": first_energy(E, flag),
                          "always_above": always_above(E, flag), "fraction": float(flag.mean()),
-                         "paper": PAPER_THRESHOLDS.get((str(m), what), np.nan)})
+                         "paper": PAPER_THRESHOLDS.get((str(m), paper), np.nan)})
     return rows
 
 
 def thresholds_csv(rows: list[dict], ds: xr.Dataset) -> str:
     lines = [f"# {ds.attrs['delocalization_criterion']}", f"# {ds.attrs['chaos_criterion']}",
+             *([f"# chaos by GALI: GALI_{int(ds.attrs['gali_order'])} below {ds.attrs['gali_threshold']:g} by t_final"]
+               if int(ds.attrs.get("gali_order", 0)) > 1 else []),
              f"# t_final = {ds.attrs['t_final']:g}, dt = {ds.attrs['dt']:g}, {ds.sizes['energy']} energies "
              f"{ds.energy.values[0]:g}..{ds.energy.values[-1]:g}",
              "model,criterion,first_energy,always_above,fraction_of_grid,paper_value"]
@@ -87,4 +93,6 @@ def thresholds_tex(rows: list[dict], ds: xr.Dataset) -> str:
         f"% chaotic: over $t_f/10 \\le t \\le t_f$ the slope of $\\log\\Lambda$ against $\\log t$ exceeds "
         f"${ds.attrs['chaos_slope']:g}$ and $\\ln\\|v\\|$ grows by more than $\\ln 10 + "
         f"{ds.attrs['chaos_growth_margin']:g}$, $t_f = {ds.attrs['t_final']:g}$\n"
+        + (f"% chaos by GALI: GALI$_{{{int(ds.attrs['gali_order'])}}}$ below ${ds.attrs['gali_threshold']:g}$ "
+           f"by $t_f$\n" if int(ds.attrs.get("gali_order", 0)) > 1 else "")
     )

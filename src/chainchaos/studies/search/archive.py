@@ -27,14 +27,15 @@ def _benchmark_rows(path: Path) -> list[dict]:
         return list(csv.DictReader(f, delimiter="\t"))
 
 
-def job_costs(benchmarks: Path, search: str = "search_full") -> dict:
+def job_costs(benchmarks: Path, search: str = "search_full", stages=STAGES) -> dict:
     """Per stage and in total: the number of jobs, their wall seconds and CPU seconds summed, read
-    from the benchmark files ``<benchmarks>/<stage>/<search>[-<n>].tsv``; ``span_seconds``: from
+    from the benchmark files ``<benchmarks>/<stage>/<search>[-<n>].tsv`` of the rules ``stages``
+    (also the disorder statistics kept as data: ``scan.archive``); ``span_seconds``: from
     the first job's start to the last job's end (a resumed search includes its pause). A job whose
     run was killed just after writing its output may have left no benchmark file: its cost is
     missing from the sums."""
     costs, starts, ends = {}, [], []
-    for stage in STAGES:
+    for stage in stages:
         files = sorted(Path(benchmarks, stage).glob(f"{search}.tsv")) + sorted(
             Path(benchmarks, stage).glob(f"{search}-*.tsv"))
         wall = cpu = 0.0
@@ -61,13 +62,16 @@ def stage_machines(stage_files: list) -> dict:
     return {"stage_commits": "; ".join(sorted(commits)), "stage_cpus": "; ".join(sorted(cpus))}
 
 
-def archive_dataset(search: xr.Dataset, costs: dict, machines: dict) -> xr.Dataset:
-    """The merged search with its cost (attributes ``cost_<stage>_{jobs,wall_seconds,cpu_seconds}``
-    and ``cost_span_seconds``) and the commits and CPUs of its stages."""
+def archive_dataset(search: xr.Dataset, costs: dict, machines: dict,
+                    title: str = "Realization search at full scale: the paper's statements on every candidate chain",
+                    ) -> xr.Dataset:
+    """The merged search (or another computation kept as data) with its cost (attributes
+    ``cost_<stage>_{jobs,wall_seconds,cpu_seconds}`` and ``cost_span_seconds``) and the commits
+    and CPUs of its stages."""
     ds = search.copy()
     for stage, cost in costs.items():
         for key, value in cost.items():
             ds.attrs[f"cost_{stage}_{key}"] = int(value) if key == "jobs" else float(value)
     ds.attrs.update(machines)
-    ds.attrs["title"] = "Realization search at full scale: the paper's statements on every candidate chain"
+    ds.attrs["title"] = title
     return ds

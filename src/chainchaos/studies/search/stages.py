@@ -30,7 +30,7 @@ import xarray as xr
 from chainchaos.errors import require
 from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
-from chainchaos.paper.verdicts import HOLDS, LANE, STATEMENT, ensemble_verdict, evaluate
+from chainchaos.paper.verdicts import HOLDS, LANE, STATEMENT, VERDICT_FLAGS, evaluate, scene_verdicts
 from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
 from chainchaos.studies.search.selection import SelectionCriteria, candidate_row, qualifying, ranked
 from chainchaos.system.chain import random_chain
@@ -89,25 +89,27 @@ def _statement_orbits(chains: list, site: int, lanes: int) -> list[Orbit]:
 
 
 def _outcomes(chains: list, site: int, lanes: int, settings: OrbitSettings, criteria: Criteria, progress=None):
-    """Outcomes (chain, statement, lane) and measured values of every statement on every chain."""
+    """Per-orbit outcomes and measured values (``verdicts.evaluate``'s keys, arrays (chain,
+    statement, lane)) of every statement on every chain, and each chain's largest energy error."""
     orbits = _statement_orbits(chains, site, lanes)
-    t, runs = integrate(orbits, settings, progress)
+    t, runs = integrate(orbits, settings, progress, gali_stop=np.log(criteria.gali_threshold))
     names = list(statements.statement_scenes())
     C, L = len(chains), lanes
     ids = [st.id for st in statements.STATEMENTS]
-    out = np.full((C, len(ids), L), np.nan)
-    value = np.full((C, len(ids), L), np.nan)
+    keys = ("value", "outcome", "value_gali", "outcome_gali")
+    result = {key: np.full((C, len(ids), L), np.nan) for key in keys}
+    result["read_gali"] = np.zeros((C, len(ids)), dtype=bool)
     for c in range(C):
         for k, name in enumerate(names):
             first = (c * len(names) + k) * L
             of_scene = statements.statements_of_scene(name)
             ev = evaluate(of_scene, t, runs[first:first + L], criteria)
             for i, st in enumerate(of_scene):
-                out[c, ids.index(st.id)] = ev["outcome"][i]
-                value[c, ids.index(st.id)] = ev["value"][i]
+                for key in (*keys, "read_gali"):
+                    result[key][c, ids.index(st.id)] = ev[key][i]
     energy_error = np.array([[np.nanmax(r["energy_error"]) for r in runs[c * len(names) * L:(c + 1) * len(names) * L]]
                              for c in range(C)])
-    return out, value, np.max(energy_error, axis=1) if C else np.zeros(0)
+    return result, np.max(energy_error, axis=1) if C else np.zeros(0)
 
 
 def seed_chunk(selection: SelectionCriteria, plan: SearchPlan, chunk: int) -> xr.Dataset:
@@ -180,9 +182,11 @@ def filter_group(selection: SelectionCriteria, plan: SearchPlan, settings: Orbit
     n_jobs = plan.n_filter_jobs(len(rows))
     require(0 <= group < max(n_jobs, 1), "group", group, f"0..{n_jobs - 1}")
     rows = rows[group * plan.candidates_per_job:(group + 1) * plan.candidates_per_job]
-    short = OrbitSettings(**{**vars(settings), "t_final": float(plan.filter_t_final)})
+    # a screen by Λ alone: GALI_k's verdicts are taken on the scored ensembles
+    short = OrbitSettings(**{**vars(settings), "t_final": float(plan.filter_t_final), "alignment": False})
     chains = [random_chain(r["seed"], selection.alpha, selection.N) for r in rows]
-    out, value, err = _outcomes(chains, site, 1, short, criteria, progress)
+    ev, err = _outcomes(chains, site, 1, short, criteria, progress)
+    out, value = ev["outcome"], ev["value"]
     data = _seed_dataset(rows)
     data.update({
         "outcome": (("candidate", "statement"), out[:, :, 0] if rows else np.zeros((0, len(statements.STATEMENTS))),
@@ -216,18 +220,28 @@ def score_candidate(selection: SelectionCriteria, plan: SearchPlan, settings: Or
     to ``settings.t_final``; per statement the lanes' outcomes, fraction and verdict."""
     row = rows[candidate]
     chain = random_chain(row["seed"], selection.alpha, selection.N)
-    out, value, err = _outcomes([chain], site, plan.lanes, settings, criteria, progress)
-    verdicts = [ensemble_verdict(o, criteria.agreement) for o in out[0]]
+    ev, err = _outcomes([chain], site, plan.lanes, settings, criteria, progress)
+    sv = scene_verdicts({key: v[0] for key, v in ev.items()}, criteria.agreement)
     data = _seed_dataset([row])
     data = {k: ((), v[1][0], v[2]) for k, v in data.items()}
+    fraction = {"units": "1", "long_name": "fraction of the decided lanes that satisfy the statement"}
     data.update({
-        "outcome": (("statement", "lane"), out[0], {"units": "1", "long_name": "1 satisfied, 0 violated, NaN undecidable"}),
-        "measured": (("statement", "lane"), value[0], {"long_name": "measured value of the statement per lane"}),
-        "fraction": ("statement", np.array([v[0] for v in verdicts]),
-                     {"units": "1", "long_name": "fraction of the decided lanes that satisfy the statement"}),
-        "verdict": ("statement", np.array([v[2] for v in verdicts], dtype=np.int8),
-                    {"long_name": "ensemble verdict", "flag_values": np.array([-2, -1, 0, 1], dtype=np.int8),
-                     "flag_meanings": "not_testable undecided fails holds"}),
+        "outcome": (("statement", "lane"), ev["outcome"][0],
+                    {"units": "1", "long_name": "1 satisfied, 0 violated, NaN undecidable (by Lambda and P)"}),
+        "outcome_gali": (("statement", "lane"), ev["outcome_gali"][0],
+                         {"units": "1", "long_name": "1 satisfied, 0 violated, NaN undecidable or not read (by GALI_k)"}),
+        "measured": (("statement", "lane"), ev["value"][0], {"long_name": "measured value of the statement per lane"}),
+        "fraction": ("statement", sv["fraction"],
+                     {"units": "1", "long_name": "fraction of the lanes decided by every indicator on which all say "
+                                                 "the statement holds"}),
+        "fraction_lambda": ("statement", sv["fraction_lambda"], {**fraction, "comment": "by Lambda"}),
+        "fraction_gali": ("statement", sv["fraction_gali"], {**fraction, "comment": "by GALI_k (NaN: not read)"}),
+        "verdict": ("statement", sv["verdict"].astype(np.int8),
+                    {"long_name": "ensemble verdict (undecided where the indicators disagree)", **VERDICT_FLAGS}),
+        "verdict_lambda": ("statement", sv["verdict_lambda"].astype(np.int8),
+                           {"long_name": "ensemble verdict by Lambda", **VERDICT_FLAGS}),
+        "verdict_gali": ("statement", sv["verdict_gali"].astype(np.int8),
+                         {"long_name": "ensemble verdict by GALI_k", **VERDICT_FLAGS}),
         "energy_error_max": ((), float(err[0]), {"units": "1", "long_name": "largest relative energy error"}),
     })
     ds = xr.Dataset(data, coords={"statement": _statements(statements.STATEMENTS),

@@ -7,8 +7,10 @@ from pathlib import Path
 
 import xarray as xr
 
+from chainchaos.errors import require
 from chainchaos.output.io import read_chain, write_netcdf, write_text
 from chainchaos.studies.scan import merge, runs, thresholds
+from chainchaos.studies.search import archive
 
 
 def _run_group(kind: str, group: int, compute, out) -> None:
@@ -60,9 +62,33 @@ def merge_energy_scan(inputs, outputs, params, wildcards) -> None:
 
 
 def merge_disorder(inputs, outputs, params, wildcards) -> None:
-    """The disorder statistics' group files on the (model, realization, energy) grid."""
+    """The disorder statistics' group files on the (model, realization, energy) grid, or the
+    archived full disorder statistics (``scan.disorder.archive``) as they are."""
+    if "archive" in inputs.keys():
+        ds = xr.load_dataset(inputs["archive"])
+        ds.attrs["source"] = f"the archived full disorder statistics {inputs['archive']} (snakemake disorder_full)"
+        print(f"disorder: {inputs['archive']}, {ds.sizes['realization']} realizations x {ds.sizes['energy']} "
+              f"energies", file=sys.stderr)
+        write_netcdf(ds, outputs["merged"])
+        return
     groups = [xr.load_dataset(f) for f in inputs["groups"]]
     _write_merged("disorder", merge.merge_disorder(groups, params["scan"]), groups, outputs["merged"])
+
+
+def disorder_full(inputs, outputs, params, wildcards) -> None:
+    """The full disorder statistics, with their cost and provenance, kept at config
+    ``scan.disorder.archive``."""
+    target = params.get("archive")
+    require(bool(target), "scan.disorder.archive", target,
+            "the path of the archived disorder statistics (e.g. data/disorder/disorder_full.nc)")
+    groups = [xr.load_dataset(f) for f in inputs["groups"]]
+    ds = merge.merge_disorder(groups, params["scan"])
+    costs = archive.job_costs(Path(params["benchmarks"]), "disorder_full", stages=("scan_disorder_group",))
+    ds = archive.archive_dataset(ds, costs, archive.stage_machines(list(inputs["groups"])),
+                                 title="Disorder statistics at full scale: delocalization and chaos by two indicators")
+    write_netcdf(ds, target)
+    print(f"{target}: {ds.sizes['realization']} realizations x {ds.sizes['energy']} energies; "
+          f"{ds.attrs['cost_total_jobs']} jobs, {ds.attrs['cost_total_cpu_seconds'] / 60:.1f} CPU-min", file=sys.stderr)
 
 
 def plot_energy_scan(inputs, outputs, params, wildcards) -> None:
@@ -91,5 +117,5 @@ def scan_thresholds(inputs, outputs, params, wildcards) -> None:
     write_text(thresholds.thresholds_tex(rows, ds), outputs["tex"])
 
 
-TASKS = (scan_energy_group, scan_disorder_group, merge_energy_scan, merge_disorder,
+TASKS = (scan_energy_group, scan_disorder_group, merge_energy_scan, merge_disorder, disorder_full,
          plot_energy_scan, plot_disorder_statistics, scan_thresholds)

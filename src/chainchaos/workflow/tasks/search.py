@@ -5,6 +5,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import xarray as xr
 
 from chainchaos.errors import require
@@ -143,8 +144,10 @@ def ensemble_verdicts(inputs, outputs, params, wildcards) -> None:
     criteria = Criteria.from_config(params.get("claims"))
     chain = read_chain(inputs["chain"])
     orbits = [Orbit(scene.model, scene.energy, chain, int(params["site"]), lane) for lane in range(int(block["lanes"]))]
-    t, runs = integrate(orbits, settings, _progress(f"verdicts {name}"))
+    t, runs = integrate(orbits, settings, _progress(f"verdicts {name}"), gali_stop=np.log(criteria.gali_threshold))
     attrs = provenance_attrs({"verdicts": block, "scene": name})
+    if settings.alignment:
+        attrs.update(gali_order=int(settings.gali_order))
     attrs.update(model=scene.model, energy=float(scene.energy), dt=float(settings.dt),
                  t_final=float(settings.t_final), integrator=settings.integrator, lanes=int(block["lanes"]),
                  perturbation=float(settings.perturbation), seed=-1 if chain.seed is None else int(chain.seed))
