@@ -32,6 +32,8 @@ def indicator_text(inputs: Inputs, statement_id: str) -> str:
         n = int(row["n_decided"])
         if "verdict_gali" not in row or int(row["verdict_gali"]) == _verdicts.NOT_READ:
             return f"{round(float(row['fraction']) * n)}/{n}" if n else "--"
+        if not (np.isfinite(row["outcome"].values).any() or np.isfinite(row["outcome_gali"].values).any()):
+            return "--"
         parts = []
         for name, key in (("\\Lambda", "outcome"), (f"\\mathrm{{GALI}}_{{{ds.attrs.get('gali_order', 'k')}}}",
                                                       "outcome_gali")):

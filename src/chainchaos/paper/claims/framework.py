@@ -222,7 +222,7 @@ class Inputs:
         chaotic = CHAOS_CRITERION_TEXT
         if int(scan.attrs.get("gali_order", 0)) > 1:
             chaotic += (f" (and, the second indicator, GALI$_{{{int(scan.attrs['gali_order'])}}}$ below "
-                        f"\\cc{{crit.galithreshold}} by the end)")
+                        f"$\\cc{{crit.galithreshold}}$ by the end)")
         return {"delocalized": f"final $P > {tex_parameter(scan.attrs['p_delocalized'])}$", "chaotic": chaotic}
 
 
