@@ -30,6 +30,7 @@ include: "workflow/rules/simulate.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/numerics.smk"
 include: "workflow/rules/scan.smk"
+include: "workflow/rules/indicators.smk"
 include: "workflow/rules/search.smk"
 include: "workflow/rules/manuscript.smk"
 

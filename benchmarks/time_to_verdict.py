@@ -32,20 +32,12 @@ import numpy as np
 import yaml
 
 from chainchaos import random_chain
-from chainchaos.errors import ParameterError
-from chainchaos.observe.reductions import chaos_onset, is_chaotic
+from chainchaos.observe.reductions import chaos_onset, gali_crossing, is_chaotic
 from chainchaos.output.provenance import machine_line
 from chainchaos.paper.criteria import Criteria
 from chainchaos.paper.statements import statement_scenes
-from chainchaos.run import driver
-from chainchaos.run.orbits import OrbitSettings, lane_factor, sample_schedule
+from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
 from chainchaos.studies.search.archive import chosen_seed as archive_seed
-from chainchaos.system.initial import (
-    extra_deviations,
-    initial_deviation,
-    initial_displacement,
-)
-from chainchaos.system.models import get_model
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -59,26 +51,6 @@ def chosen_seed() -> int:
     return int(config["search"].get("pinned_seed") or 879)
 
 
-def first_below(t, log_values, log_threshold) -> float:
-    """The first sample time at which ln(indicator) < log_threshold (NaN: never)."""
-    below = np.flatnonzero(np.asarray(log_values) < log_threshold)
-    return float(t[below[0]]) if below.size else float("nan")
-
-
-def scene_orbits(scene, chain, site, settings, lanes):
-    """The scene's ensemble as one problem's initial state, with GALI's vectors per lane."""
-    model = get_model(scene.model)
-    problem = settings.problem(model, [chain] * lanes, tangent=True, track_gaps=False, alignment=True)
-    N = chain.N
-    Q0, P0, DQ0, DP0 = (np.zeros((N, lanes)) for _ in range(4))
-    XQ0, XP0 = (np.zeros((problem.extra_vectors, N, lanes)) for _ in range(2))
-    for j in range(lanes):
-        Q0[site - 1, j] = initial_displacement(model, problem.chains[j], float(scene.energy), site) * lane_factor(j, settings)
-        DQ0[:, j], DP0[:, j] = initial_deviation(N, settings.deviation_seed + j)
-        XQ0[:, :, j], XP0[:, :, j] = extra_deviations(N, settings.deviation_seed + j, problem.extra_vectors, 2)
-    return problem, (Q0, P0, DQ0, DP0), (XQ0, XP0)
-
-
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--seed", type=int, default=None, help="the chain's seed (default: the chosen chain)")
@@ -89,14 +61,13 @@ def main(argv=None):
     ap.add_argument("--threshold", type=float, default=1e-8)
     a = ap.parse_args(argv)
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
-    block = dict(config["verdicts"]["settings"], gali_order=a.gali)
+    block = dict(config["verdicts"]["settings"], gali_order=a.gali, alignment=True)
     block.update({k: v for k, v in (("dt", a.dt), ("t_final", a.t_final)) if v is not None})
     settings = OrbitSettings.from_config(block)
     seed = chosen_seed() if a.seed is None else a.seed
     chain = random_chain(seed, float(config["chain"]["alpha"]), int(config["chain"]["N"]))
     site = int(config["simulation"]["excited_site"])
     c = Criteria.from_config(config["claims"])
-    log_threshold = np.log(a.threshold)
 
     print(machine_line())
     print(f"chain seed {seed}; {a.lanes} orbits per scene, SRKN6b dt = {settings.dt:g} to t = {settings.t_final:g}; "
@@ -106,24 +77,22 @@ def main(argv=None):
           "| CPU s |")
     print("|---|---|---|---|---:|")
     for name, scene in statement_scenes().items():
-        try:
-            problem, state, extra = scene_orbits(scene, chain, site, settings, a.lanes)
-        except ParameterError as e:
-            print(f"| {name} | no initial state: {e} | | | |")
-            continue
+        orbits = [Orbit(scene.model, scene.energy, chain, site, lane) for lane in range(a.lanes)]
         t0 = time.process_time()
-        samples = driver.sample(problem, *state, sample_schedule(settings), xq0=extra[0], xp0=extra[1])
+        t, runs = integrate(orbits, settings)
         cpu = time.process_time() - t0
-        t = samples.times
+        if not all(r["valid"] for r in runs):
+            print(f"| {name} | an orbit has no initial state or left the energy bound | | | |")
+            continue
         lam, lam_t, sali, sali_t, gali, gali_t = ([] for _ in range(6))
-        for j in range(a.lanes):
-            g = samples.log_growth[j]
+        for r in runs:
+            g = r["log_growth"]
             lam.append(is_chaotic(t, g, c.chaos_slope, c.chaos_growth_margin, c.chaos_window_decades))
             onset = chaos_onset(t, g, c.chaos_slope, c.chaos_growth_margin, c.chaos_window_decades)
             lam_t.append(onset * 10.0 ** (c.chaos_window_decades / 2))  # the window's end: when it is known
             with np.errstate(divide="ignore"):
-                sali_t.append(first_below(t, np.log(samples.sali[j]), log_threshold))
-            gali_t.append(first_below(t, samples.log_gali[j], log_threshold))
+                sali_t.append(gali_crossing(t, np.log(r["sali"]), a.threshold))  # SALI ~ GALI_2
+            gali_t.append(gali_crossing(t, r["log_gali"], a.threshold))
             sali.append(np.isfinite(sali_t[-1]))
             gali.append(np.isfinite(gali_t[-1]))
 

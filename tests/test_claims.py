@@ -478,6 +478,8 @@ def test_every_macro_the_manuscript_uses_is_generated(quick):
     tex = re.sub(r"(?<!\\)%.*", "", (ROOT / "manuscript" / "ms.tex").read_text())  # without comments
     if "\\searcharchivedfalse" in macros:  # the archive's branch is not typeset, its macros not needed
         tex = re.sub(r"\\ifsearcharchived.*?\\else", "", tex, flags=re.S)
+    if "\\disordergalifalse" in macros:  # disorder statistics without GALI_k: their sentence is not typeset
+        tex = re.sub(r"\\ifdisordergali.*?\\fi", "", tex, flags=re.S)
     used = set(re.findall(r"\\cc\{([^}]+)\}", tex))
     used |= {f"claim.{k}.{f}" for k in re.findall(r"\\(?:claim|verdict)\{([^}]+)\}", tex) for f in ("n", "verdict")}
     used = {u for u in used if "#" not in u}

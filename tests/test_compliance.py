@@ -35,6 +35,7 @@ PRODUCT_KINDS = {
     "search score job": "search/score/*.nc",
     "search": "search/search.nc",
     "verdicts": "verdicts/*.nc",
+    "Lyapunov spectrum": "indicators/spectrum_*.nc",
     "work-precision case": "numerics/work_precision/*.nc",
     "work precision": "numerics/work_precision.nc",
     "stability": "numerics/stability.nc",
@@ -106,11 +107,13 @@ def test_every_kind_of_product_passes_the_cf_checker(quick):
     assert not problems, "\n".join(f"{where}:\n  " + "\n  ".join(msgs) for where, msgs in problems.items())
 
 
-def test_the_archived_full_search_passes_the_cf_checker():
-    archive = ROOT / "data" / "search" / "search_full.nc"
-    if not archive.exists():
-        pytest.skip(f"no archived full search at {archive}")
-    assert cf_problems(archive) == []
+@pytest.mark.parametrize("archive", ["search/search_full.nc", "disorder/disorder_full.nc"])
+def test_the_archived_computations_pass_the_cf_checker(archive):
+    """The full search and the full disorder statistics, kept in the repository as data."""
+    path = ROOT / "data" / archive
+    if not path.exists():
+        pytest.skip(f"no archive at {path}")
+    assert cf_problems(path) == []
 
 
 def test_conventions_keep_the_values_and_the_dataset(tmp_path, monkeypatch):

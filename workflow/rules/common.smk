@@ -76,6 +76,7 @@ REPORT_CATEGORIES = {
     "scan": "Energy scan and disorder statistics",
     "search": "Realization search",
     "numerics": "Numerical accuracy",
+    "indicators": "Chaos indicators",
 }
 
 
@@ -94,6 +95,14 @@ def cluster_runtime(orbits, t_final, dt):
     cost per step (scan.us_per_step), x3 and + 10 min for sampling, start-up and a busy node."""
     seconds = orbits * (t_final / dt) * config["scan"].get("us_per_step", 1.0) * 1e-6
     return int(math.ceil(3 * seconds / 60)) + 10
+
+
+# ---- chaos indicators (workflow/rules/indicators.smk) -----------------------------------------
+
+SPECTRA_FILES = {
+    f"spectrum_{name}": result("indicators", f"spectrum_{name}.nc")
+    for name in config["indicators"]["spectra"]["scenes"]
+}
 
 
 # ---- energy scan and disorder statistics (workflow/rules/scan.smk) -----------------------------
@@ -270,6 +279,7 @@ def claims_inputs(wildcards=None):
         "search_population": search_population(),
     }
     files.update({f"verdict_{name}": path for name, path in VERDICT_FILES.items()})
+    files.update(SPECTRA_FILES)
     files.update({name: scene_file(name) for name in sorted(SCENES)})
     return files
 
@@ -287,6 +297,7 @@ def manuscript_inputs(wildcards=None):
             "thresholds": result("scan", "thresholds.tex"),
             "figsearch": result("figures", "search.pdf"),
             "figsearchjoint": result("figures", "search_joint.pdf"),
+            "figspectra": result("figures", "lyapunov_spectra.pdf"),
         }
     )
     files.update({f"numerics_{key}": path for key, path in manuscript_numerics().items()})

@@ -33,8 +33,9 @@ from chainchaos.system.models import MODELS, get_model
 #: their value at samples where the state is not measured (no initial state, or non-finite);
 #: None: kept as the engine recorded it.
 SERIES = {"participation": np.nan, "log_growth": None, "eta": np.nan, "energy_error": np.inf}
-#: The series of runs with ``alignment``: NaN after a stop (``driver.sample``'s ``gali_stop``).
-ALIGNMENT_SERIES = {"log_gali": None}
+#: The series of runs with ``alignment`` (SALI of the mLCE vector and the first GALI vector): NaN
+#: after a stop (``driver.sample``'s ``gali_stop``).
+ALIGNMENT_SERIES = {"log_gali": None, "sali": None}
 
 
 @dataclass(frozen=True)

@@ -22,12 +22,14 @@ from chainchaos.paper.claims.writers import (
 )
 from chainchaos.paper.criteria import Criteria
 from chainchaos.studies.search import report as search_report
+from chainchaos.studies.indicators.report import spectra_macros
 
 #: The inputs of evaluate_claims that are not scene files (and the prefix of the ensemble verdicts).
 #: ``search_population``: the search whose candidates are counted (the archived full search when
 #: ``all`` pins its chain, else ``search`` itself).
 PRODUCTS = ("chain", "ensemble", "energy_scan", "disorder", "search", "search_population")
 VERDICT_PREFIX = "verdict_"
+SPECTRUM_PREFIX = "spectrum_"
 
 
 def evaluate_claims(inputs, outputs, params, wildcards) -> None:
@@ -41,6 +43,8 @@ def evaluate_claims(inputs, outputs, params, wildcards) -> None:
     chain, ensemble, energy_scan, disorder, search, population = (products[name] for name in PRODUCTS)
     verdicts = {name[len(VERDICT_PREFIX):]: xr.load_dataset(files.pop(name))
                 for name in sorted(files) if name.startswith(VERDICT_PREFIX)}
+    spectra = {name[len(SPECTRUM_PREFIX):]: xr.load_dataset(files.pop(name))
+               for name in sorted(files) if name.startswith(SPECTRUM_PREFIX)}
     scenes = {name: xr.load_dataset(path) for name, path in files.items()}
     criteria = Criteria.from_config(params.get("claims"))
     simulation = params.get("simulation", {})
@@ -55,6 +59,7 @@ def evaluate_claims(inputs, outputs, params, wildcards) -> None:
         macros.update(scene_macros(name, ds, criteria))
     macros.update(claim_macros(claims))
     macros.update(search_report.search_macros(population, search, verdicts, energy_scan, disorder, criteria))
+    macros.update(spectra_macros(spectra))
     paper_scale = macros["run.scale"] == "paper"
 
     with atomic_output(outputs["csv"]) as tmp:
@@ -68,7 +73,9 @@ def evaluate_claims(inputs, outputs, params, wildcards) -> None:
                + "\\newif\\ifsearchpinned\n"
                + ("\\searchpinnedtrue\n" if int(search.attrs["pinned"]) else "\\searchpinnedfalse\n")
                + "\\newif\\ifsearcharchived\n"
-               + ("\\searcharchivedtrue\n" if macros["search.archived"] == "yes" else "\\searcharchivedfalse\n"),
+               + ("\\searcharchivedtrue\n" if macros["search.archived"] == "yes" else "\\searcharchivedfalse\n")
+               + "\\newif\\ifdisordergali\n"
+               + ("\\disordergalitrue\n" if "probability_chaotic_gali" in disorder else "\\disordergalifalse\n"),
                outputs["macros"])
     for claim in claims:
         print(f"{claim.id:28s} {claim.verdict:28s} {claim.measured}", file=sys.stderr)
