@@ -321,6 +321,13 @@ def test_an_ensemble_verdict_where_lambda_and_gali_disagree_is_undecided():
     verdict, text = evidence.ensemble_verdict(split, ["chaos-H3-hertz"])
     assert verdict == fw.UNDECIDED and text == "$\\Lambda$ 8/8, $\\mathrm{GALI}_{4}$ 0/8"
     assert evidence.indicators_disagree(split, ["chaos-H3-hertz", "deloc-H3-hertz"]) == ["chaos-H3-hertz"]
+    # an onset is judged by Λ; GALI_4's crossing time is reported beside it (the first sample after 1e3)
+    runs = [{"participation": np.full(t.size, 20.0), "log_growth": chaotic_growth, "eta": np.ones(t.size),
+             "energy_error": np.zeros(t.size), "u0": 1.0, "valid": True, "max_gaps": 3,
+             "log_gali": np.where(t > 1e3, -30.0, -1.0)} for _ in range(8)]
+    onset = inputs({"s": xr.Dataset()}, verdicts={"hertz_H1.8": vd.verdict_dataset("hertz_H1.8", t, runs, c, {"gali_order": 4})})
+    text = evidence.indicator_text(onset, "chaos-onset-H1.8-hertz")
+    assert f"$\\mathrm{{GALI}}_{{4}}$ below its threshold from $t \\approx {t[t > 1e3][0]:.0f}$, median" in text
 
 
 # ------------------------------------------------------------------ the paper's words

@@ -30,13 +30,18 @@ def indicator_text(inputs: Inputs, statement_id: str) -> str:
             continue
         row = ds.sel(statement=statement_id)
         n = int(row["n_decided"])
+        gali = f"\\mathrm{{GALI}}_{{{ds.attrs.get('gali_order', 'k')}}}"
         if "verdict_gali" not in row or int(row["verdict_gali"]) == _verdicts.NOT_READ:
-            return f"{round(float(row['fraction']) * n)}/{n}" if n else "--"
+            text = f"{round(float(row['fraction']) * n)}/{n}" if n else "--"
+            crossing = row["measured_gali"].values if "measured_gali" in row else np.array([np.nan])
+            if np.isfinite(crossing).any():  # an onset: GALI_k's crossing time, reported beside
+                text += (f" (${gali}$ below its threshold from $t \\approx "
+                         f"{tex_number(float(np.nanmedian(crossing)), 2)}$, median)")
+            return text
         if not (np.isfinite(row["outcome"].values).any() or np.isfinite(row["outcome_gali"].values).any()):
             return "--"
         parts = []
-        for name, key in (("\\Lambda", "outcome"), (f"\\mathrm{{GALI}}_{{{ds.attrs.get('gali_order', 'k')}}}",
-                                                      "outcome_gali")):
+        for name, key in (("\\Lambda", "outcome"), (gali, "outcome_gali")):
             x = row[key].values
             decided = np.isfinite(x)
             parts.append(f"${name}$ {int(np.nansum(x))}/{int(decided.sum())}")
