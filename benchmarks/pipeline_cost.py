@@ -33,6 +33,7 @@ PARTS = (
     ("ensemble verdicts", r"ensemble_verdicts"),
     ("energy scan", r"scan_energy_group|merge_energy_scan"),
     ("disorder statistics", r"scan_disorder_group|merge_disorder"),
+    ("Lyapunov spectra", r"lyapunov_spectrum"),
     ("disorder ensemble of Fig. 1(a)", r"compute_ensemble"),
     ("long-time energy drift", r"numerics_energy_drift"),
     ("other numerics (work-precision, stability, step advice, Taylor sign)", r"numerics_(?!plot)"),
