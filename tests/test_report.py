@@ -18,8 +18,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 # Every figure of the workflow besides the paper's panels and composites, and the tables.
 OTHER_RESULTS = ["energy_scan.png", "disorder_statistics.png", "lyapunov_spectra.png", "search.png", "search_joint.png",
-                 "work_precision.png",
-                 "stability.png", "claims.csv", "thresholds.csv", "work_precision.csv",
+                 "work_precision.png", "stability.png", "claims.csv", "thresholds.csv", "work_precision.csv",
                  "work_precision_runs.csv", "stability.csv", "step_advice.csv"]
 
 
