@@ -251,27 +251,13 @@ def scene_verdicts(ev: dict, agreement: float) -> dict[str, np.ndarray]:
     return {key: np.array([r[key] for r in rows]) for key in rows[0]} if rows else {}
 
 
-def verdict_dataset(scene_name: str, t, runs: list[dict], criteria: Criteria, attrs: dict) -> xr.Dataset:
-    """One scene's ensemble: the series of every lane and, per statement, every lane's outcome by
-    each indicator, the fractions satisfied and the verdicts."""
-    from chainchaos.observe.registry import REGISTRY
-
-    of_scene = statements.statements_of_scene(scene_name)
-    ev = evaluate(of_scene, t, runs, criteria)
-    sv = scene_verdicts(ev, criteria.agreement)
+def verdict_variables(ev: dict, sv: dict) -> dict:
+    """The per-lane outcomes and measured values (:func:`evaluate`'s ``ev``, arrays (statement,
+    lane)) and the ensemble's fractions and verdicts (:func:`scene_verdicts`' ``sv``) as the data
+    variables of a verdict or search-score file."""
     one = {"units": "1"}
-    series = [key for key in runs[0] if isinstance(runs[0][key], np.ndarray)]
-    data = {
-        key: (("lane", "time"), np.stack([r[key] for r in runs]), {**one, "long_name": REGISTRY[key].long_name})
-        for key in series
-    }
     fraction = {**one, "long_name": "fraction of the decided lanes that satisfy the statement"}
-    data.update({
-        "u0": ("lane", np.array([r["u0"] for r in runs]), {**one, "long_name": "initial displacement of the excited bead"}),
-        "valid": ("lane", np.array([r["valid"] for r in runs], dtype=np.int8),
-                  {**one, "long_name": "1 if the run stayed finite with energy error <= max_energy_error"}),
-        "max_gaps": ("lane", np.array([r["max_gaps"] for r in runs], dtype=np.int32),
-                     {**one, "long_name": "largest number of simultaneously open gaps (-1: FPUT)"}),
+    return {
         "measured": (("statement", "lane"), ev["value"], {"long_name": "measured value of the statement per lane"}),
         "outcome": (("statement", "lane"), ev["outcome"],
                     {**one, "long_name": "1 satisfied, 0 violated, NaN undecidable (per lane, by Lambda and P)"}),
@@ -292,6 +278,30 @@ def verdict_dataset(scene_name: str, t, runs: list[dict], criteria: Criteria, at
                            {"long_name": "ensemble verdict by Lambda", **VERDICT_FLAGS}),
         "verdict_gali": ("statement", sv["verdict_gali"].astype(np.int8),
                          {"long_name": "ensemble verdict by GALI_k", **VERDICT_FLAGS}),
+    }
+
+
+def verdict_dataset(scene_name: str, t, runs: list[dict], criteria: Criteria, attrs: dict) -> xr.Dataset:
+    """One scene's ensemble: the series of every lane and, per statement, every lane's outcome by
+    each indicator, the fractions satisfied and the verdicts."""
+    from chainchaos.observe.registry import REGISTRY
+
+    of_scene = statements.statements_of_scene(scene_name)
+    ev = evaluate(of_scene, t, runs, criteria)
+    sv = scene_verdicts(ev, criteria.agreement)
+    one = {"units": "1"}
+    series = [key for key in runs[0] if isinstance(runs[0][key], np.ndarray)]
+    data = {
+        key: (("lane", "time"), np.stack([r[key] for r in runs]), {**one, "long_name": REGISTRY[key].long_name})
+        for key in series
+    }
+    data.update({
+        "u0": ("lane", np.array([r["u0"] for r in runs]), {**one, "long_name": "initial displacement of the excited bead"}),
+        "valid": ("lane", np.array([r["valid"] for r in runs], dtype=np.int8),
+                  {**one, "long_name": "1 if the run stayed finite with energy error <= max_energy_error"}),
+        "max_gaps": ("lane", np.array([r["max_gaps"] for r in runs], dtype=np.int32),
+                     {**one, "long_name": "largest number of simultaneously open gaps (-1: FPUT)"}),
+        **verdict_variables(ev, sv),
         "kind": ("statement", np.array([st.kind for st in of_scene], dtype=object)),
         "text": ("statement", np.array([st.text for st in of_scene], dtype=object)),
     })

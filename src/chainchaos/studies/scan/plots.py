@@ -119,7 +119,9 @@ def disorder_figure(ds):
         ax.set_xlabel(ENERGY_LABEL)
         ax.set_ylabel(r"onset time [$1/\omega_{\max}$]")
         if ax.get_legend_handles_labels()[0]:
-            ax.legend(loc="best", fontsize=5.5)
+            low, high = ax.get_ylim()
+            ax.set_ylim(low / 30, high)  # room below the data for the legend
+            ax.legend(loc="lower left", fontsize=5, ncols=2)
         for a, tag in zip(axes, "abc"):
             a.set_title(f"({tag})", loc="left")
         n_real = ds.sizes["realization"]

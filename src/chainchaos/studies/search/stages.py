@@ -30,7 +30,7 @@ import xarray as xr
 from chainchaos.errors import require
 from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
-from chainchaos.paper.verdicts import HOLDS, LANE, STATEMENT, VERDICT_FLAGS, evaluate, scene_verdicts
+from chainchaos.paper.verdicts import HOLDS, LANE, STATEMENT, evaluate, scene_verdicts, verdict_variables
 from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
 from chainchaos.studies.search.selection import SelectionCriteria, candidate_row, qualifying, ranked
 from chainchaos.system.chain import random_chain
@@ -221,27 +221,11 @@ def score_candidate(selection: SelectionCriteria, plan: SearchPlan, settings: Or
     row = rows[candidate]
     chain = random_chain(row["seed"], selection.alpha, selection.N)
     ev, err = _outcomes([chain], site, plan.lanes, settings, criteria, progress)
-    sv = scene_verdicts({key: v[0] for key, v in ev.items()}, criteria.agreement)
+    ev = {key: v[0] for key, v in ev.items()}
     data = _seed_dataset([row])
     data = {k: ((), v[1][0], v[2]) for k, v in data.items()}
-    fraction = {"units": "1", "long_name": "fraction of the decided lanes that satisfy the statement"}
     data.update({
-        "outcome": (("statement", "lane"), ev["outcome"][0],
-                    {"units": "1", "long_name": "1 satisfied, 0 violated, NaN undecidable (by Lambda and P)"}),
-        "outcome_gali": (("statement", "lane"), ev["outcome_gali"][0],
-                         {"units": "1", "long_name": "1 satisfied, 0 violated, NaN undecidable or not read (by GALI_k)"}),
-        "measured": (("statement", "lane"), ev["value"][0], {"long_name": "measured value of the statement per lane"}),
-        "fraction": ("statement", sv["fraction"],
-                     {"units": "1", "long_name": "fraction of the lanes decided by every indicator on which all say "
-                                                 "the statement holds"}),
-        "fraction_lambda": ("statement", sv["fraction_lambda"], {**fraction, "comment": "by Lambda"}),
-        "fraction_gali": ("statement", sv["fraction_gali"], {**fraction, "comment": "by GALI_k (NaN: not read)"}),
-        "verdict": ("statement", sv["verdict"].astype(np.int8),
-                    {"long_name": "ensemble verdict (undecided where the indicators disagree)", **VERDICT_FLAGS}),
-        "verdict_lambda": ("statement", sv["verdict_lambda"].astype(np.int8),
-                           {"long_name": "ensemble verdict by Lambda", **VERDICT_FLAGS}),
-        "verdict_gali": ("statement", sv["verdict_gali"].astype(np.int8),
-                         {"long_name": "ensemble verdict by GALI_k", **VERDICT_FLAGS}),
+        **verdict_variables(ev, scene_verdicts(ev, criteria.agreement)),
         "energy_error_max": ((), float(err[0]), {"units": "1", "long_name": "largest relative energy error"}),
     })
     ds = xr.Dataset(data, coords={"statement": _statements(statements.STATEMENTS),
