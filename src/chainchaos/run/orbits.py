@@ -13,9 +13,10 @@ initial state, which is what separates a property of the scene from one of a sin
 Orbits of one model share a batch (``chainchaos.engine.batch``, any mix of chains, energies and lanes)
 or run one after the other on ``integrators.advance`` (``engine: single``); both give identical
 numbers. At every sample the series of :data:`SERIES` are recorded per orbit; with ``alignment``,
-also ln GALI_k (:data:`ALIGNMENT_SERIES`) of the mLCE vector and ``gali_order`` - 1 more vectors
-(lane j's from ``deviation_seed + j``, ``initial.extra_deviations``), the second chaos indicator
-of the verdicts (docs/conventions.md#chaos-indicators).
+also ln GALI_k and SALI (:data:`ALIGNMENT_SERIES`) of the mLCE vector and ``gali_order`` - 1 more
+vectors, the second chaos indicator of the verdicts; with ``spectrum``, the Lyapunov spectrum of
+``exponents`` vectors and h_KS (:data:`SPECTRUM_SERIES`). Lane j's extra vectors come from
+``deviation_seed + j`` (``RunSettings.extra_deviations``; docs/conventions.md#chaos-indicators).
 """
 
 from dataclasses import dataclass, field, fields
@@ -26,7 +27,7 @@ from chainchaos.errors import ParameterError, require
 from chainchaos.observe.registry import REGISTRY
 from chainchaos.run import driver
 from chainchaos.run.settings import RunSettings
-from chainchaos.system.initial import extra_deviations, initial_deviation, initial_displacement
+from chainchaos.system.initial import initial_deviation, initial_displacement
 from chainchaos.system.models import MODELS, get_model
 
 #: Per-orbit series on the sample times, observables of the registry (``observe.registry``), with
@@ -36,6 +37,8 @@ SERIES = {"participation": np.nan, "log_growth": None, "eta": np.nan, "energy_er
 #: The series of runs with ``alignment`` (SALI of the mLCE vector and the first GALI vector): NaN
 #: after a stop (``driver.sample``'s ``gali_stop``).
 ALIGNMENT_SERIES = {"log_gali": None, "sali": None}
+#: The series of runs with ``spectrum``: lambda_i(t) (time, exponent) and h_KS(t).
+SPECTRUM_SERIES = {"lyapunov_spectrum": None, "ks_entropy": None}
 
 
 @dataclass(frozen=True)
@@ -56,7 +59,8 @@ class OrbitSettings(RunSettings):
 
     Samples: those of :meth:`RunSettings.sample_steps` plus ``final_samples`` evenly spaced over
     the last decade, so that time averages over it see the fast oscillations of a packet evenly.
-    ``alignment``: evolve GALI_``gali_order``'s vectors too and record ln GALI_k."""
+    ``alignment``: evolve GALI_``gali_order``'s vectors too and record ln GALI_k; ``spectrum``:
+    the Lyapunov spectrum's ``exponents`` vectors (0: all 2N)."""
 
     samples_per_decade: int = 10
     t_first_sample: float = 1.0
@@ -66,11 +70,14 @@ class OrbitSettings(RunSettings):
     batch_size: int = 32
     engine: str = "batch"
     alignment: bool = False
+    spectrum: bool = False
 
     def __post_init__(self):
         super().__post_init__()
-        require(isinstance(self.alignment, bool) and not (self.alignment and self.engine == "single"), "alignment",
-                self.alignment, "true or false; true only with engine 'batch' (GALI's vectors run in SIMD blocks)")
+        for key in ("alignment", "spectrum"):
+            value = getattr(self, key)
+            require(isinstance(value, bool) and not (value and self.engine == "single"), key, value,
+                    "true or false; true only with engine 'batch' (extra deviation vectors run in SIMD blocks)")
         require(self.engine in ("batch", "single"), "engine", self.engine, "'batch' or 'single'")
         require(int(self.batch_size) >= 1, "batch_size", self.batch_size, ">= 1")
         require(int(self.final_samples) >= 0, "final_samples", self.final_samples, "an integer >= 0")
@@ -130,7 +137,7 @@ def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None,
 def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, gali_stop) -> list[dict]:
     model = get_model(name)
     problem = settings.problem(model, [o.chain for o in orbits], tangent=True, track_gaps=model.has_gaps,
-                               alignment=settings.alignment)
+                               spectrum=settings.spectrum, alignment=settings.alignment)
     N, B, K = problem.N, problem.lanes, problem.extra_vectors
     Q0, P0, DQ0, DP0 = (np.zeros((N, B)) for _ in range(4))
     XQ0, XP0 = np.zeros((K, N, B)), np.zeros((K, N, B))
@@ -143,7 +150,7 @@ def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, ga
         except ParameterError:
             pass
         DQ0[:, j], DP0[:, j] = initial_deviation(N, settings.deviation_seed + o.lane)
-        XQ0[:, :, j], XP0[:, :, j] = extra_deviations(N, settings.deviation_seed + o.lane, K, 2)
+        XQ0[:, :, j], XP0[:, :, j] = settings.extra_deviations(problem, o.lane)
     samples = driver.sample(problem, Q0, P0, DQ0, DP0, sample_schedule(settings), kind=settings.engine,
                             xq0=XQ0 if K else None, xp0=XP0 if K else None,
                             gali_stop=gali_stop if settings.alignment else None)
@@ -153,7 +160,8 @@ def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, ga
         run = samples.run(j)
         # a sample is measured where the initial state existed and the state is still finite
         measured = ok0[j] & np.all(np.isfinite(run.Q), axis=-1) & np.all(np.isfinite(run.P), axis=-1)
-        series = _series(run, measured, {**SERIES, **(ALIGNMENT_SERIES if settings.alignment else {})})
+        series = _series(run, measured, {**SERIES, **(ALIGNMENT_SERIES if settings.alignment else {}),
+                                         **(SPECTRUM_SERIES if settings.spectrum else {})})
         out.append({
             **series,
             "u0": float(u0s[j]),

@@ -61,11 +61,12 @@ class RunSettings:
                        spectrum=(self.exponents or 2 * N) if spectrum else 1,
                        gali=self.gali_order if alignment else 1)
 
-    def extra_deviations(self, problem) -> tuple[np.ndarray, np.ndarray]:
-        """The initial extra deviation vectors of ``problem`` (K, N) of this run's deviation seed:
-        the spectrum's, orthonormal to the first vector (``initial.initial_deviation``) and each
-        other, then GALI's, each of norm 1 (``initial.extra_deviations``)."""
-        N, seed = problem.N, self.deviation_seed
+    def extra_deviations(self, problem, lane: int = 0) -> tuple[np.ndarray, np.ndarray]:
+        """The initial extra deviation vectors of ``problem`` (K, N) of the deviation seed
+        ``deviation_seed + lane`` (lane j of an orbit set, whose first vector has that seed): the
+        spectrum's, orthonormal to the first vector (``initial.initial_deviation``) and each other,
+        then GALI's, each of norm 1 (``initial.extra_deviations``)."""
+        N, seed = problem.N, self.deviation_seed + int(lane)
         spectrum = orthonormalised(np.concatenate(initial_deviation(N, seed)),
                                    np.hstack(extra_deviations(N, seed, problem.spectrum - 1, 1)))
         gali = np.hstack(extra_deviations(N, seed, problem.gali - 1, 2))

@@ -13,7 +13,7 @@ import numpy as np
 from chainchaos.output.formatting import tex_number, tex_parameter
 from chainchaos.paper.claims import quantities as q
 from chainchaos.paper.claims.framework import Inputs, Measurement
-from chainchaos.studies.scan.thresholds import always_above, criterion_holds, first_energy, switches
+from chainchaos.studies.scan.thresholds import always_above, criterion_holds, first_energy, reads_gali, switches
 
 
 def _alphas_from(inputs: Inputs, alpha_min: float) -> list[float]:
@@ -262,7 +262,7 @@ def scan_always(inputs: Inputs, scan: str, model: str, key: str, H: float) -> Me
     star = always_above(E, flag)
     holds_above = bool(flag[above].all()) if above.any() else None
     split = ""
-    if key == "chaotic" and _reads_gali(inputs.scenes[scan], model):
+    if key == "chaotic" and reads_gali(inputs.scenes[scan], model):
         _, by_gali = _scan_flags(inputs, scan, model, "chaotic_gali")
         holds_gali = bool(by_gali[above].all()) if above.any() else None
         if holds_gali is not None and holds_gali != holds_above:
@@ -276,10 +276,6 @@ def scan_always(inputs: Inputs, scan: str, model: str, key: str, H: float) -> Me
                         "above": int(above.sum()), "failing": E[above & ~flag]},
                        case="" if np.isfinite(star) else "nowhere", decided=holds_above is not None, split=split)
 
-
-def _reads_gali(ds, model: str) -> bool:
-    """The scan judged ``model``'s runs by GALI_k too."""
-    return "chaotic_gali" in ds and bool((ds["chaotic_gali"].sel(model=model).values >= 0).any())
 
 
 def scan_onset(inputs: Inputs, scan: str, model: str, key: str, high: float) -> Measurement:

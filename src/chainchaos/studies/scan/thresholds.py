@@ -47,6 +47,11 @@ def criterion_holds(ds: xr.Dataset, model: str, key: str) -> np.ndarray:
     return (ds[key].sel(model=model).values == 1) & (ds["valid"].sel(model=model).values == 1)
 
 
+def reads_gali(ds: xr.Dataset, model: str) -> bool:
+    """The scan judged ``model``'s runs by GALI_k too (``chaotic_gali`` is -1 without it)."""
+    return "chaotic_gali" in ds and bool((ds["chaotic_gali"].sel(model=model).values >= 0).any())
+
+
 def thresholds_table(ds: xr.Dataset) -> list[dict]:
     """Per model and criterion: the lowest grid energy where it holds, the lowest energy above
     which it holds at every grid energy, the fraction of grid energies where it holds, the
@@ -55,7 +60,7 @@ def thresholds_table(ds: xr.Dataset) -> list[dict]:
     E = ds.energy.values
     for m in ds.model.values:
         criteria = [("delocalization", "delocalized", "delocalization"), ("chaos", "chaotic", "chaos")]
-        if "chaotic_gali" in ds and (ds["chaotic_gali"].sel(model=m).values >= 0).any():
+        if reads_gali(ds, m):
             criteria.append(("chaos by GALI", "chaotic_gali", "chaos"))
         for what, key, paper in criteria:
             flag = criterion_holds(ds, m, key)

@@ -17,8 +17,8 @@ def lyapunov_spectrum(inputs, outputs, params, wildcards) -> None:
     scene = statements.statement_scenes()[wildcards["scene"]]
     settings = OrbitSettings.from_config({**block["settings"], "exponents": 0})
 
-    def report(t, fraction):
-        print(f"[spectrum {wildcards['scene']}] t = {t:.4g} ({100 * fraction:.0f}%)", file=sys.stderr, flush=True)
+    def report(done, total):
+        print(f"[spectrum {wildcards['scene']}] {done}/{total} orbits", file=sys.stderr, flush=True)
 
     ds = scene_spectra(read_chain(inputs["chain"]), scene.model, scene.energy, int(params["site"]), settings,
                        int(block["lanes"]), report)
