@@ -3,7 +3,7 @@ macros: the settings, and per scene lambda_1, h_KS and how well the exponents pa
 
 import numpy as np
 
-from chainchaos.output.formatting import tex_math, tex_parameter
+from chainchaos.output.formatting import tex_math, tex_number, tex_parameter
 from chainchaos.system.models import model_label
 
 
@@ -15,8 +15,8 @@ def pairing_error(final: np.ndarray) -> float:
 
 def spectra_macros(spectra: dict) -> dict[str, str]:
     """Macros ``spectra.*`` from the spectrum files (scene name -> Dataset): ``exponents``,
-    ``lanes``, ``tfinal``, ``dt`` and ``summary``, a sentence per scene with the median over the
-    orbits of lambda_1, of h_KS, of the number of positive exponents, and the pairing error."""
+    ``lanes``, ``tfinal``, ``dt`` and ``summary``, a sentence with per scene the median over the
+    orbits of lambda_1 and of h_KS and the largest pairing error of its orbits."""
     first = next(iter(spectra.values()))
     out = {"spectra.exponents": str(first.sizes["exponent"]), "spectra.lanes": str(first.sizes["lane"]),
            "spectra.tfinal": tex_parameter(first.attrs["t_final"]), "spectra.dt": tex_parameter(first.attrs["dt"])}
@@ -27,9 +27,9 @@ def spectra_macros(spectra: dict) -> dict[str, str]:
         ks = float(np.median(ds["ks_entropy"].isel(time=-1).values))
         pairing = max(pairing_error(f) for f in final)
         parts.append(f"{model_label(ds.attrs['model'])} $H = {tex_parameter(ds.attrs['energy'])}$ has "
-                     f"$\\lambda_1 = {tex_math(lam1)[1:-1]}$ and $h_\\mathrm{{KS}} = {tex_math(ks)[1:-1]}$ "
-                     f"(medians over its orbits; every $|\\lambda_i + \\lambda_{{2N+1-i}}|$ is at most "
-                     f"{tex_math(100 * pairing, 2)}\\,\\% of $\\lambda_1$: finite-time exponents pair up to "
-                     f"$O(1/t)$)")
-    out["spectra.summary"] = "At the end of the run " + "; ".join(parts) + "."
+                     f"$\\lambda_1 = {tex_number(lam1)}$ and $h_\\mathrm{{KS}} = {tex_number(ks)}$, and "
+                     f"every $|\\lambda_i + \\lambda_{{2N+1-i}}|$ is at most {tex_math(100 * pairing, 2)}\\,\\% "
+                     f"of its $\\lambda_1$")
+    out["spectra.summary"] = ("At the end of the run (medians over the orbits) " + "; ".join(parts)
+                              + ": finite-time exponents pair up to $O(1/t)$.")
     return out
