@@ -10,7 +10,7 @@ import xarray as xr
 
 from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
-from chainchaos.paper.verdicts import HOLDS
+from chainchaos.paper.verdicts import HOLDS, NOT_READ, UNDECIDED
 from chainchaos.studies.numerics import bench
 from chainchaos.studies.search import joint, report
 from chainchaos.system.chain import random_chain
@@ -47,6 +47,31 @@ def test_the_search_numbers_are_those_of_the_file(search_results):
     for model in energy_scan.model.values:
         for key in ("deloc", "chaos"):
             assert macros[f"search.{model}.{key}.sentence"][0].isupper()
+
+
+def test_the_merged_search_keeps_both_indicators_and_is_undecided_where_they_differ(search_results):
+    search = search_results[0]
+    scored = search["scored"].values == 1
+    lam, gali, both = (search[key].values[scored] for key in ("verdict_lambda", "verdict_gali", "verdict"))
+    read = gali != NOT_READ
+    assert read.any(), "the quick search judges chaos by GALI_k too"
+    assert (both[read & (lam != gali)] == UNDECIDED).all()
+    assert (both[read & (lam == gali)] == lam[read & (lam == gali)]).all()
+    assert (both[~read] == lam[~read]).all()
+
+
+def test_the_indicator_sentence_counts_the_pairs_on_which_lambda_and_gali_differ():
+    verdicts = {"verdict_lambda": [[1, 0, 1], [1, 1, 0], [0, 0, 0]],
+                "verdict_gali": [[1, 1, NOT_READ], [0, NOT_READ, NOT_READ], [1, 1, 1]]}
+    population = xr.Dataset({key: (("candidate", "statement"), np.array(v, dtype=np.int8))
+                             for key, v in verdicts.items()} | {"scored": ("candidate", np.array([1, 1, 0]))},
+                            attrs={"gali_order": 4})
+    sentence = report.indicator_sentence(population)
+    assert "on 2 of the 3 (candidate, statement) pairs" in sentence and "on 2 candidates" in sentence
+    assert "GALI$_{4}$" in sentence and "2 scored candidates" in sentence
+    population["verdict_gali"][:] = NOT_READ
+    assert "alone" in report.indicator_sentence(population)
+    assert "alone" in report.indicator_sentence(population.drop_vars(["verdict_gali", "verdict_lambda"]))
 
 
 def test_the_search_figure_shows_every_statement_and_boxes_the_chosen_chain(search_results, tmp_path):

@@ -13,7 +13,7 @@ import xarray as xr
 from chainchaos.output.formatting import tex_number, tex_parameter
 from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
-from chainchaos.paper.verdicts import VERDICT_NAMES, verdict_code
+from chainchaos.paper.verdicts import NOT_READ, VERDICT_NAMES, verdict_code
 from chainchaos.studies.scan.merge import probability_at
 from chainchaos.studies.scan.thresholds import criterion_holds, first_energy
 from chainchaos.studies.search.joint import (
@@ -128,6 +128,23 @@ def threshold_quantiles(energy_scan: xr.Dataset, disorder: xr.Dataset) -> dict:
     return out
 
 
+def indicator_sentence(population: xr.Dataset) -> str:
+    """How often Λ and GALI_k give the scored candidates different ensemble verdicts (each such
+    verdict is undecided), or that the population was scored by Λ alone (an archive written before
+    GALI_k joined)."""
+    scored = population["scored"].values == 1
+    if "verdict_gali" not in population or (population["verdict_gali"].values[scored] == NOT_READ).all():
+        return "The scores were decided by $\\Lambda$ alone."
+    lam, gali = (population[key].values[scored] for key in ("verdict_lambda", "verdict_gali"))
+    read = gali != NOT_READ
+    differ = read & (lam != gali)
+    k, n = population.attrs.get("gali_order", "k"), int(differ.any(axis=1).sum())
+    return (f"On the {int(scored.sum())} scored candidates, $\\Lambda$ and GALI$_{{{k}}}$ give different "
+            f"ensemble verdicts on {int(differ.sum())} of the {int(read.sum())} (candidate, statement) pairs "
+            f"that GALI$_{{{k}}}$ judges, on {n} candidate{'' if n == 1 else 's'}: each such verdict is "
+            f"undecided, and an orbit counts towards a score only where both say the statement holds.")
+
+
 def search_macros(population: xr.Dataset, search: xr.Dataset, verdicts: dict, energy_scan: xr.Dataset,
                   disorder: xr.Dataset, criteria: Criteria) -> dict[str, str]:
     """The search's numbers in the text: the population's counts and choice, this build's re-score,
@@ -159,6 +176,7 @@ def search_macros(population: xr.Dataset, search: xr.Dataset, verdicts: dict, en
         "search.allheld": str(int((held == int(a["n_statements"])).sum())),
         "search.rescoretfinal": tex_parameter(search.attrs["t_final"]),
         "search.rescorelanes": str(int(search.attrs["lanes"])),
+        "search.indicators.sentence": indicator_sentence(population),
     }
     out.update(_joint_macros(population, criteria))
     if archived:

@@ -242,6 +242,19 @@ def chain_score(fraction: np.ndarray) -> float:
     return float(np.nansum(fraction))
 
 
+_FLAGS = np.array([-3, -2, -1, 0, 1], dtype=np.int8)
+#: Attributes of the merged search's per-indicator fractions and verdicts (candidate, statement).
+INDICATOR_ATTRS = {
+    "fraction_lambda": {"units": "1", "long_name": "stage 2: fraction of the lanes that satisfy the statement by Lambda"},
+    "fraction_gali": {"units": "1", "long_name": "stage 2: fraction of the lanes that satisfy the statement by GALI_k",
+                      "comment": "NaN: not scored, or a statement GALI_k does not decide"},
+    "verdict_lambda": {"long_name": "stage 2 ensemble verdict by Lambda", "flag_values": _FLAGS,
+                       "flag_meanings": "not_scored not_testable undecided fails holds"},
+    "verdict_gali": {"long_name": "stage 2 ensemble verdict by GALI_k", "flag_values": _FLAGS,
+                     "flag_meanings": "not_scored_or_not_read not_testable undecided fails holds"},
+}
+
+
 def merge(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSettings, criteria: Criteria,
           found: xr.Dataset, filter_groups: list[xr.Dataset], scores: list[xr.Dataset]) -> xr.Dataset:
     """The search as one Dataset: the candidates (``found``, from :func:`candidates`), every
@@ -255,6 +268,10 @@ def merge(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSetting
         filt[g["candidate"].values] = g["outcome"].values
     frac = np.full((C, S), np.nan)
     verdict = np.full((C, S), -3, dtype=np.int8)
+    # per indicator (a score written before GALI_k joined: its fraction and verdict are Λ's, GALI_k not read)
+    by_indicator = {"fraction_lambda": np.full((C, S), np.nan), "fraction_gali": np.full((C, S), np.nan),
+                    "verdict_lambda": np.full((C, S), -3, dtype=np.int8),
+                    "verdict_gali": np.full((C, S), -3, dtype=np.int8)}
     median = np.full((C, S), np.nan)
     score = np.full(C, np.nan)
     holds = np.zeros(C, dtype=np.int32)
@@ -262,6 +279,11 @@ def merge(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSetting
     for s in scores:
         c = int(s.attrs["candidate"])
         frac[c], verdict[c] = s["fraction"].values, s["verdict"].values
+        for key, array in by_indicator.items():
+            if key in s:
+                array[c] = s[key].values
+            elif key.endswith("_lambda"):
+                array[c] = s[key.removesuffix("_lambda")].values
         values = s["measured"].values
         finite = np.isfinite(values)
         median[c] = [np.median(v[f]) if f.any() else np.nan for v, f in zip(values, finite)]
@@ -281,8 +303,9 @@ def merge(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSetting
         "fraction": (("candidate", "statement"), frac, {
             "units": "1", "long_name": "stage 2: fraction of the lanes that satisfy the statement"}),
         "verdict": (("candidate", "statement"), verdict, {
-            "long_name": "stage 2 ensemble verdict", "flag_values": np.array([-3, -2, -1, 0, 1], dtype=np.int8),
+            "long_name": "stage 2 ensemble verdict (undecided where the indicators disagree)", "flag_values": _FLAGS,
             "flag_meanings": "not_scored not_testable undecided fails holds"}),
+        **{key: (("candidate", "statement"), array, INDICATOR_ATTRS[key]) for key, array in by_indicator.items()},
         "measured_median": (("candidate", "statement"), median, {
             "long_name": "stage 2: median over the lanes of the statement's measured value"}),
         "score": ("candidate", score, {"units": "1", "long_name": "sum over statements of the fraction satisfied"}),
@@ -300,6 +323,7 @@ def merge(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSetting
         n_statements=int(S), filter_t_final=float(plan.filter_t_final), t_final=float(settings.t_final),
         dt=float(settings.dt), integrator=settings.integrator, lanes=int(plan.lanes),
         perturbation=float(settings.perturbation), agreement=float(criteria.agreement),
+        gali_order=int(settings.gali_order) if settings.alignment else 0,
         seeds_scanned=int(selection.n_seeds), alpha=float(selection.alpha),
         n_qualifying=int(found.attrs["n_qualifying"]),
     )
