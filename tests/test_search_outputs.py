@@ -28,13 +28,19 @@ def search_results(quick):
 def test_the_search_table_has_a_row_per_statement_with_its_counts(search_results):
     search, verdicts, _, _ = search_results
     tex = report.search_table_tex(search, search, verdicts)
-    rows = re.findall(r"\\texttt\{([^}]+)\} & (\d+)/(\d+) & (\d+)/(\d+) &", tex)
+    rows = re.findall(r"\\texttt\{([^}]+)\} & (\d+)/(\d+) & (\d+)/(\d+)(?: \((\d+), (\d+)\))? &", tex)
     assert [r[0] for r in rows] == [s.id for s in statements.STATEMENTS]
     scored = search["scored"].values == 1
-    for sid, unbroken, n_c, held, n_s in rows:
+    for sid, unbroken, n_c, held, n_s, by_lambda, by_gali in rows:
         assert int(n_c) == search.sizes["candidate"] and int(n_s) == scored.sum()
         assert int(unbroken) == (search["filter_outcome"].sel(statement=sid).values != 0).sum()
         assert int(held) == (search["verdict"].sel(statement=sid).values[scored] == HOLDS).sum()
+        gali = search["verdict_gali"].sel(statement=sid).values[scored]
+        assert bool(by_gali) == (gali != NOT_READ).any()
+        if by_gali:  # a chaos statement: each indicator's count, and both hold where it holds
+            assert int(by_lambda) == (search["verdict_lambda"].sel(statement=sid).values[scored] == HOLDS).sum()
+            assert int(by_gali) == (gali == HOLDS).sum()
+            assert int(held) <= min(int(by_lambda), int(by_gali))
 
 
 def test_the_search_numbers_are_those_of_the_file(search_results):

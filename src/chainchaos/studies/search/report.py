@@ -13,7 +13,7 @@ import xarray as xr
 from chainchaos.output.formatting import tex_number, tex_parameter
 from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
-from chainchaos.paper.verdicts import NOT_READ, VERDICT_NAMES, verdict_code
+from chainchaos.paper.verdicts import HOLDS, NOT_READ, VERDICT_NAMES, verdict_code
 from chainchaos.studies.scan.merge import probability_at
 from chainchaos.studies.scan.thresholds import criterion_holds, first_energy
 from chainchaos.studies.search.joint import (
@@ -30,6 +30,7 @@ def _statement_rows(population: xr.Dataset, search: xr.Dataset, verdicts: dict) 
     not_broken = dict(zip(ids, unbroken_counts(population)))
     held = dict(zip(ids, held_counts(population)))
     chosen = int(search.attrs["chosen_candidate"])
+    by_indicator = indicator_held_counts(population)
     rows = []
     for st in statements.STATEMENTS:
         i = st.id
@@ -38,6 +39,7 @@ def _statement_rows(population: xr.Dataset, search: xr.Dataset, verdicts: dict) 
             "id": i,
             "not_broken": int(not_broken[i]),
             "held": int(held[i]),
+            "held_by": by_indicator.get(i),
             "search_fraction": float(search["fraction"].sel(statement=i).values[chosen]),
             "fraction": float(v["fraction"].sel(statement=i)) if v is not None else float("nan"),
             "lanes": int(v["n_decided"].sel(statement=i)) if v is not None else 0,
@@ -45,6 +47,17 @@ def _statement_rows(population: xr.Dataset, search: xr.Dataset, verdicts: dict) 
         }
         rows.append(row)
     return rows
+
+
+def indicator_held_counts(population: xr.Dataset) -> dict[str, tuple[int, int]]:
+    """Per statement that GALI_k judges on some scored candidate: on how many scored candidates it
+    holds by Λ and by GALI_k (empty for a population scored by Λ alone)."""
+    if "verdict_gali" not in population:
+        return {}
+    scored = population["scored"].values == 1
+    lam, gali = (population[key].values[scored] for key in ("verdict_lambda", "verdict_gali"))
+    return {str(i): (int((lam[:, s] == HOLDS).sum()), int((gali[:, s] == HOLDS).sum()))
+            for s, i in enumerate(population.statement.values) if (gali[:, s] != NOT_READ).any()}
 
 
 def step_agreement(search: xr.Dataset, verdicts: dict, agreement: float) -> tuple[int, int]:
@@ -72,7 +85,8 @@ def search_table_tex(population: xr.Dataset, search: xr.Dataset, verdicts: dict)
         (r"\caption{\label{tab:search}The realization search, statement by statement: of the "
          f"{n_c} candidates, how many short runs (to "
          f"$t = {tex_parameter(population.attrs['filter_t_final'])}$) leave the "
-         f"statement unbroken; of the {n_s} candidates scored on ensembles, on how many it holds; on the "
+         f"statement unbroken; of the {n_s} candidates scored on ensembles, on how many it holds (for chaos "
+         r"by $\Lambda$ and GALI together; in brackets, by each alone); on the "
          r"chosen chain, the fraction of perturbed orbits satisfying it at the search's step "
          f"($\\Delta t = {tex_parameter(search.attrs['dt'])}$) and at the verdicts' step, with that verdict.}}\\\\"),
         r"\hline\hline",
@@ -86,7 +100,8 @@ def search_table_tex(population: xr.Dataset, search: xr.Dataset, verdicts: dict)
     for r in _statement_rows(population, search, verdicts):
         verdict_cell = (f"${tex_number(r['fraction'], 2)}$ of {r['lanes']}, {r['verdict']}" if r["lanes"]
                         else r["verdict"])
-        lines.append(f"\\texttt{{{r['id']}}} & {r['not_broken']}/{n_c} & {r['held']}/{n_s} & "
+        by = f" ({r['held_by'][0]}, {r['held_by'][1]})" if r["held_by"] else ""
+        lines.append(f"\\texttt{{{r['id']}}} & {r['not_broken']}/{n_c} & {r['held']}/{n_s}{by} & "
                      f"${tex_number(r['search_fraction'], 2)}$ & {verdict_cell}\\\\")
     lines += [r"\end{longtable}", r"\endgroup", ""]
     return "\n".join(lines)
