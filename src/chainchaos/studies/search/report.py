@@ -160,6 +160,12 @@ def indicator_sentence(population: xr.Dataset) -> str:
             f"undecided, and an orbit counts towards a score only where both say the statement holds.")
 
 
+def _commits(stage_commits: str) -> str:
+    """The commits of an archive's stage files in words: 'commit X' or 'commits X, Y' (short hashes)."""
+    commits = [c.strip()[:7] for c in stage_commits.split(";") if c.strip()]
+    return ("commit " if len(commits) == 1 else "commits ") + ", ".join(f"\\texttt{{{c}}}" for c in commits)
+
+
 def search_macros(population: xr.Dataset, search: xr.Dataset, verdicts: dict, energy_scan: xr.Dataset,
                   disorder: xr.Dataset, criteria: Criteria) -> dict[str, str]:
     """The search's numbers in the text: the population's counts and choice, this build's re-score,
@@ -198,7 +204,7 @@ def search_macros(population: xr.Dataset, search: xr.Dataset, verdicts: dict, en
         out.update({"search.cost.cpuhours": tex_number(a["cost_total_cpu_seconds"] / 3600, 2),
                     "search.cost.jobs": str(int(a["cost_total_jobs"])),
                     "search.cost.cpu": str(a["stage_cpus"]).replace("_", "\\_"),
-                    "search.cost.commit": str(a["stage_commits"])[:12]})
+                    "search.cost.commit": _commits(str(a["stage_commits"]))})
     same, total = step_agreement(search, verdicts, agreement)
     out["search.stepsame"], out["search.steptotal"] = str(same), str(total)
     any_v = next(iter(verdicts.values()), None)
