@@ -280,7 +280,7 @@ def criteria_attrs(settings: ScanSettings) -> dict:
         "chaos_slope": float(settings.chaos_slope),
         "chaos_growth_margin": float(settings.chaos_growth_margin),
         "onset_hold_decades": float(settings.onset_hold_decades),
-        "gali_order": int(settings.gali_order) if settings.alignment else 0,
+        "gali_order": settings.judged_gali_order,
         "gali_threshold": float(settings.gali_threshold),
         "delocalization_criterion": (f"delocalized if the time average of P over the last decade "
                                      f"(t >= t_final/10) exceeds p_delocalized = {settings.p_delocalized:g}"),

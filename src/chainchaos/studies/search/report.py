@@ -49,13 +49,22 @@ def _statement_rows(population: xr.Dataset, search: xr.Dataset, verdicts: dict) 
     return rows
 
 
+def _scored_verdicts(population: xr.Dataset):
+    """The scored candidates' ensemble verdicts (candidate, statement) by Λ and by GALI_k, or None
+    for a population scored by Λ alone (an archive written before GALI_k joined)."""
+    scored = population["scored"].values == 1
+    if "verdict_gali" not in population or (population["verdict_gali"].values[scored] == NOT_READ).all():
+        return None
+    return tuple(population[key].values[scored] for key in ("verdict_lambda", "verdict_gali"))
+
+
 def indicator_held_counts(population: xr.Dataset) -> dict[str, tuple[int, int]]:
     """Per statement that GALI_k judges on some scored candidate: on how many scored candidates it
     holds by Λ and by GALI_k (empty for a population scored by Λ alone)."""
-    if "verdict_gali" not in population:
+    verdicts = _scored_verdicts(population)
+    if verdicts is None:
         return {}
-    scored = population["scored"].values == 1
-    lam, gali = (population[key].values[scored] for key in ("verdict_lambda", "verdict_gali"))
+    lam, gali = verdicts
     return {str(i): (int((lam[:, s] == HOLDS).sum()), int((gali[:, s] == HOLDS).sum()))
             for s, i in enumerate(population.statement.values) if (gali[:, s] != NOT_READ).any()}
 
@@ -147,14 +156,14 @@ def indicator_sentence(population: xr.Dataset) -> str:
     """How often Λ and GALI_k give the scored candidates different ensemble verdicts (each such
     verdict is undecided), or that the population was scored by Λ alone (an archive written before
     GALI_k joined)."""
-    scored = population["scored"].values == 1
-    if "verdict_gali" not in population or (population["verdict_gali"].values[scored] == NOT_READ).all():
+    verdicts = _scored_verdicts(population)
+    if verdicts is None:
         return "The scores were decided by $\\Lambda$ alone."
-    lam, gali = (population[key].values[scored] for key in ("verdict_lambda", "verdict_gali"))
+    lam, gali = verdicts
     read = gali != NOT_READ
     differ = read & (lam != gali)
     k, n = population.attrs.get("gali_order", "k"), int(differ.any(axis=1).sum())
-    return (f"On the {int(scored.sum())} scored candidates, $\\Lambda$ and GALI$_{{{k}}}$ give different "
+    return (f"On the {len(lam)} scored candidates, $\\Lambda$ and GALI$_{{{k}}}$ give different "
             f"ensemble verdicts on {int(differ.sum())} of the {int(read.sum())} (candidate, statement) pairs "
             f"that GALI$_{{{k}}}$ judges, on {n} candidate{'' if n == 1 else 's'}: each such verdict is "
             f"undecided, and an orbit counts towards a score only where both say the statement holds.")

@@ -323,7 +323,7 @@ def merge(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSetting
         n_statements=int(S), filter_t_final=float(plan.filter_t_final), t_final=float(settings.t_final),
         dt=float(settings.dt), integrator=settings.integrator, lanes=int(plan.lanes),
         perturbation=float(settings.perturbation), agreement=float(criteria.agreement),
-        gali_order=int(settings.gali_order) if settings.alignment else 0,
+        gali_order=settings.judged_gali_order,
         seeds_scanned=int(selection.n_seeds), alpha=float(selection.alpha),
         n_qualifying=int(found.attrs["n_qualifying"]),
     )
