@@ -10,6 +10,7 @@ onset against its level.
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.patches import Rectangle
+from matplotlib.ticker import MaxNLocator
 
 from chainchaos.output.plotting.style import PAGE_WIDTH, context, save_figure
 from chainchaos.paper.criteria import Tolerances
@@ -88,6 +89,7 @@ def _score_panel(ax, joint, n_statements: int):
                label=f"chosen ({joint.at_least_as_good()} of {joint.n_scored} score as high)")
     ax.set_xlabel("score (expected statements satisfied by one orbit)")
     ax.set_ylabel("scored candidates")
+    ax.yaxis.set_major_locator(MaxNLocator(integer=True))  # counts of candidates
     ax.set_xlim(0, n_statements)
     ax.legend(fontsize=5.5, loc="upper left")
     ax.set_title("(b) scores", fontsize=6.5)
