@@ -166,6 +166,15 @@ def search_block(name):
     return block
 
 
+def chosen_search():
+    """The search file the chosen chain is read from: the archived full search when `all` pins
+    its choice (the chain is then known before any job runs, and the pinned re-score runs beside
+    the rest), else this run's search."""
+    if config["search"].get("pinned_seed") is None and search_archive():
+        return search_archive()
+    return result("search", "search.nc")
+
+
 def search_chain(name):
     """The chain block of a search: the full search scans search_full.n_seeds seeds."""
     if name != "search_full":

@@ -25,7 +25,8 @@ def compute_ensemble(inputs, outputs, params, wildcards) -> None:
 
 
 def select_chain(inputs, outputs, params, wildcards) -> None:
-    """The chain file of the realization the search chose (or the pinned seed)."""
+    """The chain file of the realization a search chose (the archived full search's, this run's
+    or the pinned seed), with that search's record of the choice."""
     selection = selection_criteria(params)
     found = xr.load_dataset(inputs["search"])
     seed = int(found.attrs["chosen_seed"])
@@ -35,7 +36,7 @@ def select_chain(inputs, outputs, params, wildcards) -> None:
     record = {
         "selection_seed": seed,
         "selection_candidates": int(found.attrs["n_qualifying"]),
-        "selection_seeds_scanned": selection.n_seeds,
+        "selection_seeds_scanned": int(found.attrs.get("seeds_scanned", selection.n_seeds)),
         "selection_mode": selection.mode,
         "selection_site": selection.site,
         "selection_linear_rule": int(passes),
