@@ -23,6 +23,7 @@ rule compile_kernels:
         log_file("compile_kernels"),
     benchmark:
         benchmark_file("compile_kernels")
+    priority: 20  # every integration waits for it: before the plots that need no kernels
     resources:
         mem_mb=2000,
         runtime=15,
