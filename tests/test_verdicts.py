@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from chainchaos import random_chain
+from chainchaos.errors import ParameterError
 from chainchaos.observe.reductions import final_average, is_chaotic, loglog_slope, sustained_onset, time_average
 from chainchaos.paper import statements, verdicts
 from chainchaos.paper.criteria import Criteria
@@ -66,6 +67,13 @@ def test_a_spreading_hertz_orbit_is_chaotic(chain):
     t, L = ds.time.values, ds.mlce.values
     assert is_chaotic(t, t * L)
     assert loglog_slope(t, L, 1e3, 1e4) > -0.3
+
+
+@pytest.mark.parametrize("key, value", [("final_samples", -1), ("perturbation", 1e-2),
+                                        ("perturbation", -1e-9), ("perturbation", float("nan"))])
+def test_orbit_settings_name_a_bad_sample_count_or_perturbation(key, value):
+    with pytest.raises(ParameterError, match=f"invalid {key} = "):
+        OrbitSettings(t_final=10.0, dt=0.05, **{key: value})
 
 
 def test_lanes_perturb_u0_at_the_set_level_and_lane_zero_is_the_scene(chain):

@@ -80,14 +80,14 @@ class OrbitSettings(RunSettings):
                     "true or false; true only with engine 'batch' (extra deviation vectors run in SIMD blocks)")
         require(self.engine in ("batch", "single"), "engine", self.engine, "'batch' or 'single'")
         require(int(self.batch_size) >= 1, "batch_size", self.batch_size, ">= 1")
+        require(int(self.final_samples) >= 0, "final_samples", self.final_samples, "an integer >= 0")
+        require(np.isfinite(self.perturbation) and 0 <= self.perturbation < 1e-3, "perturbation",
+                self.perturbation, "0 <= perturbation < 1e-3 (a relative change of u0)")
 
     @property
     def judged_gali_order(self) -> int:
         """k of the GALI_k that judges chaos beside Λ, as result files state it (0: Λ alone)."""
         return int(self.gali_order) if self.alignment else 0
-        require(int(self.final_samples) >= 0, "final_samples", self.final_samples, "an integer >= 0")
-        require(np.isfinite(self.perturbation) and 0 <= self.perturbation < 1e-3, "perturbation",
-                self.perturbation, "0 <= perturbation < 1e-3 (a relative change of u0)")
 
     @classmethod
     def from_config(cls, block: dict):
