@@ -155,14 +155,20 @@ def search_archive():
     return SEARCH_ARCHIVE if SEARCH_ARCHIVE and os.path.exists(SEARCH_ARCHIVE) else None
 
 
+def archive_pins():
+    """The archived full search when `all` pins its choice (it exists and no seed is pinned
+    explicitly), else None."""
+    return search_archive() if config["search"].get("pinned_seed") is None else None
+
+
 def search_block(name):
     """The config of a search: block `search` (its seed pinned to the archive's choice when it
     pins none), or block `search_full` with the orbit settings of `search`."""
     if name == "search_full":
         return {**config["search_full"], "settings": config["search"]["settings"]}
     block = {k: v for k, v in config["search"].items() if k != "archive"}
-    if block.get("pinned_seed") is None and search_archive():
-        block["pinned_seed"] = archive.chosen_seed(search_archive())
+    if archive_pins():
+        block["pinned_seed"] = archive.chosen_seed(archive_pins())
     return block
 
 
@@ -170,9 +176,7 @@ def chosen_search():
     """The search file the chosen chain is read from: the archived full search when `all` pins
     its choice (the chain is then known before any job runs, and the pinned re-score runs beside
     the rest), else this run's search."""
-    if config["search"].get("pinned_seed") is None and search_archive():
-        return search_archive()
-    return result("search", "search.nc")
+    return archive_pins() or result("search", "search.nc")
 
 
 def search_chain(name):
