@@ -166,37 +166,64 @@ def _vector_base(N, j):
     return j * (N + 2) * VROW
 
 
+#: Extra deviation vectors advanced together by one pass over the bonds: they share its loads of
+#: the inverse masses and stiffnesses, which leaves the stores of dq and dp as the pass's limit.
+VECTOR_GROUP = 3
+
+
+@njit(cache=True, inline="always")
+def _vector_bond(V, vector, b, N, drift, kick, a_im, stiffness, c, wall, dq_left, g_left, dp_left):
+    """Iteration b of a pass over the bonds for one extra deviation vector starting at ``vector``:
+    drift(a) of bead b (dq += a M^-1 dp with its dp before the kick; ``a_im`` = a M^-1 of the
+    bead), the tangent force g_b = k_b (dq_{b-1} - dq_b) of bond b and kick(c) of bead b-1, whose
+    dp (``dp_left``, loaded by the iteration before) is stored kicked; bead N is the right
+    ``wall`` (zero). Returns (dq_b, g_b, dp_b) for iteration b+1."""
+    if b < N:
+        dp = vload(V, vector + b * VROW + _VP)
+        dq = vload(V, vector + (b + 1) * VROW + _VQ)
+        if drift:
+            dq = dq + a_im * dp
+            vstore(V, vector + (b + 1) * VROW + _VQ, dq)
+    else:
+        dp = dq = wall
+    g = g_left
+    if kick:
+        g = stiffness * (dq_left - dq)
+        if b >= 1:
+            vstore(V, vector + (b - 1) * VROW + _VP, dp_left + c * (g_left - g))
+    return dq, g, dp
+
+
 @njit(cache=True, error_model="numpy")
 def _drift_kick_vectors(N, Z, V, extra, drift, kick, a, c):
     """drift(a) (if ``drift``) then kick(c) (if ``kick``) of the ``extra`` deviation vectors in V
     with the inverse masses and the stiffnesses stored in the block Z (the orbit's sweep stored
     them at the drifted positions): per lane and element the operations of ``_sweep`` on the
     block's own deviation vector, dq += a M^-1 dp, g_b = k_b (dq_{b-1} - dq_b),
-    dp += c (g_b - g_{b+1}), so a vector equal to it stays equal to it, to the bit. One pass per
-    vector: iteration b drifts bead b, computes bond b (beads b-1 and b, both drifted) and kicks
-    bead b-1 (whose drift used its momentum before the kick)."""
+    dp += c (g_b - g_{b+1}), so a vector equal to it stays equal to it, to the bit. The vectors go
+    by groups of ``VECTOR_GROUP``, one pass over the bonds per group (the last ones one by one);
+    iteration b drifts bead b, computes bond b (beads b-1 and b, both drifted) and kicks bead
+    b-1 (whose drift used its momentum before the kick)."""
     literally(drift)
     literally(kick)
     wall = vload(V, _VQ)  # row 0 of vector 0: a wall, zero
-    for j in range(extra):
-        base = _vector_base(N, j)
-        dq_left = wall
-        g_left = wall
+    grouped = extra - extra % VECTOR_GROUP
+    for j in range(0, grouped, VECTOR_GROUP):
+        v0, v1, v2 = _vector_base(N, j), _vector_base(N, j + 1), _vector_base(N, j + 2)
+        q0 = g0 = p0 = q1 = g1 = p1 = q2 = g2 = p2 = wall
         for b in range(N + 1):
-            if b < N:
-                dq_right = vload(V, base + (b + 1) * VROW + _VQ)
-                if drift:
-                    dq_right = dq_right + a * vload(Z, b * ROW + _IM) * vload(V, base + b * VROW + _VP)
-                    vstore(V, base + (b + 1) * VROW + _VQ, dq_right)
-            else:
-                dq_right = wall
-            if kick:
-                g = vload(Z, b * ROW + _K) * (dq_left - dq_right)
-                if b >= 1:
-                    row = base + (b - 1) * VROW + _VP
-                    vstore(V, row, vload(V, row) + c * (g_left - g))
-                g_left = g
-            dq_left = dq_right
+            a_im = a * vload(Z, b * ROW + _IM)  # row N: zero
+            k = vload(Z, b * ROW + _K) if kick else wall
+            q0, g0, p0 = _vector_bond(V, v0, b, N, drift, kick, a_im, k, c, wall, q0, g0, p0)
+            q1, g1, p1 = _vector_bond(V, v1, b, N, drift, kick, a_im, k, c, wall, q1, g1, p1)
+            q2, g2, p2 = _vector_bond(V, v2, b, N, drift, kick, a_im, k, c, wall, q2, g2, p2)
+    for j in range(grouped, extra):
+        v0 = _vector_base(N, j)
+        q0 = g0 = p0 = wall
+        for b in range(N + 1):
+            a_im = a * vload(Z, b * ROW + _IM)  # row N: zero
+            k = vload(Z, b * ROW + _K) if kick else wall
+            q0, g0, p0 = _vector_bond(V, v0, b, N, drift, kick, a_im, k, c, wall, q0, g0, p0)
 
 
 @njit(cache=True, error_model="numpy")
