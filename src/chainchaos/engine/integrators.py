@@ -172,6 +172,81 @@ def _row_offsets(L):
     return 0, R, 2 * R, 3 * R, 4 * R, 5 * R, 6 * R, 7 * R, 8 * R, 9 * R
 
 
+@njit(cache=True, inline="always")
+def _drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, n, a):
+    """(u, dq) of the beads of vector n, drifted by a if ``drift``: u += a M^-1 p, dq += a M^-1 dp."""
+    u = vload(Z, U + n)
+    dq = vload(Z, DQ + n)
+    if drift:
+        im = vload(Z, IM + n)
+        u = u + a * im * vload(Z, P + n)
+        vstore(Z, U + n, u)
+        if tangent:
+            dq = dq + a * im * vload(Z, DP + n)
+            vstore(Z, DQ + n, dq)
+    return u, dq
+
+
+@njit(cache=True, error_model="numpy")
+def _stage(model, tangent, drift, kick, keep_forces, L, Z, a, c):
+    """One pass over the vectors of the work buffer: (if ``drift``) drift(a) of every bead, then
+    (if ``kick``) the force and stiffness of every bond at the new positions (stored in F and K
+    with ``keep_forces``) and kick(c) of every bead. Iteration n drifts vector n+1, computes the bonds of vector n (bond b
+    joins U[b] and U[b+1], both drifted) and kicks vector n (bead i takes F[i-1] - F[i]), so the
+    vectors' work overlaps instead of making three passes that store what the next one loads.
+    Per element the operations of drift(a), the force law and kick(c), in that order:
+    dq_i += a dp_i / m_i, G_b = K_b (dq_b - dq_{b+1}), dp_i += c (G_{i-1} - G_i) for the tangent
+    map."""
+    literally(tangent)
+    literally(drift)
+    literally(kick)
+    literally(keep_forces)
+    U, DQ, P, DP, IM, F, K, B0, B1, B2 = _row_offsets(L)
+    u, dq = _drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, 0, a)
+    f_before = g_before = vload(Z, U + L)  # U[L:L+LANES], always zero
+    for b in range(0, L, LANES):
+        if b + LANES < L:
+            u_after, dq_after = _drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, b + LANES, a)
+        else:  # the vector past L: zero, never drifted
+            u_after, dq_after = vload(Z, U + L), vload(Z, DQ + L)
+        if kick:
+            bond = (vload(Z, B0 + b), vload(Z, B1 + b), vload(Z, B2 + b))
+            if tangent:
+                f, k = bond_force_stiffness(model, bond, u, vnext(u, u_after))
+            else:
+                f = k = bond_force(model, bond, u, vnext(u, u_after))
+            if keep_forces:
+                vstore(Z, F + b, f)
+                if tangent:
+                    vstore(Z, K + b, k)
+            vstore(Z, P + b, vload(Z, P + b) + c * (vprev(f_before, f) - f))
+            f_before = f
+            if tangent:
+                g = k * (dq - vnext(dq, dq_after))
+                vstore(Z, DP + b, vload(Z, DP + b) + c * (vprev(g_before, g) - g))
+                g_before = g
+        u, dq = u_after, dq_after
+
+
+@njit(cache=True, error_model="numpy")
+def _kick(tangent, L, Z, c):
+    """kick(c) of every bead with the stored forces F and stiffnesses K:
+    p_i += c (F_{i-1} - F_i);  dp_i += c (G_{i-1} - G_i), G_b = K_b (dq_b - dq_{b+1})."""
+    literally(tangent)
+    U, DQ, P, DP, IM, F, K, B0, B1, B2 = _row_offsets(L)
+    f_before = g_before = vload(Z, U + L)  # zero
+    dq = vload(Z, DQ)
+    for n in range(0, L, LANES):
+        f = vload(Z, F + n)
+        vstore(Z, P + n, vload(Z, P + n) + c * (vprev(f_before, f) - f))
+        f_before = f
+        if tangent:
+            dq_after = vload(Z, DQ + n + LANES)
+            g = vload(Z, K + n) * (dq - vnext(dq, dq_after))
+            vstore(Z, DP + n, vload(Z, DP + n) + c * (vprev(g_before, g) - g))
+            g_before, dq = g, dq_after
+
+
 @njit(cache=True, error_model="numpy")
 def _step_loop(model, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, gap_steps,
                diagnostics):
@@ -181,55 +256,36 @@ def _step_loop(model, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every,
     neighbour's values (U[b+1], F[i-1], ...) come from the vector before or after by a shuffle
     (``simd.vnext``, ``simd.vprev``), not from an unaligned load of data just stored. Padding
     beads (0 and N+1.. L-1) have zero inverse mass and never move (P[0] and P[N+1] collect the
-    walls' impulse, unused); padding bonds have zero parameters and carry no force. Per element
-    the operations are those of the scalar expressions, in the same order.
+    walls' impulse, unused); padding bonds have zero parameters and carry no force. A drift and
+    the kick after it are one pass (``_stage``); the forces of a step's last kick are stored, for
+    a kick that follows it without a drift (``_kick``) and for the caller. Per element the
+    operations are those of the scalar expressions, in the same order.
     """
     literally(tangent)
     U, DQ, P, DP, IM, F, K, B0, B1, B2 = _row_offsets(L)
-    zero = vload(Z, L)  # U[L:L+LANES], always zero
     n_stages = drifts.shape[0]
+    last_kick = -1  # the last stage whose drift a kick follows
+    for i in range(n_stages):
+        if kicks[i + 1] != 0.0:
+            last_kick = i
     force_valid = False
     bad = -1
     for step in range(n_steps):
-        for i in range(n_stages + 1):
-            c = kicks[i] * dt
-            if c != 0.0:
-                if not force_valid:  # bond b between U[b] and U[b+1]
-                    u = vload(Z, U)
-                    for b in range(0, L, LANES):
-                        u_after = vload(Z, U + b + LANES)
-                        u_right = vnext(u, u_after)
-                        bond = (vload(Z, B0 + b), vload(Z, B1 + b), vload(Z, B2 + b))
-                        if tangent:
-                            f, k = bond_force_stiffness(model, bond, u, u_right)
-                            vstore(Z, K + b, k)
-                        else:
-                            f = bond_force(model, bond, u, u_right)
-                        vstore(Z, F + b, f)
-                        u = u_after
-                    force_valid = True
-                # kick: p_i += c (F_{i-1} - F_i);  dp_i += c (G_{i-1} - G_i), G_b = K_b (dq_b - dq_{b+1})
-                f_before = zero
-                g_before = zero
-                dq = vload(Z, DQ)
-                for n in range(0, L, LANES):
-                    f = vload(Z, F + n)
-                    vstore(Z, P + n, vload(Z, P + n) + c * (vprev(f_before, f) - f))
-                    f_before = f
-                    if tangent:
-                        dq_after = vload(Z, DQ + n + LANES)
-                        g = vload(Z, K + n) * (dq - vnext(dq, dq_after))
-                        vstore(Z, DP + n, vload(Z, DP + n) + c * (vprev(g_before, g) - g))
-                        g_before, dq = g, dq_after
-            if i < n_stages:
-                # drift: u_i += c p_i / m_i;  dq_i += c dp_i / m_i
-                c = drifts[i] * dt
-                for n in range(0, L, LANES):
-                    im = vload(Z, IM + n)
-                    vstore(Z, U + n, vload(Z, U + n) + c * im * vload(Z, P + n))
-                    if tangent:
-                        vstore(Z, DQ + n, vload(Z, DQ + n) + c * im * vload(Z, DP + n))
-                force_valid = False
+        c = kicks[0] * dt
+        if c != 0.0:
+            if force_valid:
+                _kick(tangent, L, Z, c)
+            else:
+                _stage(model, tangent, False, True, True, L, Z, 0.0, c)
+        for i in range(n_stages):
+            a, c = drifts[i] * dt, kicks[i + 1] * dt
+            if c == 0.0:
+                _stage(model, tangent, True, False, False, L, Z, a, c)
+            elif i == last_kick:
+                _stage(model, tangent, True, True, True, L, Z, a, c)
+            else:
+                _stage(model, tangent, True, True, False, L, Z, a, c)
+            force_valid = c != 0.0
         if track_gaps:  # open bonds
             n_open = 0
             for b in range(N + 1):
