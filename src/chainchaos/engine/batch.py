@@ -1,7 +1,7 @@
 """A batch engine: B trajectories integrated at once, vectorised across trajectories.
 
-``integrators.advance`` integrates one trajectory, vectorised across its bonds: every split step
-makes separate passes over the bonds (forces, kick, drift), each storing what the next one loads.
+``integrators.advance`` integrates one trajectory, vectorised across its bonds: a vector of
+LANES bonds holds one trajectory's neighbouring bonds, and a chain of N = 40 fills six of them.
 Here the trajectories go in blocks of ``LANES`` (the SIMD width fitted to the CPU,
 ``chainchaos.engine.simd``), one lane per trajectory: a drift, the forces and stiffnesses at the new
 positions and a kick are one sweep over the bonds that keeps the neighbouring beads' vectors and
