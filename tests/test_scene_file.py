@@ -5,11 +5,13 @@ import subprocess
 import sys
 
 import numpy as np
+import pytest
 import xarray as xr
 
+from chainchaos.errors import ParameterError
 from chainchaos.observe.registry import OBSERVABLES
 from chainchaos.output.io import write_netcdf
-from chainchaos.run.scenes import SceneParameters, simulate
+from chainchaos.run.scenes import SceneParameters, scene_batches, simulate
 
 
 def test_only_requested_observables_are_written(tmp_path, chain):
@@ -64,3 +66,29 @@ def test_radii_file(tmp_path):
     with xr.open_dataset(tmp_path / "c.nc") as ds:
         assert ds.sizes["site"] == 10 and ds.attrs["alpha"] == 5.0
         assert np.isclose(ds.radius.values.mean(), 1.0)
+
+
+def _scenes(model, energies, observables=("mlce",)):
+    return {f"{model}_H{E:g}": SceneParameters(model=model, energy=E, t_final=10.0, dt=0.01, observables=observables)
+            for E in energies}
+
+
+def test_scene_batches_fill_blocks_and_leave_a_few_scenes_to_the_single_engine():
+    scenes = {**_scenes("hertz", [0.25, 0.5, 1.8, 3.0, 4.0, 6.0]), **_scenes("fput", [0.5, 1.0, 2.0])}
+    hertz, fput = list(scenes)[:6], list(scenes)[6:]
+    # two scenes beyond a block of four: one batch each (the single engine, jobs side by side)
+    assert scene_batches(scenes, 4, 2) == {"hertz-1": hertz[:4], "hertz-2": [hertz[4]], "hertz-3": [hertz[5]],
+                                           "fput-1": fput}
+    # more left over than the single engine takes: a padded block
+    assert scene_batches(scenes, 4, 1) == {"hertz-1": hertz[:4], "hertz-2": hertz[4:], "fput-1": fput}
+    assert scene_batches(scenes, 8, 0) == {"hertz-1": hertz, "fput-1": fput}
+    assert scene_batches(scenes, 8, 3) == {"hertz-1": hertz, "fput-1": [fput[0]], "fput-2": [fput[1]],
+                                           "fput-3": [fput[2]]}
+    # several deviation vectors per orbit run on the batch engine only: a block, never singles
+    gali = _scenes("hertz", [0.25, 0.5], observables=("mlce", "sali"))
+    assert scene_batches(gali, 8, 4) == {"hertz-1": list(gali)}
+
+
+def test_scene_batches_name_a_bad_remainder():
+    with pytest.raises(ParameterError, match="serial_remainder.*-1"):
+        scene_batches(_scenes("fput", [0.5]), 8, -1)

@@ -9,6 +9,7 @@ import re
 
 import xarray as xr
 
+from chainchaos.engine.batch import SERIAL_REMAINDER
 from chainchaos.engine.simd import LANES
 from chainchaos.output.report_captions import figure_labels, figure_subcategory, panel_labels
 from chainchaos.paper import panels, statements
@@ -41,8 +42,9 @@ SCENE_PARAMETERS = {
     for name, scene in SCENES.items()
 }
 # Scenes that share their integration settings run together, as many as the SIMD width of this
-# machine's batch engine (chainchaos.engine.simd.LANES); results do not depend on the grouping.
-SCENE_BATCHES = scene_batches(SCENE_PARAMETERS, LANES)
+# machine's batch engine (chainchaos.engine.simd.LANES), a few left over each on its own (the
+# single engine); results do not depend on the grouping.
+SCENE_BATCHES = scene_batches(SCENE_PARAMETERS, LANES, SERIAL_REMAINDER)
 SCENE_BATCH = {name: batch for batch, names in SCENE_BATCHES.items() for name in names}
 
 

@@ -35,7 +35,7 @@ Speed: ``benchmarks/batch_throughput.py`` (figures in the README, per machine).
 import numpy as np
 from numba import literally, njit
 
-from chainchaos.engine.integrators import _aligned_zeros, _renormalise, advance, gram_schmidt
+from chainchaos.engine.integrators import _aligned_zeros, _renormalise, advance, drift_vector, gram_schmidt
 from chainchaos.engine.simd import LANES, vbelow, vload, vstore
 from chainchaos.errors import require
 from chainchaos.system.models import MAX_BOND_PARAMETERS
@@ -113,18 +113,9 @@ def _sweep(model, tangent, drift, kick, keep_forces, N, Z, a, c):
 @njit(cache=True, inline="always")
 def _drift_bead(drift, tangent, Z, bond, a):
     """(u, dq) of the bead whose momenta are in row ``bond`` (its displacement in row bond + ROW),
-    drifted by a if ``drift``: u += a M^-1 p, dq += a M^-1 dp."""
+    drifted by a if ``drift``: u += a M^-1 p, dq += a M^-1 dp (``integrators.drift_vector``)."""
     bead = bond + ROW
-    u = vload(Z, bead + _U)
-    dq = vload(Z, bead + _DQ)
-    if drift:
-        im = vload(Z, bond + _IM)
-        u = u + a * im * vload(Z, bond + _P)
-        vstore(Z, bead + _U, u)
-        if tangent:
-            dq = dq + a * im * vload(Z, bond + _DP)
-            vstore(Z, bead + _DQ, dq)
-    return u, dq
+    return drift_vector(drift, tangent, Z, bead + _U, bead + _DQ, bond + _P, bond + _DP, bond + _IM, 0, a)
 
 
 @njit(cache=True, inline="always")

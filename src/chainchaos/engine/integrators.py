@@ -173,8 +173,9 @@ def _row_offsets(L):
 
 
 @njit(cache=True, inline="always")
-def _drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, n, a):
-    """(u, dq) of the beads of vector n, drifted by a if ``drift``: u += a M^-1 p, dq += a M^-1 dp."""
+def drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, n, a):
+    """(u, dq) of the vector of beads at n of rows U and DQ, drifted by a if ``drift``:
+    u += a M^-1 p, dq += a M^-1 dp, with p, dp and M^-1 at n of rows P, DP and IM (stored back)."""
     u = vload(Z, U + n)
     dq = vload(Z, DQ + n)
     if drift:
@@ -202,11 +203,11 @@ def _stage(model, tangent, drift, kick, keep_forces, L, Z, a, c):
     literally(kick)
     literally(keep_forces)
     U, DQ, P, DP, IM, F, K, B0, B1, B2 = _row_offsets(L)
-    u, dq = _drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, 0, a)
+    u, dq = drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, 0, a)
     f_before = g_before = vload(Z, U + L)  # U[L:L+LANES], always zero
     for b in range(0, L, LANES):
         if b + LANES < L:
-            u_after, dq_after = _drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, b + LANES, a)
+            u_after, dq_after = drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, b + LANES, a)
         else:  # the vector past L: zero, never drifted
             u_after, dq_after = vload(Z, U + L), vload(Z, DQ + L)
         if kick:

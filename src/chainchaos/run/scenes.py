@@ -75,19 +75,34 @@ def batch_key(params: SceneParameters) -> tuple:
     return tuple(getattr(params, key) for key in BATCH_KEYS)
 
 
-def scene_batches(scenes: dict[str, SceneParameters], lanes: int) -> dict[str, list[str]]:
+def scene_batches(scenes: dict[str, SceneParameters], lanes: int, serial_remainder: int = 0) -> dict[str, list[str]]:
     """The scenes (by name, in order) that run together: those sharing ``BATCH_KEYS``, at most
-    ``lanes`` at a time (one SIMD block of the batch engine), named ``<model>-<n>``."""
+    ``lanes`` at a time (one SIMD block of the batch engine), named ``<model>-<n>``. A group's
+    last scenes beyond whole blocks, if at most ``serial_remainder`` and none needs several
+    deviation vectors (which only the batch engine carries), go one per batch: each then runs on
+    the single-trajectory engine, which costs less than a block that is mostly padding
+    (``batch.SERIAL_REMAINDER``), and the batches run as jobs side by side."""
     require(int(lanes) >= 1, "lanes", lanes, "an integer >= 1")
+    require(int(serial_remainder) >= 0, "serial_remainder", serial_remainder, "an integer >= 0")
+    lanes = int(lanes)
+    several_vectors = needing(SPECTRUM) | needing(ALIGNMENT)
     groups: dict[tuple, list[str]] = {}
     for name, params in scenes.items():
         groups.setdefault(batch_key(params), []).append(name)
     batches, count = {}, {}
     for key, names in groups.items():
-        for start in range(0, len(names), int(lanes)):
-            model = key[0]
+        whole = len(names) // lanes * lanes
+        chunks = [names[start:start + lanes] for start in range(0, whole, lanes)]
+        rest = names[whole:]
+        if rest and len(rest) <= int(serial_remainder) and not any(several_vectors & set(scenes[n].observables)
+                                                                   for n in rest):
+            chunks += [[name] for name in rest]
+        elif rest:
+            chunks.append(rest)
+        model = key[0]
+        for chunk in chunks:
             count[model] = count.get(model, 0) + 1
-            batches[f"{model}-{count[model]}"] = names[start:start + int(lanes)]
+            batches[f"{model}-{count[model]}"] = chunk
     return batches
 
 
