@@ -41,9 +41,10 @@ from chainchaos.errors import require
 from chainchaos.system.models import MAX_BOND_PARAMETERS
 from chainchaos.system.models.base import bond_force, bond_force_stiffness, bond_opening
 
-#: Up to this many lanes beyond whole blocks are cheaper on the single-trajectory engine than in
-#: a padded block, at both vector widths (``benchmarks/batch_throughput.py`` prints both costs).
-SERIAL_REMAINDER = 2
+#: Up to this many lanes beyond whole blocks cost no more on the single-trajectory engine than in
+#: a padded block: a block takes the time of LANES / r single-engine trajectories, r the batch
+#: speed-up that ``benchmarks/batch_throughput.py`` prints (about 1.6 to 2 at both widths).
+SERIAL_REMAINDER = LANES // 2
 
 #: The per-row contents of a block's buffer, LANES doubles each. Row r of U and DQ is bead r-1
 #: (the walls are rows 0 and N+1); row n of P, DP and IM is bead n; row b of the bond parameters
