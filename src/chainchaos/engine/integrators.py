@@ -192,9 +192,10 @@ def drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, n, a):
 def _stage(model, tangent, drift, kick, keep_forces, L, Z, a, c):
     """One pass over the vectors of the work buffer: (if ``drift``) drift(a) of every bead, then
     (if ``kick``) the force and stiffness of every bond at the new positions (stored in F and K
-    with ``keep_forces``) and kick(c) of every bead. Iteration n drifts vector n+1, computes the bonds of vector n (bond b
-    joins U[b] and U[b+1], both drifted) and kicks vector n (bead i takes F[i-1] - F[i]), so the
-    vectors' work overlaps instead of making three passes that store what the next one loads.
+    with ``keep_forces``) and kick(c) of every bead. Iteration n drifts vector n+1, computes the
+    bonds of vector n (bond b joins U[b] and U[b+1], both drifted) and kicks vector n (bead i
+    takes F[i-1] - F[i]), so the vectors' work overlaps instead of making three passes that store
+    what the next one loads.
     Per element the operations of drift(a), the force law and kick(c), in that order:
     dq_i += a dp_i / m_i, G_b = K_b (dq_b - dq_{b+1}), dp_i += c (G_{i-1} - G_i) for the tangent
     map."""
@@ -234,7 +235,7 @@ def _kick(tangent, L, Z, c):
     """kick(c) of every bead with the stored forces F and stiffnesses K:
     p_i += c (F_{i-1} - F_i);  dp_i += c (G_{i-1} - G_i), G_b = K_b (dq_b - dq_{b+1})."""
     literally(tangent)
-    U, DQ, P, DP, IM, F, K, B0, B1, B2 = _row_offsets(L)
+    U, DQ, P, DP, _, F, K, _, _, _ = _row_offsets(L)
     f_before = g_before = vload(Z, U + L)  # zero
     dq = vload(Z, DQ)
     for n in range(0, L, LANES):
@@ -263,7 +264,7 @@ def _step_loop(model, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every,
     operations are those of the scalar expressions, in the same order.
     """
     literally(tangent)
-    U, DQ, P, DP, IM, F, K, B0, B1, B2 = _row_offsets(L)
+    U, DQ, P, DP, _, _, _, B0, B1, B2 = _row_offsets(L)
     n_stages = drifts.shape[0]
     last_kick = -1  # the last stage whose drift a kick follows
     for i in range(n_stages):
