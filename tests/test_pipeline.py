@@ -14,6 +14,7 @@ import pytest
 import xarray as xr
 from matplotlib.image import imread
 
+from chainchaos.engine.batch import SERIAL_REMAINDER
 from chainchaos.engine.simd import LANES
 from chainchaos.paper import panels, statements
 
@@ -96,9 +97,10 @@ def test_paper_scale_dry_run_plans_every_scene(tmp_path):
     assert code == 0, out[-4000:]
     jobs = planned_jobs(out)
     assert jobs["simulate_scene"] == len(panels.scenes()) and jobs["plot_panel"] == len(panels.PANELS)
-    # scenes that share their settings run together, one SIMD block per job
-    per_model = [sum(s.model == model for s in panels.scenes().values()) for model in ("hertz", "fput")]
-    assert jobs["simulate_scenes"] == sum(-(-n // LANES) for n in per_model)
+    # scenes that share their settings run together, one SIMD block per job, and the few left over
+    # (at most batch.SERIAL_REMAINDER) one per job, on the single engine
+    per_model = [divmod(sum(s.model == model for s in panels.scenes().values()), LANES) for model in ("hertz", "fput")]
+    assert jobs["simulate_scenes"] == sum(whole + (rest if rest <= SERIAL_REMAINDER else 1) for whole, rest in per_model)
     # the realization search: stage 0 (its size decides stage 1: a checkpoint), one verdict per scene
     assert jobs["search_seeds"] == 1 and jobs["search_candidates"] == 1 and jobs["search_merge"] == 1
     assert jobs["ensemble_verdicts"] == len(statements.statement_scenes())
