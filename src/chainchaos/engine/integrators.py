@@ -188,6 +188,20 @@ def drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, n, a):
     return u, dq
 
 
+@njit(cache=True, inline="always")
+def _kick_vector(tangent, Z, P, DP, n, c, f_before, f, g_before, k, dq, dq_after):
+    """kick(c) of the beads of vector n: p_i += c (F_{i-1} - F_i) and, with the tangent map,
+    dp_i += c (G_{i-1} - G_i), G_b = K_b (dq_b - dq_{b+1}); f, k are the forces and stiffnesses of
+    the vector's bonds, f_before, g_before those of the vector before, dq, dq_after the deviations
+    of this vector's beads and the next's. Returns (f, G) for the next vector."""
+    vstore(Z, P + n, vload(Z, P + n) + c * (vprev(f_before, f) - f))
+    g = f
+    if tangent:
+        g = k * (dq - vnext(dq, dq_after))
+        vstore(Z, DP + n, vload(Z, DP + n) + c * (vprev(g_before, g) - g))
+    return f, g
+
+
 @njit(cache=True, error_model="numpy")
 def _stage(model, tangent, drift, kick, keep_forces, L, Z, a, c):
     """One pass over the vectors of the work buffer: (if ``drift``) drift(a) of every bead, then
@@ -221,12 +235,7 @@ def _stage(model, tangent, drift, kick, keep_forces, L, Z, a, c):
                 vstore(Z, F + b, f)
                 if tangent:
                     vstore(Z, K + b, k)
-            vstore(Z, P + b, vload(Z, P + b) + c * (vprev(f_before, f) - f))
-            f_before = f
-            if tangent:
-                g = k * (dq - vnext(dq, dq_after))
-                vstore(Z, DP + b, vload(Z, DP + b) + c * (vprev(g_before, g) - g))
-                g_before = g
+            f_before, g_before = _kick_vector(tangent, Z, P, DP, b, c, f_before, f, g_before, k, dq, dq_after)
         u, dq = u_after, dq_after
 
 
@@ -239,14 +248,10 @@ def _kick(tangent, L, Z, c):
     f_before = g_before = vload(Z, U + L)  # zero
     dq = vload(Z, DQ)
     for n in range(0, L, LANES):
-        f = vload(Z, F + n)
-        vstore(Z, P + n, vload(Z, P + n) + c * (vprev(f_before, f) - f))
-        f_before = f
-        if tangent:
-            dq_after = vload(Z, DQ + n + LANES)
-            g = vload(Z, K + n) * (dq - vnext(dq, dq_after))
-            vstore(Z, DP + n, vload(Z, DP + n) + c * (vprev(g_before, g) - g))
-            g_before, dq = g, dq_after
+        dq_after = vload(Z, DQ + n + LANES)
+        f_before, g_before = _kick_vector(tangent, Z, P, DP, n, c, f_before, vload(Z, F + n), g_before,
+                                          vload(Z, K + n), dq, dq_after)
+        dq = dq_after
 
 
 @njit(cache=True, error_model="numpy")
