@@ -27,7 +27,7 @@ from chainchaos.errors import ParameterError, require
 from chainchaos.observe.registry import REGISTRY
 from chainchaos.run import driver
 from chainchaos.run.settings import RunSettings
-from chainchaos.system.initial import initial_deviation, initial_displacement
+from chainchaos.system.initial import Excitation, initial_deviation
 from chainchaos.system.models import MODELS, get_model
 
 #: Per-orbit series on the sample times, observables of the registry (``observe.registry``), with
@@ -43,13 +43,17 @@ SPECTRUM_SERIES = {"lyapunov_spectrum": None, "ks_entropy": None}
 
 @dataclass(frozen=True)
 class Orbit:
-    """One trajectory: a model, an energy, a chain, the excited bead (1-based) and a lane."""
+    """One trajectory: a model, an energy, a chain, the excited bead (1-based) and a lane; with an
+    ``excitation`` (``initial.Excitation``: a site, a mode or a block, in displacement or momentum)
+    that state instead of bead ``site`` displaced, lane j scaling the whole state by the same
+    1 + perturbation xi_j."""
 
     model: str
     energy: float
     chain: object = field(repr=False)
     site: int
     lane: int = 0
+    excitation: object = None
 
 
 @dataclass(kw_only=True)
@@ -115,7 +119,7 @@ def lane_factor(lane: int, settings: OrbitSettings) -> float:
 
 
 def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None,
-              gali_stop: float | None = None) -> tuple[np.ndarray, list[dict]]:
+              gali_stop: float | None = None, series: dict | None = None) -> tuple[np.ndarray, list[dict]]:
     """Integrate every orbit with its tangent map (and gap counting where bonds open) and sample it.
 
     Returns the sample times and, per orbit in input order, a dict with the :data:`SERIES` arrays
@@ -123,14 +127,16 @@ def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None,
     model without gaps) and ``valid`` (the initial state exists, the run stayed finite and its
     energy error stayed <= ``max_energy_error``). ``gali_stop``: an orbit's GALI vectors stop once
     its ln GALI_k is below it (``driver.sample``); results do not depend on which orbits share a
-    batch."""
+    batch. ``series``: the per-orbit series to record instead of :data:`SERIES` (name -> fill, as
+    there; ``energy_error`` is always recorded, since validity reads it)."""
+    wanted = SERIES if series is None else {**series, "energy_error": SERIES["energy_error"]}
     results = [None] * len(orbits)
     times = sample_schedule(settings) * settings.dt
     for name in MODELS:
         index = [i for i, o in enumerate(orbits) if o.model == name]
         for start in range(0, len(index), int(settings.batch_size)):
             chunk = index[start:start + int(settings.batch_size)]
-            for i, r in zip(chunk, _integrate_model(name, [orbits[i] for i in chunk], settings, gali_stop)):
+            for i, r in zip(chunk, _integrate_model(name, [orbits[i] for i in chunk], settings, gali_stop, wanted)):
                 results[i] = r
             if progress is not None:
                 progress(sum(r is not None for r in results), len(orbits))
@@ -139,7 +145,7 @@ def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None,
     return times, results
 
 
-def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, gali_stop) -> list[dict]:
+def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, gali_stop, wanted) -> list[dict]:
     model = get_model(name)
     problem = settings.problem(model, [o.chain for o in orbits], tangent=True, track_gaps=model.has_gaps,
                                spectrum=settings.spectrum, alignment=settings.alignment)
@@ -149,8 +155,9 @@ def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, ga
     u0s, ok0 = np.full(B, np.nan), np.zeros(B, dtype=bool)
     for j, (o, c) in enumerate(zip(orbits, problem.chains)):
         try:
-            u0s[j] = initial_displacement(model, c, float(o.energy), int(o.site)) * lane_factor(o.lane, settings)
-            Q0[o.site - 1, j] = u0s[j]
+            u, p, amplitude = (o.excitation or Excitation(site=int(o.site))).state(model, c, float(o.energy))
+            factor = lane_factor(o.lane, settings)
+            Q0[:, j], P0[:, j], u0s[j] = u * factor, p * factor, amplitude * factor
             ok0[j] = True
         except ParameterError:
             pass
@@ -165,7 +172,7 @@ def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, ga
         run = samples.run(j)
         # a sample is measured where the initial state existed and the state is still finite
         measured = ok0[j] & np.all(np.isfinite(run.Q), axis=-1) & np.all(np.isfinite(run.P), axis=-1)
-        series = _series(run, measured, {**SERIES, **(ALIGNMENT_SERIES if settings.alignment else {}),
+        series = _series(run, measured, {**wanted, **(ALIGNMENT_SERIES if settings.alignment else {}),
                                          **(SPECTRUM_SERIES if settings.spectrum else {})})
         out.append({
             **series,

@@ -1,5 +1,9 @@
-"""Initial conditions: one displaced bead, and a random deviation vector
+"""Initial conditions: one displaced bead (the paper's), an :class:`Excitation` of a site, a
+linear mode or a block in displacement or momentum (the studies'), and random deviation vectors
 (docs/conventions.md#initial-conditions)."""
+
+import math
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
@@ -28,9 +32,16 @@ def initial_displacement(model: int, chain, energy: float, site: int) -> float:
     require(np.isfinite(energy) and energy > 0, "energy", energy, "a finite energy > 0")
     require(isinstance(site, (int, np.integer)) and 1 <= site <= chain.N, "excited_site", site,
             f"an integer bead index 1..{chain.N}")
+    return _amplitude(lambda u0: excitation_energy(model, chain, site, u0), energy)
 
-    def residual(u0):
-        return excitation_energy(model, chain, site, u0) - energy
+
+def _amplitude(energy_at, energy: float) -> float:
+    """The smallest a > 0 with energy_at(a) = energy (energy_at(0) = 0, growing from 0), bracketed
+    by doubling from 1e-3 and found by Brent's method; ParameterError where the energy along the
+    path peaks below ``energy`` or no a < U0_LIMIT reaches it."""
+
+    def residual(a):
+        return energy_at(a) - energy
 
     lo, e_lo, hi = 0.0, 0.0, 1e-3
     while hi < U0_LIMIT:
@@ -38,8 +49,8 @@ def initial_displacement(model: int, chain, energy: float, site: int) -> float:
         if e_hi >= energy:
             return brentq(residual, lo, hi, xtol=1e-15, rtol=4 * np.finfo(float).eps)
         if e_hi < e_lo:
-            peak = minimize_scalar(lambda x: -excitation_energy(model, chain, site, x),
-                                   bounds=(0.0, hi), method="bounded", options={"xatol": 1e-12})
+            peak = minimize_scalar(lambda x: -energy_at(x), bounds=(0.0, hi), method="bounded",
+                                   options={"xatol": 1e-12})
             e_max = -peak.fun
             if e_max >= energy:
                 return brentq(residual, 0.0, peak.x, xtol=1e-15, rtol=4 * np.finfo(float).eps)
@@ -55,6 +66,83 @@ def initial_state(model: int, chain, energy: float, site: int) -> tuple[np.ndarr
     u = np.zeros(chain.N)
     u[site - 1] = u0
     return u, np.zeros(chain.N), u0
+
+
+#: What an :class:`Excitation` may excite, and in which variable.
+EXCITATION_KINDS = ("site", "mode", "block")
+EXCITATION_VARIABLES = ("displacement", "momentum")
+
+
+@dataclass(frozen=True)
+class Excitation:
+    """A localized initial state of total energy H, everything else at rest.
+
+    ``kind``: ``site`` (bead ``site`` alone), ``mode`` (linear mode ``mode``, 1-based by increasing
+    frequency, its shape U_k of ``linear.normal_modes``), or ``block`` (``width`` beads centred on
+    ``site``, the extra one to the right for an even width, with alternating signs + - + ...);
+    ``variable``: the pattern is given to the displacements u (momenta 0) or to the momenta p
+    (displacements 0; a mode's momenta are M U_k, a block's p_n = +-sqrt(m_n) so that every bead
+    of the block gets the same kinetic energy). The amplitude a > 0 is fixed by H(a pattern) =
+    energy: in momentum exactly, a = sqrt(2 H / sum_n s_n^2 / m_n); in displacement by the
+    root-finder of :func:`initial_displacement`, which the paper's single displaced bead (kind
+    ``site``, ``displacement``) gives to the bit.
+    """
+
+    kind: str = "site"
+    variable: str = "displacement"
+    site: int = 1
+    mode: int = 1
+    width: int = 1
+
+    def __post_init__(self):
+        require(self.kind in EXCITATION_KINDS, "excitation kind", self.kind, f"one of {list(EXCITATION_KINDS)}")
+        require(self.variable in EXCITATION_VARIABLES, "excitation variable", self.variable,
+                f"one of {list(EXCITATION_VARIABLES)}")
+        for key in ("site", "mode", "width"):
+            value = getattr(self, key)
+            require(isinstance(value, (int, np.integer)) and value >= 1, f"excitation {key}", value,
+                    "an integer >= 1")
+
+    def check(self, N: int) -> None:
+        """ParameterError where the excitation does not fit a chain of N beads."""
+        if self.kind == "mode":
+            require(self.mode <= N, "excitation mode", self.mode, f"a mode number 1..N = {N}")
+            return
+        first, last = self.beads()
+        require(1 <= first and last <= N, "excitation site" if self.kind == "site" else "excitation block",
+                self.site if self.kind == "site" else f"beads {first}..{last}", f"beads within 1..N = {N}")
+
+    def beads(self) -> tuple[int, int]:
+        """First and last excited bead (1-based) of a site or block excitation."""
+        width = self.width if self.kind == "block" else 1
+        first = self.site - (width - 1) // 2
+        return first, first + width - 1
+
+    def pattern(self, chain) -> np.ndarray:
+        """The unscaled pattern s (N,) on the excited variable."""
+        self.check(chain.N)
+        if self.kind == "mode":
+            from chainchaos.system.linear import normal_modes  # the eigensolver: only for mode excitations
+
+            shape = normal_modes(chain)[1][:, self.mode - 1]
+            shape = shape / np.max(np.abs(shape))
+            return chain.mass * shape if self.variable == "momentum" else shape
+        s = np.zeros(chain.N)
+        first, last = self.beads()
+        signs = np.where(np.arange(last - first + 1) % 2 == 0, 1.0, -1.0)
+        s[first - 1:last] = signs * (np.sqrt(chain.mass[first - 1:last]) if self.variable == "momentum" else 1.0)
+        return s
+
+    def state(self, model, chain, energy: float) -> tuple[np.ndarray, np.ndarray, float]:
+        """(u, p, a): the excited state with H = ``energy`` and its amplitude a."""
+        require(np.isfinite(energy) and energy > 0, "energy", energy, "a finite energy > 0")
+        s = self.pattern(chain)
+        zeros = np.zeros(chain.N)
+        if self.variable == "momentum":
+            a = math.sqrt(2.0 * energy / float(np.sum(s * s / chain.mass)))
+            return zeros, a * s, a
+        a = _amplitude(lambda x: float(total_energy(model, chain, x * s, zeros)), energy)
+        return a * s, zeros, a
 
 
 def extra_deviations(N: int, seed: int, count: int, stream: int) -> tuple[np.ndarray, np.ndarray]:
