@@ -5,6 +5,7 @@ needs nor touches the project's own results/.
 """
 
 import re
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -107,10 +108,11 @@ def test_paper_scale_dry_run_plans_every_scene(tmp_path):
 
 
 def test_an_archived_full_search_pins_its_chain_and_none_searches(tmp_path):
-    """With search.archive naming an existing file, `all` re-scores the archive's chain alone; with
-    none (or a missing file) it searches, its filter planned once stage 0 has run."""
+    """With search.archive naming an existing file (made with this run's settings), `all` re-scores
+    the archive's chain alone; with none (or a missing file) it searches, its filter planned once
+    stage 0 has run."""
     archive = tmp_path / "search_full.nc"
-    xr.Dataset(attrs={"chosen_seed": 879}).to_netcdf(archive)
+    shutil.copyfile(ROOT / "data" / "search" / "search_full.nc", archive)
     for path, pinned in ((archive, True), (tmp_path / "missing.nc", False), ("", False)):
         config = tmp_path / "archive.yaml"
         config.write_text(f"search:\n  archive: '{path}'\n")

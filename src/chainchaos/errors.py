@@ -34,6 +34,12 @@ class SimulationError(RuntimeError):
         super().__init__(f"scene {scene!r} stopped at t = {time:.6g}: {quantity} = {value:.6g}{detail}")
 
 
+class KeptFileError(RuntimeError):
+    """A result kept as data (chainchaos.output.kept) that cannot stand in for its computation and
+    cannot be judged either: unreadable, truncated, or without the settings that key it. The
+    message is one line: the file, what is wrong, how to restore or remake it."""
+
+
 class BuildError(RuntimeError):
     """A build failure with a message for the reader (no traceback is shown): TeX missing, a
     LaTeX error (chainchaos.output.manuscript)."""

@@ -6,17 +6,19 @@ import glob
 import math
 import os
 import re
+import sys
 
 import xarray as xr
 
 from chainchaos.engine.batch import SERIAL_REMAINDER
 from chainchaos.engine.simd import LANES
+from chainchaos.output import kept
 from chainchaos.output.report_captions import figure_labels, figure_subcategory, panel_labels
 from chainchaos.paper import panels, statements
 from chainchaos.run.scenes import scene_batches, scene_parameters
 from chainchaos.studies.scan import runs as scan_runs
 from chainchaos.studies.search import archive
-from chainchaos.studies.search.stages import SearchPlan
+from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION, SearchPlan
 from chainchaos.workflow.tasks.chain import selection_criteria
 
 RESULTS = config["results"]
@@ -26,6 +28,21 @@ FIGURES = sorted(panels.LAYOUTS)
 
 def result(*parts):
     return "/".join([RESULTS, *parts])
+
+
+def kept_file(path, settings, version, remake_rule, keys=None):
+    """The kept file `path` when it exists and may stand in for its computation (its settings and
+    result version equal this run's, chainchaos.output.kept), else None; a kept file that is not
+    used says why in one line on stderr. A file that cannot be read, or records no settings, stops
+    the run with one line (KeptFileError) saying how to restore or remake it."""
+    if not path or not os.path.exists(path):
+        return None
+    remake = f"snakemake --cores 2 {remake_rule}"
+    why = kept.why_not_usable(path, settings, version, remake, keys)
+    if why is None:
+        return path
+    print(f"{why}; not used, computed at the configured scale", file=sys.stderr)
+    return None
 
 
 def log_file(rule_name, stem="run"):
@@ -134,27 +151,42 @@ def scan_runtime(kind):
 
 
 # The full disorder statistics kept in the repository (`snakemake disorder_full` writes them):
-# when the file exists, `all` takes its disorder statistics from it and runs no disorder group.
+# when the file exists and its settings (those disorder_full would run with) and result version
+# are this run's, `all` takes its disorder statistics from it and runs no disorder group.
 DISORDER_ARCHIVE = SCAN["disorder"].get("archive") or None
+DISORDER_SETTINGS = scan_runs.disorder_settings(scan_params("disorder_full"), config["chain"]["N"])
+USED_DISORDER_ARCHIVE = kept_file(
+    DISORDER_ARCHIVE,
+    DISORDER_SETTINGS,
+    scan_runs.DISORDER_RESULT_VERSION,
+    "disorder_full",
+)
 
 
 def disorder_inputs():
-    if DISORDER_ARCHIVE and os.path.exists(DISORDER_ARCHIVE):
-        return {"archive": DISORDER_ARCHIVE}
+    if USED_DISORDER_ARCHIVE:
+        return {"archive": USED_DISORDER_ARCHIVE}
     return {"groups": scan_group_files("disorder")}
 
 
 # ---- the realization search and the ensemble verdicts (workflow/rules/search.smk) --------------
 # Two searches share the rules: `search`, the one `all` runs (pinned to the archived full search's
-# chain when search.archive names an existing file), and `search_full`, whose result
-# `snakemake search_full` writes to search.archive.
+# chain when search.archive names an existing file whose settings are this run's), and
+# `search_full`, whose result `snakemake search_full` writes to search.archive.
 
 SEARCH_ARCHIVE = config["search"].get("archive") or None
+# Keys of the search block that are not the search's plan.
+SEARCH_WORKFLOW_KEYS = ("archive", "reuse_archive_chain")
+# A scale overlay that only shortens runs (search.reuse_archive_chain) takes the archive's chosen
+# chain when the chain and its selection match; otherwise every setting of the full search must.
+SEARCH_ARCHIVE_KEYS = ("chain",) if config["search"].get("reuse_archive_chain") else None
 
 
 def search_archive():
-    """The archived full search when the config names one and it exists, else None."""
-    return SEARCH_ARCHIVE if SEARCH_ARCHIVE and os.path.exists(SEARCH_ARCHIVE) else None
+    """The archived full search when the config names one, it exists and its settings (all of
+    them, or its chain's with search.reuse_archive_chain) and result version are this run's,
+    else None."""
+    return USED_SEARCH_ARCHIVE
 
 
 def archive_pins():
@@ -168,7 +200,7 @@ def search_block(name):
     pins none), or block `search_full` with the orbit settings of `search`."""
     if name == "search_full":
         return {**config["search_full"], "settings": config["search"]["settings"]}
-    block = {k: v for k, v in config["search"].items() if k != "archive"}
+    block = {k: v for k, v in config["search"].items() if k not in SEARCH_WORKFLOW_KEYS}
     if archive_pins():
         block["pinned_seed"] = archive.chosen_seed(archive_pins())
     return block
@@ -189,11 +221,6 @@ def search_chain(name):
     return {**config["chain"], "selection": selection}
 
 
-SEARCH_PLANS = {
-    name: SearchPlan.from_config(search_block(name)) for name in ("search", "search_full")
-}
-
-
 def search_selection(name):
     return selection_criteria({"chain": search_chain(name)})
 
@@ -205,6 +232,21 @@ def search_params(name):
         "claims": config.get("claims", {}),
         "site": config["simulation"]["excited_site"],
     }
+
+
+# The settings the full search would run with: the key of the archive `all` may take it from.
+USED_SEARCH_ARCHIVE = kept_file(
+    SEARCH_ARCHIVE,
+    archive.search_settings(search_params("search_full")),
+    SEARCH_RESULT_VERSION,
+    "search_full",
+    SEARCH_ARCHIVE_KEYS,
+)
+
+
+SEARCH_PLANS = {
+    name: SearchPlan.from_config(search_block(name)) for name in ("search", "search_full")
+}
 
 
 def search_param(key):

@@ -107,6 +107,7 @@ rule disorder_full:
         groups=scan_group_files("disorder_full"),
     params:
         scan=scan_params("disorder_full"),
+        N=config["chain"]["N"],
         archive=DISORDER_ARCHIVE,
         benchmarks=result("benchmarks"),
     log:

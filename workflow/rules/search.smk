@@ -5,8 +5,8 @@
 #
 # The rules serve two searches ({search}, common.smk): `search`, the one `all` runs, and `search_full`,
 # the search over many more chains whose merged result `snakemake search_full` keeps in the repository
-# (config search.archive). With an archive present, `all` pins its chosen chain and re-scores that chain
-# only; `search.pinned_seed` pins any seed. Every stage writes one file per chunk, so a killed search
+# (config search.archive). With an archive present whose settings and result version are the run's
+# (chainchaos.output.kept), `all` pins its chosen chain and re-scores that chain only; `search.pinned_seed` pins any seed. Every stage writes one file per chunk, so a killed search
 # resumes where it stopped.
 
 
@@ -127,6 +127,7 @@ rule search_full:
     input:
         search=result("search_full", "search.nc"),
     params:
+        **search_params("search_full"),  # the settings that key the archive (search_settings)
         archive=SEARCH_ARCHIVE,
         benchmarks=result("benchmarks"),
     log:

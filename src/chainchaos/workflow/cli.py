@@ -1,4 +1,4 @@
-"""Command line: ``chainchaos chain | ensemble | simulate | bench``."""
+"""Command line: ``chainchaos chain | ensemble | simulate | bench | stamp-search-archive``."""
 
 import argparse
 import json
@@ -120,6 +120,17 @@ def _cmd_bench(args) -> None:
                     for key, value in report.items()))
 
 
+def _cmd_stamp_search_archive(args) -> None:
+    from chainchaos.output.kept import digest
+    from chainchaos.studies.search.archive import stamp_search_archive
+
+    try:
+        settings = stamp_search_archive(args.archive)
+    except (OSError, ValueError, KeyError) as err:
+        raise ParameterError("archive", args.archive, f"a full search whose key can be read off it ({err})") from None
+    print(f"{args.archive}: kept_settings_digest {digest(settings)}")
+
+
 def build_parser() -> argparse.ArgumentParser:
     from chainchaos.engine.integrators import SCHEMES
     from chainchaos.observe.registry import OBSERVABLES
@@ -198,6 +209,17 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--repeats", type=_integer(1), default=50, help="timings; the best is reported (default 50)")
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=_cmd_bench)
+
+    p = sub.add_parser("stamp-search-archive", help="key a full search kept before kept results recorded their settings",
+                       description="Write into an archived full search (snakemake search_full) the settings that "
+                                   "determine it and its result version (chainchaos.output.kept), read off what "
+                                   "the file records and the config/config.yaml of the commit it records; its "
+                                   "variables stay byte for byte. Refuses when the statements' code changed since "
+                                   "that commit (chainchaos.studies.search.archive.stamp_search_archive). "
+                                   "Run from the git checkout.")
+    p.add_argument("archive", nargs="?", default="data/search/search_full.nc",
+                   help="the archived full search (default data/search/search_full.nc)")
+    p.set_defaults(func=_cmd_stamp_search_archive)
     return parser
 
 

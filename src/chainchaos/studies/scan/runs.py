@@ -55,6 +55,11 @@ from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
 from chainchaos.system.chain import random_chain
 from chainchaos.system.linear import mode_energy_density, normal_modes, participation_number
 
+#: Version of the numbers of the disorder statistics (the kept full statistics record it,
+#: chainchaos.output.kept): bump only when a change of code changes their numbers (the bit-identity
+#: test tests/test_kept.py tells).
+DISORDER_RESULT_VERSION = 1
+
 SELECTION_RULE = ("among the high_frequency_modes highest linear modes, those whose energy-density maximum "
                   "lies within centre_window sites of the chain centre (N+1)/2; the one with the smallest "
                   "participation number is chosen and its maximum bead alone is displaced (p = 0)")
@@ -215,6 +220,36 @@ def scan_config(kind: str, scan_cfg: dict) -> tuple[str, dict]:
         return kind, scan_cfg
     block = {k: v for k, v in {**scan_cfg[base], **scan_cfg[kind]}.items() if k != "archive"}
     return base, {**scan_cfg, base: block}
+
+
+#: The scan settings that decide what is delocalized and chaotic (``criteria_attrs``).
+CRITERIA_KEYS = ("p_delocalized", "chaos_slope", "chaos_growth_margin", "onset_hold_decades", "gali_threshold")
+#: Settings that say how the work is cut, not what it computes (the engines, batches and groups
+#: give identical numbers): left out of the settings that key a kept result.
+SCHEDULING_KEYS = ("engine", "batch_size", "trajectories_per_job")
+
+
+def disorder_settings(scan_cfg: dict, N: int) -> dict:
+    """The settings that determine the disorder statistics (their key as a kept result,
+    ``chainchaos.output.kept``): ``scan_cfg`` is the scan block as the jobs see it (for the full
+    statistics ``scan_config("disorder_full", ...)[1]``), ``N`` the chain's length.
+
+    ``chain``: N, alpha, wall radius, first seed and realizations; ``excitation``: the rule that
+    picks the excited bead (``selection_kwargs``); ``energies``: the models and the energy grid's
+    keys; ``orbit``: integration and sampling (``settings_for``, without :data:`SCHEDULING_KEYS`);
+    ``criteria``: :data:`CRITERIA_KEYS`."""
+    block = scan_cfg["disorder"]
+    settings = asdict(settings_for("disorder", scan_cfg))
+    return {
+        "chain": {"N": int(N), "alpha": float(block.get("alpha", 5.0)), "wall_radius": float(block.get("wall_radius", 1.0)),
+                  "first_seed": int(block.get("first_seed", 0)), "realizations": int(block["realizations"])},
+        "excitation": selection_kwargs(scan_cfg),
+        "energies": {"models": list(block.get("models", panels.models())), "n_energies": int(block["n_energies"]),
+                     "energy_min": float(block["energy_min"]), "energy_max": float(block["energy_max"]),
+                     "spacing": block.get("spacing", "log")},
+        "orbit": {k: v for k, v in settings.items() if k not in (*CRITERIA_KEYS, *SCHEDULING_KEYS)},
+        "criteria": {k: settings[k] for k in CRITERIA_KEYS},
+    }
 
 
 def settings_for(kind: str, scan_cfg: dict) -> ScanSettings:

@@ -8,12 +8,56 @@ and never reruns the search.
 """
 
 import csv
+import json
+from dataclasses import asdict, fields
 from pathlib import Path
 
 import xarray as xr
 
+from chainchaos.paper import statements
+from chainchaos.paper.criteria import Criteria
+from chainchaos.run.orbits import OrbitSettings
+from chainchaos.studies.search.selection import SelectionCriteria
+from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION, SearchPlan
+
 #: The rules of a search, in the order they run (workflow/rules/search.smk).
 STAGES = ("search_seeds", "search_candidates", "search_filter", "search_score", "search_merge")
+
+#: Settings that say how the work is cut, not what it computes (the engines, batches and chunks
+#: give identical numbers): left out of the settings that key the kept search.
+SCHEDULING_KEYS = ("engine", "batch_size", "seeds_per_job", "candidates_per_job", "pinned_seed")
+
+
+def statements_data() -> list[dict]:
+    """The paper's statements (``paper.statements.STATEMENTS``) as plain data: what each is about
+    and how it is judged (its wording, which decides nothing, left out)."""
+    return [{"id": s.id, "model": s.scene.model, "energy": float(s.scene.energy), "kind": s.kind,
+             "value": s.value, "until": s.until, "early": bool(s.early)} for s in statements.STATEMENTS]
+
+
+def search_settings(params: dict) -> dict:
+    """The settings that determine a search's answer (its key as a kept result,
+    ``chainchaos.output.kept``), from the parameters its rules get (workflow/rules/common.smk,
+    ``search_params``): ``search`` (the block with its orbit ``settings``), ``chain`` (with its
+    ``selection``), ``claims`` and ``site``.
+
+    ``chain``: the linear rule and the seeds it scans (``SelectionCriteria``); ``search``: the
+    sizes of the search (``SearchPlan``); ``orbit``: the orbits' integration and sampling
+    (``OrbitSettings``); ``site``: the excited bead; ``statements``: :func:`statements_data`;
+    ``criteria``: the claims' criteria they are judged by (``Criteria``, defaults filled in).
+    Scheduling keys (:data:`SCHEDULING_KEYS`) are left out."""
+    chain = params["chain"]
+    selection = SelectionCriteria(alpha=float(chain["alpha"]), N=int(chain["N"]), **chain.get("selection", {}))
+    plan = SearchPlan.from_config(params["search"])
+    orbit = asdict(OrbitSettings.from_config(params["search"]["settings"]))
+    return {
+        "chain": asdict(selection),
+        "search": {f.name: getattr(plan, f.name) for f in fields(plan) if f.name not in SCHEDULING_KEYS},
+        "orbit": {k: v for k, v in orbit.items() if k not in SCHEDULING_KEYS},
+        "site": int(params["site"]),
+        "statements": statements_data(),
+        "criteria": asdict(Criteria.from_config(params.get("claims"))),
+    }
 
 
 def chosen_seed(path) -> int:
@@ -75,3 +119,80 @@ def archive_dataset(search: xr.Dataset, costs: dict, machines: dict,
     ds.attrs.update(machines)
     ds.attrs["title"] = title
     return ds
+
+
+# ---- the key of a search kept before kept results recorded one ---------------------------------
+
+#: The code that says what the statements are and how they are judged: unchanged since the commit
+#: a kept search records, or its key cannot be read off the file (:func:`recorded_search_params`).
+STATEMENT_CODE = ("src/chainchaos/paper/statements.py", "src/chainchaos/paper/criteria.py",
+                  "src/chainchaos/paper/verdicts.py")
+
+
+def _git(root: Path, *args: str) -> str:
+    import subprocess
+
+    return subprocess.run(["git", "-C", str(root), *args], capture_output=True, text=True, check=True).stdout
+
+
+def recorded_search_params(attrs: dict, config_at_commit: dict) -> dict:
+    """The parameters (the shape of :func:`search_settings`' argument) an archived search ran with,
+    from what the file records: its ``parameters`` JSON (``search``, with the orbit settings, and
+    ``selection``); the keys it does not record, ``claims`` and the excited bead
+    (``simulation.excited_site``), from ``config_at_commit``, the config/config.yaml of the commit
+    the file records (``git_commit``). The file's own attributes that repeat a setting
+    (``agreement``, ``dt``, ``t_final``, ``lanes``, ...) are checked against the result; a
+    difference raises ``ValueError``."""
+    recorded = json.loads(attrs["parameters"])
+    selection = dict(recorded["selection"])
+    alpha, N = selection.pop("alpha"), selection.pop("N")
+    params = {"search": recorded["search"], "chain": {"alpha": alpha, "N": N, "selection": selection},
+              "claims": config_at_commit.get("claims", {}), "site": config_at_commit["simulation"]["excited_site"]}
+    settings = search_settings(params)
+    orbit, plan = settings["orbit"], settings["search"]
+    expected = {"agreement": settings["criteria"]["agreement"], "dt": orbit["dt"], "t_final": orbit["t_final"],
+                "integrator": orbit["integrator"], "perturbation": orbit["perturbation"], "lanes": plan["lanes"],
+                "filter_t_final": plan["filter_t_final"], "gali_order": orbit["gali_order"] if orbit["alignment"] else 0,
+                "seeds_scanned": settings["chain"]["n_seeds"], "alpha": settings["chain"]["alpha"]}
+    for key, value in expected.items():
+        if key in attrs and attrs[key] != value:
+            raise ValueError(f"the file's attribute {key} = {attrs[key]!r} is not {value!r}, as its settings say")
+    return params
+
+
+def stamp_search_archive(path, root=None) -> dict:
+    """Key an archived full search made before kept results recorded their settings
+    (``chainchaos.output.kept``): its settings from what the file records
+    (:func:`recorded_search_params`) and result version 1, written into its global attributes
+    with every variable left byte for byte as it is. Re-runnable: a file already keyed is keyed
+    again with the same settings.
+
+    Refuses (``ValueError``) when the statements' code (:data:`STATEMENT_CODE`) changed since the
+    commit the file records, when the file's statements (its variables ``statement``, ``scene``,
+    ``kind``) are not today's, or when an attribute disagrees with the settings: the key would
+    then say what the file was not made with. The engines' code is not compared here: the result
+    version and the bit-identity tests speak for it. ``root``: the git checkout (default: the
+    package's). Returns the settings written."""
+    from chainchaos.engine.cache import project_root
+    from chainchaos.output import kept
+
+    root = Path(root or project_root())
+    with xr.open_dataset(path) as ds:
+        attrs = dict(ds.attrs)
+        recorded = [(str(st), str(sc), str(k)) for st, sc, k in
+                    zip(ds["statement"].values, ds["scene"].values, ds["kind"].values)]
+    commit = str(attrs["git_commit"]).removesuffix("-dirty")
+    if str(attrs["git_commit"]).endswith("-dirty"):
+        raise ValueError(f"{path} was written by a checkout with uncommitted changes ({attrs['git_commit']})")
+    changed = _git(root, "diff", "--name-only", commit, "HEAD", "--", *STATEMENT_CODE).split()
+    if changed:
+        raise ValueError(f"{', '.join(changed)} changed since {commit[:7]}, the commit {path} records")
+    today = [(s.id, s.scene.name, s.kind) for s in statements.STATEMENTS]
+    if recorded != today:
+        raise ValueError(f"the statements {path} records are not those of paper.statements")
+    import yaml
+
+    config = yaml.safe_load(_git(root, "show", f"{commit}:config/config.yaml"))
+    settings = search_settings(recorded_search_params(attrs, config))
+    kept.stamp(path, settings, SEARCH_RESULT_VERSION)
+    return settings

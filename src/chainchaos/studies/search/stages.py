@@ -35,6 +35,10 @@ from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
 from chainchaos.studies.search.selection import SelectionCriteria, candidate_row, qualifying, ranked
 from chainchaos.system.chain import random_chain
 
+#: Version of the numbers a search computes (the kept full search records it, chainchaos.output.kept):
+#: bump only when a change of code changes its numbers (a bit-identity test tells).
+SEARCH_RESULT_VERSION = 1
+
 
 @dataclass(frozen=True)
 class SearchPlan:

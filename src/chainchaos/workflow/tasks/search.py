@@ -9,6 +9,7 @@ import numpy as np
 import xarray as xr
 
 from chainchaos.errors import require
+from chainchaos.output import kept
 from chainchaos.output.io import read_chain, write_netcdf
 from chainchaos.output.provenance import provenance_attrs
 from chainchaos.paper import statements
@@ -18,7 +19,7 @@ from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
 from chainchaos.studies.search import archive
 from chainchaos.studies.search import stages as search
 from chainchaos.studies.search.selection import SelectionCriteria
-from chainchaos.studies.search.stages import SearchPlan
+from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION, SearchPlan
 from chainchaos.workflow.tasks.chain import selection_criteria
 
 
@@ -105,7 +106,9 @@ def search_merge(inputs, outputs, params, wildcards) -> None:
 
 
 def search_full(inputs, outputs, params, wildcards) -> None:
-    """The full search's merged result, with its cost and provenance, kept at config search.archive."""
+    """The full search's merged result, with its cost and provenance, kept at config search.archive
+    and keyed by its settings (``archive.search_settings`` of the full search's parameters) and
+    result version (``chainchaos.output.kept``)."""
     target = params.get("archive")
     require(bool(target), "search.archive", target,
             "the path of the archived full search (e.g. data/search/search_full.nc)")
@@ -113,6 +116,7 @@ def search_full(inputs, outputs, params, wildcards) -> None:
     stage_files = sorted(merged.parent.glob("*/*.nc")) + [merged.parent / "candidates.nc", merged]
     ds = archive.archive_dataset(xr.load_dataset(merged), archive.job_costs(Path(params["benchmarks"])),
                                  archive.stage_machines(stage_files))
+    ds.attrs.update(kept.kept_attrs(archive.search_settings(params), SEARCH_RESULT_VERSION))
     write_netcdf(ds, target)
     print(f"{target}: chose seed {ds.attrs['chosen_seed']} among {ds.sizes['candidate']} candidates; "
           f"{ds.attrs['cost_total_jobs']} jobs, {ds.attrs['cost_total_cpu_seconds'] / 60:.1f} CPU-min", file=sys.stderr)
