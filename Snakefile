@@ -33,6 +33,7 @@ include: "workflow/rules/scan.smk"
 include: "workflow/rules/indicators.smk"
 include: "workflow/rules/search.smk"
 include: "workflow/rules/manuscript.smk"
+include: "workflow/rules/study.smk"
 
 
 rule all:

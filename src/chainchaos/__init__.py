@@ -27,6 +27,8 @@ _EXPORTS = {
     "SceneParameters": ("chainchaos.run.scenes", "SceneParameters"),
     "simulate": ("chainchaos.run.scenes", "simulate"),
     "sample": ("chainchaos.run.driver", "sample"),
+    "run_study": ("chainchaos.studies.study", "run_study"),
+    "load_study": ("chainchaos.studies.study.spec", "load_study"),
     "MODELS": ("chainchaos.system.models", "MODELS"),
     "SCHEMES": ("chainchaos.engine.integrators", "SCHEMES"),
     "OBSERVABLES": ("chainchaos.observe.registry", "REGISTRY"),

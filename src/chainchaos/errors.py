@@ -25,6 +25,16 @@ class ConfigError(ValueError):
         super().__init__("invalid config (config/schema.yaml, config/README.md):\n  " + "\n  ".join(self.messages))
 
 
+class StudyError(ConfigError):
+    """A wrong study file: one line per wrong key, naming the key, its value and what is allowed
+    (chainchaos.studies.study.spec)."""
+
+    def __init__(self, messages: list[str]):
+        self.messages = list(messages)
+        ValueError.__init__(self, "invalid study (studies/schema.yaml, studies/README.md):\n  "
+                            + "\n  ".join(self.messages))
+
+
 class SimulationError(RuntimeError):
     """A run stopped by a guard (non-finite state or energy error above the bound)."""
 

@@ -2,6 +2,7 @@
 # inputs, parameters and cluster runtimes of the scan, search and manuscript rules. The functions
 # of the workflow live here and the rules in the other files, as snakemake --lint asks.
 
+import functools
 import glob
 import math
 import os
@@ -19,6 +20,9 @@ from chainchaos.run.scenes import scene_batches, scene_parameters
 from chainchaos.studies.scan import runs as scan_runs
 from chainchaos.studies.search import archive
 from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION, SearchPlan
+from chainchaos.studies.study.runs import scene_name
+from chainchaos.studies.study.spec import FIGURES as STUDY_FIGURES
+from chainchaos.studies.study.spec import load_study, study_names
 from chainchaos.workflow.tasks.chain import selection_criteria
 
 RESULTS = config["results"]
@@ -96,6 +100,7 @@ REPORT_CATEGORIES = {
     "search": "Realization search",
     "numerics": "Numerical accuracy",
     "indicators": "Chaos indicators",
+    "studies": "Studies",
 }
 
 
@@ -358,4 +363,67 @@ def manuscript_inputs(wildcards=None):
         }
     )
     files.update({f"numerics_{key}": path for key, path in manuscript_numerics().items()})
+    return files
+
+
+# ---- studies of one's own (workflow/rules/study.smk) -------------------------------------------
+
+
+@functools.cache
+def study_of(name):
+    """The study of studies/<name>.yaml, read and checked once per workflow."""
+    return load_study(name)
+
+
+def study_spec(name):
+    """The keys of a study as its jobs see them: a changed key reruns them."""
+    return {"name": name, **study_of(name).spec}
+
+
+def study_group_files(name):
+    return [
+        result("studies", name, "groups", f"{g:04d}.nc") for g in range(study_of(name).n_groups)
+    ]
+
+
+def study_group_inputs(wildcards):
+    files = {"kernels": result("kernels_compiled.txt")}
+    chain_file = study_of(wildcards.study).spec["lattice"]["chain_file"]
+    if chain_file:
+        files["chain"] = chain_file
+    return files
+
+
+def study_runtime(name):
+    """Minutes a group job of a study may take (cluster_runtime at its size)."""
+    study = study_of(name)
+    settings = study.settings
+    orbits = (
+        study.per_job * study.lanes * (1 + 0.4 * (settings.gali_order - 1) * settings.alignment)
+    )
+    return cluster_runtime(orbits * max(1.0, study.N / 40), settings.t_final, settings.dt)
+
+
+def study_comparison_inputs(wildcards):
+    names = [wildcards.study, *study_of(wildcards.study).spec["compare_with"]]
+    return {name: result("studies", name, "statistics.nc") for name in names}
+
+
+def study_targets(name):
+    """Every product of a study: its NetCDF files, its figures and the comparison it asks for."""
+    if not name:
+        raise ValueError(
+            f"the target study needs a study: --config study=<name>, one of {study_names()}"
+        )
+    study = study_of(name)
+    files = [
+        result("studies", name, f"{scene_name(m, e)}.nc")
+        for m in study.models
+        for e in study.energies
+    ]
+    files.append(result("studies", name, "statistics.nc"))
+    figures = [*study.spec["figures"], *(["comparison"] if study.spec["compare_with"] else [])]
+    files += [
+        result("studies", name, "figures", f"{f}.{ext}") for f in figures for ext in ("pdf", "png")
+    ]
     return files

@@ -30,8 +30,9 @@ def second_moment(h: np.ndarray) -> np.ndarray:
 
 
 def compactness(P: np.ndarray, m2: np.ndarray) -> np.ndarray:
-    """Compactness index zeta = P^2 / m2 of an energy distribution: about 3 for a packet spread
-    evenly over P sites, much smaller for a sparse one of far-apart peaks."""
+    """Compactness index zeta = P^2 / m2 of an energy distribution: 12 L^2 / (L^2 - 1) for energy
+    spread evenly over L sites, about 3 for a thermalized packet (site energies exponentially
+    distributed), much smaller for a sparse one of far-apart peaks."""
     with np.errstate(divide="ignore", invalid="ignore"):
         return P * P / m2
 

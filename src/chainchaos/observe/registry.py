@@ -178,6 +178,12 @@ def variables(run: SampledRun, wanted) -> dict:
     return data
 
 
+def study_observables() -> list[str]:
+    """The observables a study keeps per orbit (``chainchaos.studies.study``): the selectable
+    time series that need no Lyapunov spectrum and no gap counting."""
+    return [name for name in OBSERVABLES if REGISTRY[name].dims == ("time",) and not REGISTRY[name].needs & {SPECTRUM, GAPS}]
+
+
 def model_observables(model: str) -> tuple:
     """The observables of ``model`` a scene computes when it names none: every one computed by
     default (not the costly chaos indicators beyond the mLCE), the gap observables only where

@@ -69,8 +69,8 @@ def _dotted(path) -> str:
     return text or "(top level)"
 
 
-def schema_errors(config: dict, schema: dict) -> list[str]:
-    """One message per violation of the JSON schema."""
+def schema_errors(config: dict, schema: dict, what: str = "config key") -> list[str]:
+    """One message per violation of the JSON schema, each starting with ``what`` and the key."""
     from jsonschema.validators import validator_for
 
     from chainchaos.workflow.config_docs import allowed
@@ -82,22 +82,22 @@ def schema_errors(config: dict, schema: dict) -> list[str]:
         if error.validator == "additionalProperties" and isinstance(error.instance, dict):
             known = sorted(error.schema.get("properties", {}))
             unknown = sorted(set(error.instance) - set(known))
-            messages.append(f"config key {key}: unknown key(s) {unknown}; allowed are {known}")
+            messages.append(f"{what} {key}: unknown key(s) {unknown}; allowed are {known}")
         elif error.validator == "required":
-            messages.append(f"config key {key}: {error.message}")
+            messages.append(f"{what} {key}: {error.message}")
         else:
-            messages.append(f"config key {key} = {error.instance!r}: allowed is {allowed(error.schema)}")
+            messages.append(f"{what} {key} = {error.instance!r}: allowed is {allowed(error.schema)}")
     return messages
 
 
-def nonfinite_errors(config, path=()) -> list[str]:
+def nonfinite_errors(config, path=(), what: str = "config key") -> list[str]:
     """Messages for NaN and infinite numbers anywhere in ``config``."""
     if isinstance(config, dict):
-        return [m for k, v in config.items() for m in nonfinite_errors(v, (*path, k))]
+        return [m for k, v in config.items() for m in nonfinite_errors(v, (*path, k), what)]
     if isinstance(config, list):
-        return [m for i, v in enumerate(config) for m in nonfinite_errors(v, (*path, i))]
+        return [m for i, v in enumerate(config) for m in nonfinite_errors(v, (*path, i), what)]
     if isinstance(config, float) and not math.isfinite(config):
-        return [f"config key {_dotted(path)} = {config!r}: allowed is a finite number"]
+        return [f"{what} {_dotted(path)} = {config!r}: allowed is a finite number"]
     return []
 
 

@@ -1,5 +1,5 @@
-"""config/README.md, generated from config/schema.yaml: every config key, its type, allowed values,
-default and description.
+"""config/README.md and studies/README.md, generated from config/schema.yaml and
+studies/schema.yaml: every key, its type, allowed values, default and description.
 
 The schema is the single place a key is described: a test checks that every key has a
 description and that the committed config/README.md is what this module writes, so the two cannot
@@ -15,6 +15,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[3]
 SCHEMA = Path("config/schema.yaml")
 README = Path("config/README.md")
+STUDY_SCHEMA = Path("studies/schema.yaml")
+STUDY_README = Path("studies/README.md")
 
 # JSON-schema keywords shown as constraints, with how each reads.
 CONSTRAINTS = {
@@ -40,9 +42,10 @@ def registries() -> dict[str, list]:
     ``chainchaos.system.models`` and the schemes of ``chainchaos.engine.integrators``, so that a new model or
     scheme is allowed without an edit to the schema."""
     from chainchaos.engine.integrators import SCHEMES
+    from chainchaos.observe.registry import study_observables
     from chainchaos.system.models import MODELS
 
-    return {"models": list(MODELS), "schemes": list(SCHEMES)}
+    return {"models": list(MODELS), "schemes": list(SCHEMES), "study_observables": study_observables()}
 
 
 def _fill_registry_enums(node, names: dict[str, list]) -> None:
@@ -170,11 +173,27 @@ allowed, stops the run with a message naming the key. Times are in units of `1/o
 """
 
 
-def render(schema: dict | None = None) -> str:
-    """The text of config/README.md."""
+STUDY_HEADER = """# Study keys
+
+<!-- Generated from studies/schema.yaml by `python -m chainchaos.workflow.config_docs`; do not edit by hand. -->
+
+A study is one file `studies/<name>.yaml`, run by `snakemake --cores 2 study --config study=<name>`
+or, in Python, by `chainchaos.run_study("<name>")`. `studies/schema.yaml` validates it before
+anything runs: a key not listed here, a value outside what is allowed, or keys that do not fit
+each other (an excited site beyond N, a mode above N, a step longer than the run) stop it with a
+message naming the key. Times are in units of `1/omega_max` of the homogeneous chain.
+
+*Default*: the value taken when the key is absent; *required*: the key must be given. `[]`
+stands for each item of a list.
+"""
+
+
+def render(schema: dict | None = None, header: str = HEADER) -> str:
+    """The text of config/README.md (or, with the study schema and :data:`STUDY_HEADER`, of
+    studies/README.md)."""
     schema = load_schema() if schema is None else schema
     all_keys = keys(schema)
-    lines = [HEADER]
+    lines = [header]
     for top in schema["properties"]:
         block = [k for k in all_keys if k.path == top or k.path.startswith(f"{top}.")]
         lines += [f"## `{top}`", ""]
@@ -186,24 +205,29 @@ def render(schema: dict | None = None) -> str:
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="python -m chainchaos.workflow.config_docs",
-                                     description="Write (or --check) config/README.md from config/schema.yaml.")
-    parser.add_argument("--check", action="store_true", help="only compare; exit 1 if the file differs")
+                                     description="Write (or --check) config/README.md and studies/README.md "
+                                                 "from their schemas.")
+    parser.add_argument("--check", action="store_true", help="only compare; exit 1 if a file differs")
     args = parser.parse_args(argv)
-    schema = load_schema()
-    missing = undescribed(schema)
-    if missing:
-        print("config/schema.yaml: keys without a description: " + ", ".join(missing), file=sys.stderr)
-        return 1
-    text = render(schema)
-    target = ROOT / README
-    if target.is_file() and target.read_text() == text:
-        return 0
-    if args.check:
-        print(f"{README} is out of date: run python -m chainchaos.workflow.config_docs", file=sys.stderr)
-        return 1
-    target.write_text(text)
-    print(f"wrote {README}", file=sys.stderr)
-    return 0
+    status = 0
+    for schema_path, readme, header in ((SCHEMA, README, HEADER), (STUDY_SCHEMA, STUDY_README, STUDY_HEADER)):
+        schema = load_schema(ROOT / schema_path)
+        missing = undescribed(schema)
+        if missing:
+            print(f"{schema_path}: keys without a description: " + ", ".join(missing), file=sys.stderr)
+            status = 1
+            continue
+        text = render(schema, header)
+        target = ROOT / readme
+        if target.is_file() and target.read_text() == text:
+            continue
+        if args.check:
+            print(f"{readme} is out of date: run python -m chainchaos.workflow.config_docs", file=sys.stderr)
+            status = 1
+            continue
+        target.write_text(text)
+        print(f"wrote {readme}", file=sys.stderr)
+    return status
 
 
 if __name__ == "__main__":

@@ -19,7 +19,7 @@ from pathlib import Path
 from chainchaos.errors import BuildError
 
 #: The task modules, one per rule file of the workflow (workflow/rules/<name>.smk).
-FAMILIES = ("search", "chain", "simulate", "scan", "numerics", "indicators", "figures", "manuscript")
+FAMILIES = ("search", "chain", "simulate", "scan", "numerics", "indicators", "figures", "manuscript", "study")
 
 
 def family_tasks(family: str) -> dict:

@@ -1,0 +1,65 @@
+"""Studies of one's own from one file (``studies/<name>.yaml``): chains, models, an excitation at
+several energies, observables per orbit, perturbed lanes per realization, the ensemble statistics
+the disordered-lattice literature uses and standard figures. ``spec`` reads and checks the file,
+``runs`` integrates groups of orbits and merges them, ``statistics`` averages over realizations,
+``plots`` draws; :func:`run_study` does all of it in one process, the workflow's ``study`` target
+in resumable jobs, with the same numbers."""
+
+import xarray as xr
+
+
+def study_dataset(study, groups: list[xr.Dataset]) -> xr.Dataset:
+    """The merged groups of ``study`` with its ensemble statistics, in one Dataset."""
+    from chainchaos.studies.study.runs import merge_groups
+    from chainchaos.studies.study.statistics import statistics
+
+    merged = merge_groups(study, groups)
+    stats = statistics(merged, float(study.spec["criteria"]["slope_window_decades"]))
+    out = xr.merge([merged, stats], combine_attrs="override")
+    out.attrs.update(stats.attrs)
+    return out
+
+
+def run_study(source, progress=None) -> xr.Dataset:
+    """Run a study in this process and return every orbit and the ensemble statistics.
+
+    Parameters
+    ----------
+    source : str, path or dict
+        A study name (``studies/<name>.yaml``), the path of a study file, or a dict of the
+        file's keys (``studies/README.md``).
+    progress : callable, optional
+        Called as ``progress(done, total)`` with the orbits integrated so far.
+
+    Returns
+    -------
+    xarray.Dataset
+        One Dataset, every shape fixed by the study: the per-orbit series on (model, energy,
+        realization, lane, time), the per-orbit verdicts on (model, energy, realization, lane),
+        and the statistics on (model, energy[, quantile], time) (``studies.study.statistics``).
+
+    Examples
+    --------
+    >>> from chainchaos import run_study
+    >>> ds = run_study({"lattice": {"model": "fput", "N": 16, "realizations": 2},
+    ...                 "excitation": {"energies": [0.5]},
+    ...                 "integration": {"dt": 0.05, "t_final": 10.0}})
+    >>> dict(ds["participation"].sizes)
+    {'model': 1, 'energy': 1, 'realization': 2, 'lane': 1, 'time': 22}
+    """
+    from chainchaos.studies.study.runs import run_group
+    from chainchaos.studies.study.spec import load_study
+
+    study = load_study(source)
+    total = len(study.items()) * study.lanes
+    done = 0
+
+    def group_progress(n, _):
+        if progress is not None:
+            progress(done + n, total)
+
+    groups = []
+    for g in range(study.n_groups):
+        groups.append(run_group(study, g, group_progress))
+        done += groups[-1].sizes["orbit"]
+    return study_dataset(study, groups)

@@ -1,0 +1,164 @@
+"""A study's standard figures, drawn from its statistics file alone (byte-stable, as every figure).
+
+- ``spreading``: <log10 m2> and <log10 P> against log10 t, one colour per energy, the band
+  between the quartiles over realizations shaded; below, the running slope of <log10 m2>;
+- ``chaos``: <log10 Lambda> against log10 t with the t^-1 law of a regular orbit, and its
+  running slope (-1 regular; the weak-chaos literature reports about -0.25);
+- ``fractions``: the fractions of realizations chaotic (by Lambda, and by GALI_k where kept) and
+  delocalized against H, with Wilson 95% bands;
+- the comparison of several studies: <log10 m2> and <log10 Lambda> of each (study, model,
+  energy) on common axes.
+One column of panels per model.
+"""
+
+import textwrap
+
+import numpy as np
+from matplotlib.figure import Figure
+from matplotlib.ticker import FixedLocator, NullLocator
+
+from chainchaos.output.plotting.style import PAGE_WIDTH, context, model_colour
+from chainchaos.system.models import model_label
+
+LOG_T = r"$\log_{10} t$"
+ENERGY_COLOURS = ("#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02", "#a6761d", "#666666")
+STUDY_STYLES = ("-", "--", ":", "-.")
+#: The verdicts counted in the fractions figure: variable, label, colour, marker.
+FRACTIONS = (("chaotic", r"chaotic ($\Lambda$)", "#d95f02", "o"),
+             ("chaotic_gali", r"chaotic (GALI$_k$)", "#7570b3", "s"),
+             ("delocalized", "delocalized", "#1b9e77", "^"))
+
+
+def _title(fig, title: str, models: int) -> None:
+    if title:
+        fig.suptitle(textwrap.fill(title, 48 * models), fontsize="medium")
+
+
+def _log_t(stats):
+    t = stats["time"].values
+    with np.errstate(divide="ignore"):
+        return np.where(t > 0, np.log10(np.where(t > 0, t, 1.0)), np.nan)
+
+
+def _energy_colour(k: int) -> str:
+    return ENERGY_COLOURS[k % len(ENERGY_COLOURS)]
+
+
+def _columns(stats, rows: int, height: float):
+    models = [str(m) for m in stats.model.values]
+    fig = Figure(figsize=(min(PAGE_WIDTH, 3.4 * len(models) + 0.4), height * rows), layout="constrained")
+    axes = np.atleast_2d(fig.subplots(rows, len(models), sharex=True, squeeze=False))
+    return fig, models, axes
+
+
+def _mean_with_band(ax, x, stats, name, model, k, energy, label=True):
+    mean = stats[f"mean_log10_{name}"].sel(model=model).isel(energy=k).values
+    q = stats[f"quantile_log10_{name}"].sel(model=model).isel(energy=k)
+    colour = _energy_colour(k)
+    ax.fill_between(x, q.sel(quantile=0.25).values, q.sel(quantile=0.75).values, color=colour, alpha=0.18, lw=0)
+    ax.plot(x, mean, color=colour, lw=1.0, label=f"$H = {energy:g}$" if label else None)
+
+
+def spreading_figure(stats, title: str = ""):
+    """<log10 m2>, <log10 P> and the running slope of <log10 m2> against log10 t, per model."""
+    with context():
+        fig, models, axes = _columns(stats, 3, 1.9)
+        x = _log_t(stats)
+        for c, model in enumerate(models):
+            for k, energy in enumerate(stats.energy.values):
+                _mean_with_band(axes[0, c], x, stats, "second_moment", model, k, energy)
+                _mean_with_band(axes[1, c], x, stats, "participation", model, k, energy, label=False)
+                axes[2, c].plot(x, stats["slope_log10_second_moment"].sel(model=model).isel(energy=k).values,
+                                color=_energy_colour(k), lw=1.0)
+            axes[0, c].set_title(model_label(model))
+            axes[0, c].set_ylabel(r"$\langle \log_{10} m_2 \rangle$")
+            axes[1, c].set_ylabel(r"$\langle \log_{10} P \rangle$")
+            axes[2, c].set_ylabel(r"$d\langle \log_{10} m_2\rangle / d\log_{10} t$")
+            axes[2, c].axhline(0.0, color="k", lw=0.5)
+            axes[2, c].set_xlabel(LOG_T)
+        axes[0, 0].legend(fontsize="small", title="lines: mean; bands: quartiles", title_fontsize="small")
+        _title(fig, title, len(models))
+    return fig
+
+
+def chaos_figure(stats, title: str = ""):
+    """<log10 Lambda> against log10 t with the regular t^-1 law, and its running slope, per model."""
+    with context():
+        fig, models, axes = _columns(stats, 2, 2.3)
+        x = _log_t(stats)
+        for c, model in enumerate(models):
+            for k, energy in enumerate(stats.energy.values):
+                _mean_with_band(axes[0, c], x, stats, "mlce", model, k, energy)
+                axes[1, c].plot(x, stats["slope_log10_mlce"].sel(model=model).isel(energy=k).values,
+                                color=_energy_colour(k), lw=1.0)
+            finite = np.isfinite(x)
+            x0 = x[finite][0] if finite.any() else 0.0
+            y0 = np.nanmax(stats["mean_log10_mlce"].sel(model=model).values[..., finite][..., 0])
+            axes[0, c].plot(x[finite], y0 - (x[finite] - x0), color="k", ls="--", lw=0.7,
+                            label=r"$\propto t^{-1}$ (regular)")
+            axes[1, c].axhline(-1.0, color="k", ls="--", lw=0.7)
+            axes[1, c].axhline(-0.25, color="0.4", ls=":", lw=0.7)
+            axes[0, c].set_title(model_label(model))
+            axes[0, c].set_ylabel(r"$\langle \log_{10} \Lambda \rangle$")
+            axes[1, c].set_ylabel(r"$d\langle \log_{10}\Lambda\rangle / d\log_{10} t$")
+            axes[1, c].set_xlabel(LOG_T)
+        axes[0, 0].legend(fontsize="small")
+        _title(fig, title, len(models))
+    return fig
+
+
+def fractions_figure(stats, title: str = ""):
+    """Fractions of realizations chaotic and delocalized against H, with Wilson 95% bands."""
+    flags = [row for row in FRACTIONS if f"fraction_{row[0]}" in stats]
+    with context():
+        fig, models, axes = _columns(stats, 1, 2.6)
+        E = stats.energy.values
+        for c, model in enumerate(models):
+            ax = axes[0, c]
+            for flag, label, colour, marker in flags:
+                s = stats.sel(model=model)
+                f = s[f"fraction_{flag}"].values
+                err = np.vstack([f - s[f"fraction_{flag}_lower"].values, s[f"fraction_{flag}_upper"].values - f])
+                ax.errorbar(E, f, yerr=err, marker=marker, ms=3, lw=0.9, capsize=2, label=label, color=colour)
+            ax.set_xscale("log")
+            ax.xaxis.set_major_locator(FixedLocator(E))
+            ax.xaxis.set_minor_locator(NullLocator())
+            ax.set_xticklabels([f"{e:g}" for e in E])
+            ax.set_ylim(-0.05, 1.05)
+            ax.set_xlabel(r"$H$")
+            ax.set_ylabel("fraction of realizations")
+            ax.set_title(model_label(model))
+        axes[0, 0].legend(fontsize="small", title="Wilson 95% bands", title_fontsize="small")
+        _title(fig, title, len(models))
+    return fig
+
+
+def comparison_figure(named_stats: dict, title: str = ""):
+    """<log10 m2> and <log10 Lambda> of several studies ({name: statistics}) on common axes:
+    colour by model, line style by study, the lightest line the lowest energy."""
+    with context():
+        fig = Figure(figsize=(PAGE_WIDTH, 2.7), layout="constrained")
+        a_m, a_l = fig.subplots(1, 2, sharex=True)
+        for s, (name, stats) in enumerate(named_stats.items()):
+            x = _log_t(stats)
+            for model in (str(m) for m in stats.model.values):
+                n = stats.energy.size
+                for k, energy in enumerate(stats.energy.values):
+                    kw = dict(color=model_colour(model), ls=STUDY_STYLES[s % len(STUDY_STYLES)], lw=0.9,
+                              alpha=0.45 + 0.55 * (k + 1) / n)
+                    label = f"{name}: {model_label(model)}, $H = {energy:g}$"
+                    a_m.plot(x, stats["mean_log10_second_moment"].sel(model=model).isel(energy=k).values,
+                             label=label, **kw)
+                    a_l.plot(x, stats["mean_log10_mlce"].sel(model=model).isel(energy=k).values, **kw)
+        a_m.set_ylabel(r"$\langle \log_{10} m_2 \rangle$")
+        a_l.set_ylabel(r"$\langle \log_{10} \Lambda \rangle$")
+        for ax in (a_m, a_l):
+            ax.set_xlabel(LOG_T)
+        a_m.legend(fontsize="x-small", ncol=1)
+        _title(fig, title, 2)
+    return fig
+
+
+def study_figure(kind: str, stats, title: str = ""):
+    """The study figure ``kind`` (one of :data:`FIGURES`)."""
+    return {"spreading": spreading_figure, "chaos": chaos_figure, "fractions": fractions_figure}[kind](stats, title)

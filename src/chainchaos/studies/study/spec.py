@@ -1,0 +1,263 @@
+"""A study from one file: ``studies/<name>.yaml`` (or a dict), validated, completed and resolved.
+
+A study asks one question of the engines: these chains (a model or several, N beads, a disorder
+strength, realizations as seeds, or one chain from a file), this excitation at these energies,
+this integration, these observables per orbit, this many perturbed lanes per realization, these
+figures. :func:`load_study` reads it against ``studies/schema.yaml`` (every key described there
+and in the generated ``studies/README.md``), fills the schema's defaults, resolves ``extends``
+and checks what holds between keys (an excited site beyond N, a mode above N, a step longer than
+the run), each wrong key named in one line with what is allowed. The :class:`Study` it returns
+says which orbits exist, in a fixed order, and how they are cut into jobs; its results do not
+depend on that cut.
+"""
+
+import copy
+import math
+from dataclasses import dataclass
+from functools import cached_property
+from pathlib import Path
+
+import numpy as np
+
+from chainchaos.errors import ParameterError, StudyError
+from chainchaos.observe.registry import study_observables
+from chainchaos.run.orbits import ALIGNMENT_SERIES, Orbit
+from chainchaos.studies.scan.runs import ScanSettings
+from chainchaos.system.chain import random_chain
+from chainchaos.system.initial import Excitation
+from chainchaos.system.models import MODELS
+
+#: Where study files live: ``studies/`` at the repository root.
+STUDIES = Path(__file__).resolve().parents[4] / "studies"
+SCHEMA = STUDIES / "schema.yaml"
+#: A study's standard figures (``studies.study.plots``), by name.
+FIGURES = ("spreading", "chaos", "fractions")
+#: Series every orbit keeps whatever the study asks: P judges delocalization, ln|v| chaos by Lambda.
+JUDGED = ("participation", "log_growth")
+
+
+def _defaults(schema: dict, block: dict) -> dict:
+    """``block`` with the schema's defaults filled in, object by object (a copy)."""
+    out = dict(block)
+    for key, sub in schema.get("properties", {}).items():
+        if key not in out and "default" in sub:
+            out[key] = copy.deepcopy(sub["default"])
+        if sub.get("type") == "object":
+            out[key] = _defaults(sub, out.get(key) or {})
+    return out
+
+
+def _read(source, root: Path) -> tuple[str, dict]:
+    """(name, raw dict) of a study named, given by path or given as a dict."""
+    import yaml
+
+    if isinstance(source, dict):
+        return str(source.get("name", "study")), {k: v for k, v in source.items() if k != "name"}
+    path = Path(source)
+    if path.suffix not in (".yaml", ".yml"):
+        path = root / f"{source}.yaml"
+    if not path.is_file():
+        raise StudyError([f"study {str(source)!r}: no file {path}; studies here: {study_names(root)}"])
+    try:
+        raw = yaml.safe_load(path.read_text())
+    except yaml.YAMLError as err:
+        raise StudyError([f"study file {path}: not YAML ({str(err).splitlines()[0]})"]) from None
+    if not isinstance(raw, dict):
+        raise StudyError([f"study file {path}: a mapping of keys is needed, not {type(raw).__name__}"])
+    return path.stem, raw
+
+
+def _merged(raw: dict, root: Path, seen: tuple = ()) -> dict:
+    """``raw`` over the study it extends: its blocks' keys replace the other's, block by block."""
+    parent = raw.get("extends")
+    if not parent:
+        return raw
+    if parent in seen:
+        raise StudyError([f"study key extends = {parent!r}: the studies extend each other ({' -> '.join(seen)})"])
+    name, base = _read(parent, root)
+    base = _merged(base, root, (*seen, name))
+    out = {k: v for k, v in base.items() if k != "extends"}
+    for key, value in raw.items():
+        out[key] = {**out[key], **value} if isinstance(value, dict) and isinstance(out.get(key), dict) else value
+    out["extends"] = parent
+    return out
+
+
+def load_study(source, root: Path = STUDIES) -> "Study":
+    """The :class:`Study` of ``source``: a name (``studies/<name>.yaml``), a path to a YAML file,
+    or a dict of the file's keys (with an optional ``name``). Raises :class:`StudyError` listing
+    every wrong key, each with its value and what is allowed."""
+    from chainchaos.workflow.config_check import nonfinite_errors, schema_errors
+    from chainchaos.workflow.config_docs import load_schema
+
+    name, raw = _read(source, Path(root))
+    raw = _merged(raw, Path(root))
+    schema = load_schema(SCHEMA)
+    errors = schema_errors(raw, schema, "study key") or nonfinite_errors(raw, what="study key")
+    if errors:
+        raise StudyError(errors)
+    study = Study(name, _defaults(schema, raw))
+    study.check()
+    return study
+
+
+@dataclass(frozen=True)
+class Study:
+    """A validated study: ``name`` and ``spec``, the file's keys with every default filled in."""
+
+    name: str
+    spec: dict
+
+    # ---- what the file says, resolved ------------------------------------------------------
+
+    @property
+    def title(self) -> str:
+        return self.spec.get("title") or f"study {self.name}"
+
+    @property
+    def models(self) -> list[str]:
+        model = self.spec["lattice"]["model"]
+        return [model] if isinstance(model, str) else list(model)
+
+    @property
+    def energies(self) -> np.ndarray:
+        energies = self.spec["excitation"]["energies"]
+        return np.atleast_1d(np.asarray(energies, dtype=np.float64))
+
+    @property
+    def seeds(self) -> list[int]:
+        lattice = self.spec["lattice"]
+        if lattice["chain_file"]:
+            return [self.file_chain.seed if self.file_chain.seed is not None else -1]
+        if lattice["seeds"]:
+            return [int(s) for s in lattice["seeds"]]
+        return [int(lattice["first_seed"]) + r for r in range(int(lattice["realizations"]))]
+
+    @property
+    def lanes(self) -> int:
+        return int(self.spec["ensemble"]["lanes"])
+
+    @property
+    def observables(self) -> list[str]:
+        return list(dict.fromkeys(self.spec["observables"]))
+
+    @property
+    def alignment(self) -> bool:
+        """GALI_k's vectors are evolved: ln GALI_k or SALI is kept."""
+        return any(name in ALIGNMENT_SERIES for name in self.observables)
+
+    @cached_property
+    def settings(self) -> ScanSettings:
+        """Integration, lanes and criteria of every orbit."""
+        spec = self.spec
+        return ScanSettings.from_config({**spec["integration"], **spec["ensemble"], **spec["criteria"],
+                                         "alignment": self.alignment, "engine": "batch"})
+
+    @cached_property
+    def file_chain(self):
+        from chainchaos.output.io import read_chain
+
+        return read_chain(self.spec["lattice"]["chain_file"])
+
+    @cached_property
+    def chains(self) -> list:
+        """One chain per realization, in the order of :attr:`seeds`."""
+        lattice = self.spec["lattice"]
+        if lattice["chain_file"]:
+            return [self.file_chain]
+        return [random_chain(seed, float(lattice["alpha"]), int(lattice["N"]), float(lattice["wall_radius"]))
+                for seed in self.seeds]
+
+    @property
+    def N(self) -> int:
+        lattice = self.spec["lattice"]
+        return self.file_chain.N if lattice["chain_file"] else int(lattice["N"])
+
+    @property
+    def excitation(self) -> Excitation:
+        e = self.spec["excitation"]
+        site = (self.N + 1) // 2 if e["site"] == "centre" else int(e["site"])
+        return Excitation(kind=e["kind"], variable=e["variable"], site=site, mode=int(e["mode"]),
+                          width=int(e["width"]))
+
+    @property
+    def series(self) -> dict:
+        """The per-orbit series (name -> value where the state is not measured, as
+        ``orbits.SERIES``): the ones asked for and the ones the verdicts read."""
+        fills = {"log_growth": None, "mlce": None, "log_gali": None, "sali": None, "energy_error": np.inf}
+        return {name: fills.get(name, np.nan) for name in dict.fromkeys([*JUDGED, *self.observables])
+                if name not in ALIGNMENT_SERIES}
+
+    # ---- checks between keys ----------------------------------------------------------------
+
+    def check(self) -> None:
+        """StudyError naming every key that does not fit the others."""
+        errors = []
+
+        def check(key, test):
+            try:
+                test()
+            except ParameterError as err:
+                if key in ("integration", "ensemble", "criteria"):  # the block's key that the error names
+                    block = next((b for b in ("integration", "ensemble", "criteria") if err.name in self.spec[b]), key)
+                    key = f"{block}.{err.name}"
+                errors.append(f"study key {key} = {err.value!r}: allowed is {err.allowed}")
+
+        def models():
+            for model in self.models:
+                if model not in MODELS:
+                    raise ParameterError("model", model, f"a model of the registry: {sorted(MODELS)}")
+
+        def observables():
+            allowed = study_observables()
+            for name in self.observables:
+                if name not in allowed:
+                    raise ParameterError("observable", name, f"one of {allowed}")
+
+        def lattice():
+            lattice = self.spec["lattice"]
+            if lattice["chain_file"]:
+                self.file_chain  # noqa: B018 (reads and checks the file)
+            elif "N" not in lattice:
+                raise ParameterError("N", None, "an integer >= 2, or lattice.chain_file")
+
+        check("lattice.model", models)
+        check("observables", observables)
+        check("lattice.N", lattice)
+        check("integration", lambda: self.settings)
+        if not errors:
+            kind = self.spec["excitation"]["kind"]
+            check("excitation.mode" if kind == "mode" else "excitation.site", lambda: self.excitation.check(self.N))
+        if errors:
+            raise StudyError(errors)
+
+    # ---- orbits and jobs --------------------------------------------------------------------
+
+    def items(self) -> list[tuple[str, int, int]]:
+        """Every (model, energy index, realization index), in the fixed order jobs are cut from."""
+        return [(m, e, r) for m in self.models for e in range(self.energies.size) for r in range(len(self.seeds))]
+
+    @property
+    def per_job(self) -> int:
+        """Items of one job: orbits_per_job orbits, at least one item (its lanes together)."""
+        return max(1, int(self.spec["jobs"]["orbits_per_job"]) // self.lanes)
+
+    @property
+    def n_groups(self) -> int:
+        return max(1, math.ceil(len(self.items()) / self.per_job))
+
+    def group_items(self, group: int) -> list[tuple[str, int, int]]:
+        if not 0 <= group < self.n_groups:
+            raise ParameterError("group", group, f"0..{self.n_groups - 1}")
+        return self.items()[group * self.per_job:(group + 1) * self.per_job]
+
+    def orbits(self, items) -> list[Orbit]:
+        """The orbits of ``items``, every lane of each."""
+        excitation, energies, chains = self.excitation, self.energies, self.chains
+        return [Orbit(m, float(energies[e]), chains[r], excitation.site, lane, excitation)
+                for m, e, r in items for lane in range(self.lanes)]
+
+
+def study_names(root: Path = STUDIES) -> list[str]:
+    """The studies in ``root``: the stems of its YAML files but the schema."""
+    return sorted(p.stem for p in Path(root).glob("*.yaml") if p.stem != "schema")

@@ -1,0 +1,86 @@
+"""Tasks of workflow/rules/study.smk: a study's groups of orbits, its files per model and energy,
+its statistics and its figures."""
+
+import sys
+import time
+from pathlib import Path
+
+import xarray as xr
+
+from chainchaos.output.io import write_netcdf
+
+
+def _study(params):
+    from chainchaos.studies.study.spec import load_study
+
+    spec = dict(params["spec"])
+    return load_study({"name": spec.pop("name"), **{k: v for k, v in spec.items() if k != "extends"}})
+
+
+def study_group(inputs, outputs, params, wildcards) -> None:
+    """One job's orbits of a study, with its progress in the log."""
+    from chainchaos.studies.study.runs import run_group
+
+    study, group = _study(params), int(wildcards["group"])
+    start = time.perf_counter()
+
+    def progress(done, total):
+        print(f"[study {study.name} group {group}/{study.n_groups}] {done}/{total} orbits, "
+              f"{time.perf_counter() - start:.1f} s", file=sys.stderr, flush=True)
+
+    ds = run_group(study, group, progress)
+    elapsed = time.perf_counter() - start
+    ds.attrs.update(wall_time_s=elapsed)
+    print(f"[study {study.name} group {group}] {ds.sizes['orbit']} orbits in {elapsed:.1f} s; "
+          f"invalid: {int((ds['valid'] == 0).sum())}", file=sys.stderr)
+    write_netcdf(ds, outputs["group"])
+
+
+def study_scene(inputs, outputs, params, wildcards) -> None:
+    """Every realization and lane of one model and energy, with their statistics."""
+    from chainchaos.studies.study import study_dataset
+    from chainchaos.studies.study.runs import scene_dataset, scene_name
+
+    study = _study(params)
+    ds = study_dataset(study, [xr.load_dataset(f) for f in inputs["groups"]])
+    for model in study.models:
+        for energy in study.energies:
+            if scene_name(model, energy) == f"{wildcards['model']}_H{wildcards['energy']}":
+                write_netcdf(scene_dataset(ds, model, energy), outputs["scene"])
+                return
+    raise ValueError(f"study {study.name}: no model and energy {wildcards['model']}_H{wildcards['energy']}")
+
+
+def study_statistics(inputs, outputs, params, wildcards) -> None:
+    """The ensemble statistics of every model and energy of a study."""
+    from chainchaos.studies.study.runs import merge_groups
+    from chainchaos.studies.study.statistics import statistics
+
+    study = _study(params)
+    merged = merge_groups(study, [xr.load_dataset(f) for f in inputs["groups"]])
+    stats = statistics(merged, float(study.spec["criteria"]["slope_window_decades"]))
+    stats.attrs = {**merged.attrs, **stats.attrs, "title": f"{study.title}: ensemble statistics"}
+    write_netcdf(stats, outputs["statistics"])
+
+
+def plot_study(inputs, outputs, params, wildcards) -> None:
+    """One of a study's standard figures (PDF and PNG)."""
+    from chainchaos.output.plotting.style import save_figure  # matplotlib: only in the plotting jobs
+    from chainchaos.studies.study.plots import study_figure
+
+    stats = xr.load_dataset(inputs["statistics"])
+    fig = study_figure(wildcards["study_figure"], stats, stats.attrs["study_title"])
+    save_figure(fig, Path(outputs["pdf"]).with_suffix(""), dpi=params["dpi"])
+
+
+def plot_study_comparison(inputs, outputs, params, wildcards) -> None:
+    """A study's ensemble means beside those of the studies it compares with."""
+    from chainchaos.output.plotting.style import save_figure
+    from chainchaos.studies.study.plots import comparison_figure
+
+    named = {name: xr.load_dataset(path) for name, path in inputs.items()}
+    fig = comparison_figure(named, f"study {wildcards['study']} and {', '.join(list(named)[1:])}")
+    save_figure(fig, Path(outputs["pdf"]).with_suffix(""), dpi=params["dpi"])
+
+
+TASKS = (study_group, study_scene, study_statistics, plot_study, plot_study_comparison)

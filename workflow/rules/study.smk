@@ -1,0 +1,125 @@
+# Studies of one's own: a file studies/<name>.yaml (keys: studies/README.md), run by
+#
+#   snakemake --cores 2 study --config study=<name>
+#
+# in resumable jobs of `jobs.orbits_per_job` orbits (study_group), merged into one NetCDF file
+# per model and energy holding every realization (study_scene) and the ensemble statistics
+# (study_statistics), drawn as the study's figures (plot_study, plot_study_comparison) and shown
+# in the HTML report (category "Studies"). Nothing of the paper (search, claims, manuscript) runs.
+
+
+wildcard_constraints:
+    study=r"[A-Za-z0-9][A-Za-z0-9_.-]*",
+    study_figure="|".join(STUDY_FIGURES),
+
+
+# Seconds of work each: on a cluster they run on the submitting host.
+localrules:
+    study,
+    study_scene,
+    study_statistics,
+    plot_study,
+    plot_study_comparison,
+
+
+rule study_group:
+    """One job's orbits of a study, integrated on the batch engine."""
+    input:
+        unpack(study_group_inputs),
+    output:
+        group=result("studies", "{study}", "groups", "{group}.nc"),
+    params:
+        spec=lambda wildcards: study_spec(wildcards.study),
+    log:
+        log_file("study_group", "{study}-{group}"),
+    benchmark:
+        benchmark_file("study_group", "{study}-{group}")
+    resources:
+        mem_mb=2000,
+        runtime=lambda wildcards: study_runtime(wildcards.study),
+    script:
+        "../scripts/study_group.py"
+
+
+rule study_scene:
+    """One model and energy of a study: every realization and lane, and their statistics."""
+    input:
+        groups=lambda wildcards: study_group_files(wildcards.study),
+    output:
+        scene=result("studies", "{study}", "{model}_H{energy}.nc"),
+    params:
+        spec=lambda wildcards: study_spec(wildcards.study),
+    log:
+        log_file("study_scene", "{study}-{model}_H{energy}"),
+    benchmark:
+        benchmark_file("study_scene", "{study}-{model}_H{energy}")
+    script:
+        "../scripts/study_scene.py"
+
+
+rule study_statistics:
+    """The ensemble statistics of a study on its (model, energy) grid."""
+    input:
+        groups=lambda wildcards: study_group_files(wildcards.study),
+    output:
+        statistics=result("studies", "{study}", "statistics.nc"),
+    params:
+        spec=lambda wildcards: study_spec(wildcards.study),
+    log:
+        log_file("study_statistics", "{study}"),
+    benchmark:
+        benchmark_file("study_statistics", "{study}")
+    script:
+        "../scripts/study_statistics.py"
+
+
+rule plot_study:
+    """One of a study's standard figures."""
+    input:
+        statistics=result("studies", "{study}", "statistics.nc"),
+    output:
+        pdf=result("studies", "{study}", "figures", "{study_figure}.pdf"),
+        png=report(
+            result("studies", "{study}", "figures", "{study_figure}.png"),
+            caption="../report/study.rst",
+            category=REPORT_CATEGORIES["studies"],
+            subcategory="{study}",
+            labels={"study": "{study}", "figure": "{study_figure}"},
+        ),
+    params:
+        dpi=config["figures"]["dpi"],
+    log:
+        log_file("plot_study", "{study}-{study_figure}"),
+    benchmark:
+        benchmark_file("plot_study", "{study}-{study_figure}")
+    script:
+        "../scripts/plot_study.py"
+
+
+rule plot_study_comparison:
+    """A study's ensemble means beside those of the studies it names in compare_with."""
+    input:
+        unpack(study_comparison_inputs),
+    output:
+        pdf=result("studies", "{study}", "figures", "comparison.pdf"),
+        png=report(
+            result("studies", "{study}", "figures", "comparison.png"),
+            caption="../report/study_comparison.rst",
+            category=REPORT_CATEGORIES["studies"],
+            subcategory="{study}",
+            labels={"study": "{study}", "figure": "comparison"},
+        ),
+    params:
+        dpi=config["figures"]["dpi"],
+    log:
+        log_file("plot_study_comparison", "{study}"),
+    benchmark:
+        benchmark_file("plot_study_comparison", "{study}")
+    script:
+        "../scripts/plot_study_comparison.py"
+
+
+rule study:
+    """Everything of the study named by config `study` (--config study=<name>)."""
+    input:
+        lambda wildcards: study_targets(config.get("study")),

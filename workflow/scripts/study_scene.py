@@ -1,0 +1,5 @@
+"""study_scene: see chainchaos.workflow.tasks.study.study_scene."""
+
+from chainchaos.workflow.tasks import run_rule
+
+run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
