@@ -207,7 +207,8 @@ def synthetic_scenes(t_final=1e5, u0=1.0410, hertz_spreads=True):
                                 "mode": np.arange(1, 41)})
         if scene.model == "hertz":
             frac = np.zeros((t.size, 41))
-            frac[:, 20] = 0.1
+            # one gap at a time, on the left (bond 21) and on the right (bond 22) of bead 21 in turn
+            frac[0::2, 20] = frac[1::2, 21] = 0.1
             if spreading:
                 frac[t > 3e2, :] = 0.1
             ds["gap_fraction"] = (("time", "bond"), frac)

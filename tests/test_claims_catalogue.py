@@ -190,6 +190,45 @@ def test_gap_measures_and_their_cases():
     assert ms.bond_coverage(inp, "far").value == pytest.approx(2 / 41)
 
 
+def test_gaps_at_site_21_need_both_of_its_bonds_and_no_other():
+    """"on the left and right side of site n=21 a gap often opens": bond 21 (beads 20, 21) and
+    bond 22 (beads 21, 22) both open, and no bond farther away."""
+    row = next(r for r in CATALOGUE if r.id == "gaps-H0.5-site21")
+    t = times(1e5)
+    cases = {"both": ({21: 1.0, 22: 10.0}, True), "left only": ({21: 1.0}, False),
+             "right only": ({22: 1.0}, False), "one side and a neighbour": ({20: 1.0, 21: 1.0}, False),
+             "both and farther": ({21: 1.0, 22: 1.0, 24: 1e3}, False), "none": ({}, False)}
+    inp = inputs({name: gap_scene(t, bonds) for name, (bonds, _) in cases.items()})
+    for name, (_, holds) in cases.items():
+        m = ms.gaps_beside_site(inp, name)
+        assert all(check.passes(m, inp.criteria) for check in row.checks) == holds, name
+    both = ms.gaps_beside_site(inp, "both")
+    assert (both["left_bond"], both["right_bond"]) == (21, 22) and both["left"] and both["right"]
+    # gap_fraction 0.5 from t = 1 (bond 21) and from t = 10 (bond 22) on, over a run from 0 to 1e5
+    assert both["left_time"] == pytest.approx(0.5 * (1e5 - 1) / 1e5, rel=1e-3)
+    assert both["right_time"] == pytest.approx(0.5 * (1e5 - 10) / 1e5, rel=1e-3)
+    assert not ms.gaps_beside_site(inp, "left only")["right"]
+
+
+def test_gaps_cover_the_whole_lattice_only_when_every_bond_opens():
+    """"covering eventually the whole lattice": every bond 1..N+1, the two wall bonds included,
+    opens at some time; one bond that never opens (a wall bond or one inside) breaks it."""
+    row = next(r for r in CATALOGUE if r.id == "gaps-H1.8-cover")
+    t = times(1e5)
+    every = {b: 1.0 + b for b in range(1, 42)}
+    cases = {"every": (every, True), "all but bond 30": ({b: s for b, s in every.items() if b != 30}, False),
+             "all but the right wall bond": ({b: s for b, s in every.items() if b != 41}, False),
+             "all but the left wall bond": ({b: s for b, s in every.items() if b != 1}, False)}
+    inp = inputs({name: gap_scene(t, bonds) for name, (bonds, _) in cases.items()})
+    for name, (_, holds) in cases.items():
+        m = ms.bond_coverage(inp, name)
+        assert all(check.passes(m, inp.criteria) for check in row.checks) == holds, name
+    assert ms.bond_coverage(inp, "every").value == 1.0 and ms.bond_coverage(inp, "every")["bonds"] == 41
+    short = ms.bond_coverage(inp, "all but bond 30")
+    assert short.value == pytest.approx(40 / 41) and short["never"] == 1 and list(short["never_bonds"]) == [30]
+    assert not any(isinstance(v, str) and "gap_coverage" in v for c in row.checks for v in (c.reference, c.tolerance))
+
+
 def scan(hertz: str, fput: str, E=None) -> xr.Dataset:
     E = np.geomspace(0.1, 10, 12) if E is None else E
     flags = np.array([[int(ch) for ch in f] for f in (hertz, fput)], dtype=np.int8)
@@ -433,7 +472,7 @@ PAPER_VALUES = {
     "regular-H0.5-fput": {"chaotic": False},
     "dvd-H0.5-site21": {"value": 1.0},                           # "for the rest of the simulation"
     "gaps-H0.5-one": {"value": 1},                               # "no more than one gap"
-    "gaps-H0.5-site21": {"opened": 2, "distances": [0, 0]},      # "on the left and right side of site n=21"
+    "gaps-H0.5-site21": {"left": True, "right": True, "distances": [0, 0]},  # "on the left and right side of site n=21"
     "spread-H1.8-level": None,                                   # "P < 3": a bound, no value
     "spread-H1.8-onset": {"value": 2e2},
     "spread-H1.8-saturation": {"value": 26.0},
@@ -441,7 +480,7 @@ PAPER_VALUES = {
     "mlce-H1.8": {"value": 1e-3},
     "chaos-H1.8-onset": {"value": 2e2},
     "gaps-H1.8-spread": {"value": 3e2},
-    "gaps-H1.8-cover": {"value": 1.0},                           # "covering eventually the whole lattice"
+    "gaps-H1.8-cover": {"value": 1.0, "never": 0},               # "covering eventually the whole lattice"
     "fput-regular-to-1.8": {"chaotic": [False, False, False]},
     "fput-H2.9": {"chaotic": True},
     "chaos-H2.9-onset": {"value": 4e3},

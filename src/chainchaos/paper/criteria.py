@@ -123,8 +123,6 @@ class Criteria:
     gap_spread_distance
         a gap has left the excited bead when it opens on a bond at least this many bonds away
         from the two bonds of that bead (bonds s and s+1 are at distance 0).
-    gap_coverage
-        gaps "cover the whole lattice" when at least this fraction of the N+1 bonds has opened.
     dvd_site_halfwidth, dvd_site_fraction
         the DVD is localized at the excited site when its maximum lies within this many sites of
         it in at least this fraction of the final-window samples.
@@ -159,7 +157,6 @@ class Criteria:
     localized_mode_p_max: float = 3.0
     n_localized_modes: int = 10
     gap_spread_distance: int = 2
-    gap_coverage: float = 0.9
     dvd_site_halfwidth: int = 1
     dvd_site_fraction: float = 0.8
     eta_near_one: float = 0.9

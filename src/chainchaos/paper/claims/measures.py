@@ -215,12 +215,18 @@ def max_gaps(inputs: Inputs, scene: str) -> Measurement:
 
 
 def gaps_beside_site(inputs: Inputs, scene: str) -> Measurement:
-    """The bonds that ever opened and their distance from the excited bead; headline: the largest
-    distance (None when no bond opened)."""
-    bonds = q.bonds_ever_open(inputs.scenes[scene])
-    distances = q.bond_distance(bonds, inputs.site)
+    """The gaps beside the excited bead s: the bonds that ever opened and their distance from s,
+    and whether each of the bead's own two bonds opened, ``left`` bond s (between beads s-1 and
+    s) and ``right`` bond s+1 (between beads s and s+1), with the fraction of the run each was
+    open (``left_time``, ``right_time``); headline: the largest distance (None when no bond opened)."""
+    ds, s = inputs.scenes[scene], inputs.site
+    bonds = q.bonds_ever_open(ds)
+    distances = q.bond_distance(bonds, s)
+    left_time, right_time = (float(x) for x in q.open_time_fraction(ds, (s, s + 1)))
     return Measurement(float(np.max(distances)) if bonds.size else None,
-                       {"bonds": bonds, "distances": distances, "opened": bonds.size})
+                       {"bonds": bonds, "distances": distances, "opened": bonds.size,
+                        "left_bond": s, "right_bond": s + 1, "left": bool(np.isin(s, bonds)),
+                        "right": bool(np.isin(s + 1, bonds)), "left_time": left_time, "right_time": right_time})
 
 
 def gap_spread(inputs: Inputs, scene: str) -> Measurement:
@@ -234,9 +240,14 @@ def gap_spread(inputs: Inputs, scene: str) -> Measurement:
 
 
 def bond_coverage(inputs: Inputs, scene: str) -> Measurement:
-    """Fraction of the bonds that opened at some time."""
+    """How much of the chain the gaps covered: the fraction of its bonds, 1 to N+1 with the two wall
+    bonds, that opened at some time (headline), the number that ``never`` did and which
+    (``never_bonds``)."""
     ds = inputs.scenes[scene]
-    return Measurement(q.bonds_ever_open(ds).size / ds.sizes["bond"])
+    all_bonds = np.asarray(ds["bond"].values)
+    never = np.setdiff1d(all_bonds, q.bonds_ever_open(ds))
+    return Measurement((all_bonds.size - never.size) / all_bonds.size,
+                       {"never": int(never.size), "never_bonds": never, "bonds": int(all_bonds.size)})
 
 
 # ---- the energy scan ---------------------------------------------------------------------------

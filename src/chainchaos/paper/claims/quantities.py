@@ -127,6 +127,16 @@ def bonds_ever_open(ds: xr.Dataset) -> np.ndarray:
     return np.asarray(ds["bond"].values)[opened]
 
 
+def open_time_fraction(ds: xr.Dataset, bonds) -> np.ndarray:
+    """Fraction of the run (from the first sample to the last) during which each of ``bonds`` was
+    open: ``gap_fraction`` (the fraction of the steps since the previous sample at whose end the
+    bond was open) weighted by the length of each interval between samples."""
+    t = np.asarray(ds["time"].values, dtype=float)
+    frac = np.asarray(ds["gap_fraction"].sel(bond=list(bonds)).values, dtype=float)
+    span = t[-1] - t[0]
+    return (np.diff(t) @ frac[1:]) / span if span > 0 else np.zeros(len(bonds))
+
+
 def bond_distance(bond: np.ndarray, site: int) -> np.ndarray:
     """Distance of bond b (joining beads b-1 and b) from bead ``site``: 0 for its own two bonds
     (site and site+1), then 1, 2, ... outwards."""
