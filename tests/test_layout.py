@@ -12,7 +12,7 @@ import chainchaos
 
 PACKAGE = Path(chainchaos.__file__).resolve().parent
 LAYERS = {"system", "engine", "observe", "run", "paper", "studies", "output", "workflow"}
-TOP_LEVEL_MODULES = {"__init__.py", "errors.py"}
+TOP_LEVEL_MODULES = {"__init__.py", "errors.py", "__main__.py"}  # __main__: python -m chainchaos
 
 
 def module_name(path: Path) -> str:

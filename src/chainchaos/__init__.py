@@ -3,6 +3,19 @@
 The physics core of the pipeline: disordered chains and their linear modes, the Hertz and FPUT
 bond models, symplectic splitting integrators applied together with their tangent map, and the
 observables of the paper, written as CF-style NetCDF through xarray.
+
+Importing the package sets two process-wide environment variables
+(chainchaos.engine.cache.configure_numba_cache), which Numba reads when it is first imported; a
+variable already set is left as it is:
+
+- ``NUMBA_DISABLE_INTEL_SVML=1``: Numba does not call Intel's SVML vector maths (used when
+  ``intel-cmplr-lib-rt`` happens to be installed), whose results depend on the CPU, so that the
+  kernels give the same numbers, to the bit, on every x86-64 CPU.
+- ``NUMBA_CACHE_DIR``: Numba's on-disk cache of compiled kernels, in a directory keyed by the
+  kernels' source: ``<project>/.numba_cache/<key>`` in a checkout (every job of the pipeline reuses
+  the kernels compiled once), ``~/.cache/chainchaos/numba/<key>`` for an installed package.
+
+Other Numba code that the process runs afterwards sees them too.
 """
 
 from chainchaos.engine.cache import configure_numba_cache
@@ -37,6 +50,11 @@ _EXPORTS = {
     "CLAIMS": ("chainchaos.paper.claims.catalogue", "CATALOGUE"),
 }
 __all__ = [*_EXPORTS, "__version__"]
+
+
+def __dir__():
+    """The module's own names and the public names imported on first use (tab completion)."""
+    return sorted(set(globals()) | set(_EXPORTS))
 
 
 def __getattr__(name):

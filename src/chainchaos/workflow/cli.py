@@ -1,4 +1,5 @@
-"""Command line: ``chainchaos chain | ensemble | simulate | bench | stamp-search-archive``."""
+"""Command line: ``chainchaos chain | ensemble | simulate | bench | stamp-search-archive`` and
+``chainchaos --version`` (also ``python -m chainchaos``)."""
 
 import argparse
 import json
@@ -137,8 +138,10 @@ def build_parser() -> argparse.ArgumentParser:
     from chainchaos.system.linear import CONVENTIONS
     from chainchaos.system.models import MODELS
 
-    parser = argparse.ArgumentParser(prog="chainchaos", description=__import__("chainchaos").__doc__,
+    package = __import__("chainchaos")
+    parser = argparse.ArgumentParser(prog="chainchaos", description=package.__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--version", action="version", version=f"%(prog)s {package.__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
 
     p = sub.add_parser("chain", help="write a chain file (NetCDF)",
