@@ -24,15 +24,17 @@ import xarray as xr
 
 from chainchaos.output.provenance import machine_line
 
-#: Parts of the pipeline, by the rules whose jobs they are (first match wins), in table order.
+#: Parts of the pipeline, by the rules whose jobs they are, matched against "<rule>/<job>" (first
+#: match wins), in table order. The scans' orbits run in the jobs of their studies (study_group).
 PARTS = (
     ("kernel compilation", r"compile_kernels"),
     ("realization search: linear rule and filter", r"search_(candidates|filter)"),
     ("realization search: scores", r"search_score|search_merge|select_chain"),
     ("scenes", r"simulate_scenes?"),
     ("ensemble verdicts", r"ensemble_verdicts"),
-    ("energy scan", r"scan_energy_group|merge_energy_scan"),
-    ("disorder statistics", r"scan_disorder_group|merge_disorder"),
+    ("energy scan", r"study_group/energy_scan-|merge_energy_scan"),
+    ("disorder statistics", r"study_group/disorder(_full)?-|merge_disorder"),
+    ("studies", r"study_|plot_study"),
     ("Lyapunov spectra", r"lyapunov_spectrum"),
     ("disorder ensemble of Fig. 1(a)", r"compute_ensemble"),
     ("long-time energy drift", r"numerics_energy_drift"),
@@ -53,9 +55,9 @@ def jobs(results: Path) -> list[dict]:
     return out
 
 
-def part_of(rule: str) -> str:
+def part_of(rule: str, job: str = "") -> str:
     for name, pattern in PARTS:
-        if re.fullmatch(f"(?:{pattern}).*", rule):
+        if re.fullmatch(f"(?:{pattern}).*", f"{rule}/{job}"):
             return name
     return "other"
 
@@ -80,7 +82,7 @@ def main(argv=None) -> dict:
     total = sum(r["s"] for r in records)
     parts = {name: [] for name, _ in PARTS}
     for r in records:
-        parts.setdefault(part_of(r["rule"]), []).append(r)
+        parts.setdefault(part_of(r["rule"], r["job"]), []).append(r)
     machine_of_results = machine(a.results)
     print(machine_of_results)
     print(f"{len(records)} jobs, {total / 60:.1f} min of job time, span {span / 60:.1f} min "

@@ -1,23 +1,24 @@
-"""Energy scans and disorder statistics (chainchaos.studies.scan.runs): reductions, criteria, grouping, merge."""
+"""Energy scans and disorder statistics (chainchaos.studies.scan.runs): reductions, criteria, the
+scans as studies, merge."""
 
 import numpy as np
 import pytest
 import xarray as xr
 
 from chainchaos import random_chain
-from chainchaos.studies.scan.merge import merge_disorder, merge_energy_scan, wilson_interval
+from chainchaos.output.io import chain_dataset, write_netcdf
+from chainchaos.studies.scan.merge import merge_disorder, merge_energy_scan, scan_groups, wilson_interval
 from chainchaos.studies.scan.runs import (
     ScanSettings,
     Trajectory,
-    disorder_group,
     energy_grid,
-    energy_scan_group,
-    group_items,
-    items,
-    n_groups,
     run_trajectories,
+    scan_study,
     select_excitation,
+    settings_for,
 )
+from chainchaos.studies.study.runs import run_group
+from chainchaos.studies.study.spec import load_study
 from chainchaos.studies.scan.thresholds import PAPER_THRESHOLDS, thresholds_csv, thresholds_table, thresholds_tex
 from chainchaos.system.models import get_model
 
@@ -37,14 +38,29 @@ def chain():
     return random_chain(5346, 5.0)
 
 
-def test_groups_cover_every_trajectory_once():
-    for kind in ("energy_scan", "disorder"):
-        n = n_groups(kind, CFG)
-        seen = [it for g in range(n) for it in group_items(kind, CFG, g)]
-        assert seen == items(kind, CFG)
-        assert len(set(seen)) == len(seen)
-    assert n_groups("energy_scan", CFG) == 3  # 8 trajectories, 3 per job
-    assert n_groups("disorder", CFG) == 3  # 12 trajectories, 5 per job
+@pytest.fixture(scope="module")
+def chain_file(chain, tmp_path_factory):
+    return str(write_netcdf(chain_dataset(chain), tmp_path_factory.mktemp("chain") / "chain.nc"))
+
+
+def scan_as_study(kind, chain_file=None):
+    """The study a scan kind of CFG is, and its group files (each job's orbits)."""
+    study = load_study(scan_study(kind, CFG, 40, chain_file))
+    return study, [run_group(study, g) for g in range(study.n_groups)]
+
+
+def test_a_scan_is_the_study_of_its_settings(chain_file):
+    study = load_study(scan_study("energy_scan", CFG, 40, chain_file))
+    assert study.settings == ScanSettings(**{**settings_for("energy_scan", CFG).__dict__, "batch_size": 32})
+    assert study.energies.tolist() == energy_grid(CFG["energy_scan"]).tolist()
+    assert study.excitation().site == 21 and study.models == ["hertz", "fput"] and study.realizations == 1
+    assert study.n_groups == 3  # 8 trajectories, 3 per job
+    disorder = load_study(scan_study("disorder", CFG))
+    assert disorder.n_groups == 3 and disorder.seeds == [100, 101, 102]  # 12 trajectories, 5 per job
+    for r, chain in enumerate(disorder.chains):
+        assert disorder.excitation(r).site == select_excitation(chain, 14, 5)["site"]
+    items = [it for g in range(disorder.n_groups) for it in disorder.group_items(g)]
+    assert items == disorder.items() and len(set(items)) == len(items)
 
 
 def test_energy_grid_is_log_spaced_and_rounded():
@@ -95,9 +111,8 @@ def test_engines_agree_and_criteria_follow_their_definitions(chain):
     assert high["max_gaps"] > low["max_gaps"]
 
 
-def test_energy_scan_groups_merge_onto_the_grid(chain):
-    groups = [energy_scan_group(chain, CFG, g) for g in range(n_groups("energy_scan", CFG))]
-    ds = merge_energy_scan(groups, CFG, chain)
+def test_energy_scan_groups_merge_onto_the_grid(chain, chain_file):
+    ds = merge_energy_scan(scan_groups(scan_as_study("energy_scan", chain_file)[1]), CFG, chain)
     assert ds.participation_final.dims == ("model", "energy")
     assert ds.participation.dims == ("model", "energy", "time")
     assert list(ds.model.values) == ["hertz", "fput"] and ds.sizes["energy"] == 4
@@ -126,8 +141,7 @@ def test_thresholds_table_reads_first_and_always_above():
 
 
 def test_disorder_statistics_with_binomial_bands():
-    groups = [disorder_group(CFG, g) for g in range(n_groups("disorder", CFG))]
-    ds = merge_disorder(groups, CFG)
+    ds = merge_disorder(scan_groups(scan_as_study("disorder")[1]), CFG)
     assert ds.participation_final.dims == ("model", "energy", "realization")
     assert ds.sizes["realization"] == 3 and (ds.count_valid == 3).all()
     for what in ("delocalized", "chaotic"):
@@ -152,16 +166,27 @@ def test_wilson_interval_known_values():
     assert np.isnan(lo) and np.isnan(hi)
 
 
-def test_scan_figures_are_byte_stable(tmp_path, chain):
+def test_scan_figures_are_byte_stable(tmp_path, chain, chain_file):
     from chainchaos.output.plotting.style import save_figure
     from chainchaos.studies.scan import plots as scan_plots
 
-    groups = [energy_scan_group(chain, CFG, g) for g in range(n_groups("energy_scan", CFG))]
-    ds = merge_energy_scan(groups, CFG, chain)
-    dis = merge_disorder([disorder_group(CFG, g) for g in range(n_groups("disorder", CFG))], CFG)
+    ds = merge_energy_scan(scan_groups(scan_as_study("energy_scan", chain_file)[1]), CFG, chain)
+    dis = merge_disorder(scan_groups(scan_as_study("disorder")[1]), CFG)
     for name, fig_fn, data in (("e", scan_plots.energy_scan_figure, ds), ("d", scan_plots.disorder_figure, dis)):
         save_figure(fig_fn(data), tmp_path / f"{name}1")
         save_figure(fig_fn(data), tmp_path / f"{name}2")
         a, b = (tmp_path / f"{name}1.pdf").read_bytes(), (tmp_path / f"{name}2.pdf").read_bytes()
         assert a[:5] == b"%PDF-" and a == b and b"CreationDate" not in a
         assert (tmp_path / f"{name}1.png").read_bytes() == (tmp_path / f"{name}2.png").read_bytes()
+
+
+def test_a_scan_orbit_of_the_study_is_the_scans_trajectory(chain, chain_file):
+    """The study path and run_trajectories give the same numbers, orbit by orbit, to the bit."""
+    study, groups = scan_as_study("energy_scan", chain_file)
+    g = groups[0]
+    trajs = [Trajectory(str(m), float(study.energies[e]), chain, 21)
+             for m, e in zip(g["model"].values, g["energy_index"].values)]
+    for i, r in enumerate(run_trajectories(trajs, settings_for("energy_scan", CFG))):
+        for key in ("participation_final", "mlce_final", "eta_final", "chaos_onset", "max_gaps", "u0"):
+            np.testing.assert_array_equal(g[key].values[i], r[key], err_msg=key)
+        np.testing.assert_array_equal(g["participation"].values[i], r["participation"])

@@ -232,3 +232,24 @@ def test_small_full_search_runs_through_slurm(slurm, tmp_path):
     with xr.open_dataset(archive) as ds:
         assert ds.attrs["seeds_scanned"] == 1500 and int(ds["scored"].sum()) == 2
         assert ds.attrs["cost_search_filter_jobs"] == -(-ds.sizes["candidate"] // 2)
+
+
+def test_a_study_runs_through_slurm(slurm, tmp_path):
+    """`snakemake --profile profiles/slurm study`: a study's orbit jobs go through SLURM, its
+    merge, statistics and figures run on the submitting host."""
+    from test_study_workflow import SMALL
+
+    study, results = tmp_path / "small.yaml", tmp_path / "results"
+    study.write_text(SMALL)
+    cmd = ["timeout", "-k", "15", "420", sys.executable, "-m", "snakemake", "--profile", "profiles/slurm",
+           "--nolock", "--jobs", "2", "--latency-wait", "5",
+           "--default-resources", "slurm_partition=debug", "mem_mb=1000", "runtime=30", "cpus_per_task=1",
+           "--slurm-status-command", "squeue", "--slurm-init-seconds-before-status-checks", "5",
+           "--config", f"study={study}", f"results={results}", "--", "study"]
+    done = subprocess.run(cmd, cwd=ROOT, env=slurm, capture_output=True, text=True, timeout=480)
+    assert done.returncode == 0, (done.stdout + done.stderr)[-6000:]
+    with xr.open_dataset(results / "studies" / "small" / "statistics.nc") as ds:
+        assert ds.sizes["realization"] == 3 and set(ds.model.values) == {"hertz", "fput"}
+    comments = subprocess.run(["squeue", "-h", "--states=all", "-o", "%k %T"], env=slurm, capture_output=True,
+                              text=True, timeout=30).stdout  # the plugin's comment: rule_<name>_wildcards_...
+    assert "rule_study_group" in comments, comments

@@ -101,7 +101,7 @@ def test_the_worked_studies_are_valid_and_fput_extends_hertz():
     assert fput.spec["lattice"] == {**hertz.spec["lattice"], "model": "fput"}
     assert fput.spec["integration"] == hertz.spec["integration"]
     assert len(hertz.seeds) == 16 and hertz.energies.tolist() == [0.5, 1.8, 3.0]
-    assert hertz.excitation.site == 50 and hertz.settings.alignment and hertz.settings.gali_order == 4
+    assert hertz.excitation().site == 50 and hertz.settings.alignment and hertz.settings.gali_order == 4
 
 
 @pytest.mark.parametrize("change,message", [
@@ -170,3 +170,15 @@ def test_ordered_mean_skips_missing_values():
     x = np.array([[1.0, np.nan], [3.0, 2.0], [np.nan, np.nan]])
     mean, count = st.ordered_mean(x, axis=0)
     assert mean.tolist() == [2.0, 2.0] and count.tolist() == [2, 1]
+
+
+def test_every_study_key_is_described_and_the_committed_readme_is_generated():
+    from pathlib import Path
+
+    from chainchaos.workflow import config_docs
+
+    root = Path(__file__).resolve().parents[1]
+    schema = config_docs.load_schema(root / config_docs.STUDY_SCHEMA)
+    assert config_docs.undescribed(schema) == []
+    assert (root / config_docs.STUDY_README).read_text() == config_docs.render(schema, config_docs.STUDY_HEADER), \
+        "studies/README.md is stale: run python -m chainchaos.workflow.config_docs"

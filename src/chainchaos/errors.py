@@ -31,7 +31,7 @@ class StudyError(ConfigError):
 
     def __init__(self, messages: list[str]):
         self.messages = list(messages)
-        ValueError.__init__(self, "invalid study (studies/schema.yaml, studies/README.md):\n  "
+        ValueError.__init__(self, "invalid study (keys: studies/README.md):\n  "
                             + "\n  ".join(self.messages))
 
 

@@ -8,6 +8,7 @@ import math
 import os
 import re
 import sys
+from pathlib import Path
 
 import xarray as xr
 
@@ -141,20 +142,6 @@ def scan_params(kind):
     return {"settings": SCAN.get("settings", {}), base: scan[base]}
 
 
-def scan_group_files(kind):
-    base, scan = scan_runs.scan_config(kind, SCAN)
-    return [
-        result("scan", "groups", kind, f"{g:04d}.nc") for g in range(scan_runs.n_groups(base, scan))
-    ]
-
-
-def scan_runtime(kind):
-    """Minutes a group job of a scan may take."""
-    base, scan = scan_runs.scan_config(kind, SCAN)
-    s = scan_runs.settings_for(base, scan)
-    return cluster_runtime(scan[base]["trajectories_per_job"], s.t_final, s.dt)
-
-
 # The full disorder statistics kept in the repository (`snakemake disorder_full` writes them):
 # when the file exists and its settings (those disorder_full would run with) and result version
 # are this run's, `all` takes its disorder statistics from it and runs no disorder group.
@@ -171,7 +158,7 @@ USED_DISORDER_ARCHIVE = kept_file(
 def disorder_inputs():
     if USED_DISORDER_ARCHIVE:
         return {"archive": USED_DISORDER_ARCHIVE}
-    return {"groups": scan_group_files("disorder")}
+    return {"groups": study_group_files("disorder")}
 
 
 # ---- the realization search and the ensemble verdicts (workflow/rules/search.smk) --------------
@@ -369,10 +356,24 @@ def manuscript_inputs(wildcards=None):
 # ---- studies of one's own (workflow/rules/study.smk) -------------------------------------------
 
 
+def study_name(given):
+    """The name of the study config `study` gives: a name of studies/, or the stem of a file."""
+    return Path(given).stem if str(given).endswith((".yaml", ".yml")) else given
+
+
+# The scans are studies too (chainchaos.studies.scan.runs.scan_study), named by their kind.
+SCAN_STUDIES = ("energy_scan", "disorder", "disorder_full")
+
+
 @functools.cache
 def study_of(name):
-    """The study of studies/<name>.yaml, read and checked once per workflow."""
-    return load_study(name)
+    """The study of studies/<name>.yaml (or of the file config `study` names, whose stem is
+    ``name``; or the scan kind ``name``, from config block `scan`), read and checked once."""
+    if name in SCAN_STUDIES:
+        chain_file = result("chain", "chain.nc")
+        return load_study(scan_runs.scan_study(name, SCAN, config["chain"]["N"], chain_file))
+    given = str(config.get("study") or "")
+    return load_study(given if study_name(given) == name and given != name else name)
 
 
 def study_spec(name):
@@ -401,7 +402,8 @@ def study_runtime(name):
     orbits = (
         study.per_job * study.lanes * (1 + 0.4 * (settings.gali_order - 1) * settings.alignment)
     )
-    return cluster_runtime(orbits * max(1.0, study.N / 40), settings.t_final, settings.dt)
+    N = study.spec["lattice"].get("N") or 40  # a chain file may not exist yet
+    return cluster_runtime(orbits * max(1.0, N / 40), settings.t_final, settings.dt)
 
 
 def study_comparison_inputs(wildcards):
@@ -415,6 +417,7 @@ def study_targets(name):
         raise ValueError(
             f"the target study needs a study: --config study=<name>, one of {study_names()}"
         )
+    name = study_name(name)
     study = study_of(name)
     files = [
         result("studies", name, f"{scene_name(m, e)}.nc")

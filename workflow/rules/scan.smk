@@ -1,15 +1,10 @@
 # Energy scan and disorder statistics of delocalization and chaos (issue 7).
 #
-# Many short trajectories, grouped `trajectories_per_job` to a job so that the DAG stays at
-# hundreds of jobs at paper scale (chainchaos.studies.scan.runs.n_groups); each group file holds its
-# trajectories' scan observables, a merge rule puts them on the (model, energy[, realization])
-# grid. `resources:` (mem_mb, runtime in minutes) feed the SLURM profile (profiles/slurm/);
-# a group's runtime follows from its steps and the measured cost per step, `scan.us_per_step`.
-
-
-wildcard_constraints:
-    group=r"\d+",
-    disorder="disorder|disorder_full",
+# Each is a study (chainchaos.studies.scan.runs.scan_study: the config block `scan` read as a
+# study's keys), whose orbits run in the study's jobs (rule study_group, workflow/rules/study.smk;
+# `trajectories_per_job` orbits each, so that the DAG stays at hundreds of jobs at paper scale);
+# the merge rules below put its group files on the scan's (model, energy[, realization]) grid.
+# `resources:` (mem_mb, runtime in minutes) feed the SLURM profile (profiles/slurm/).
 
 
 # Seconds of work each: on a cluster they run on the submitting host rather than wait in the queue.
@@ -21,50 +16,9 @@ localrules:
     scan_thresholds,
 
 
-rule scan_energy_group:
-    """One group of (model, energy) trajectories on the chosen chain."""
-    input:
-        chain=result("chain", "chain.nc"),
-        kernels=result("kernels_compiled.txt"),
-    output:
-        group=result("scan", "groups", "energy_scan", "{group}.nc"),
-    params:
-        scan=scan_params("energy_scan"),
-    log:
-        log_file("scan_energy_group", "{group}"),
-    benchmark:
-        benchmark_file("scan_energy_group", "{group}")
-    resources:
-        mem_mb=1000,
-        runtime=scan_runtime("energy_scan"),
-    script:
-        "../scripts/scan_energy_group.py"
-
-
-rule scan_disorder_group:
-    """One group of (model, realization, energy) trajectories on alpha = 5 realizations, of the
-    disorder statistics of `all` or of the full ones (`disorder_full`)."""
-    input:
-        kernels=result("kernels_compiled.txt"),
-    output:
-        group=result("scan", "groups", "{disorder}", "{group}.nc"),
-    params:
-        scan=lambda wildcards: scan_params(wildcards.disorder),
-        N=config["chain"]["N"],
-    log:
-        log_file("scan_disorder_group", "{disorder}-{group}"),
-    benchmark:
-        benchmark_file("scan_disorder_group", "{disorder}-{group}")
-    resources:
-        mem_mb=1000,
-        runtime=lambda wildcards: scan_runtime(wildcards.disorder),
-    script:
-        "../scripts/scan_disorder_group.py"
-
-
 rule merge_energy_scan:
     input:
-        groups=scan_group_files("energy_scan"),
+        groups=study_group_files("energy_scan"),
         chain=result("chain", "chain.nc"),
     output:
         merged=result("scan", "energy_scan.nc"),
@@ -104,7 +58,7 @@ rule disorder_full:
     """The full disorder statistics (config scan.disorder_full), with their cost and provenance,
     written to scan.disorder.archive (a file of the repository that `all` reads)."""
     input:
-        groups=scan_group_files("disorder_full"),
+        groups=study_group_files("disorder_full"),
     params:
         scan=scan_params("disorder_full"),
         N=config["chain"]["N"],

@@ -9,6 +9,7 @@
 
 
 wildcard_constraints:
+    group=r"\d+",
     study=r"[A-Za-z0-9][A-Za-z0-9_.-]*",
     study_figure="|".join(STUDY_FIGURES),
 

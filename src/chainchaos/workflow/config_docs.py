@@ -1,5 +1,6 @@
-"""config/README.md and studies/README.md, generated from config/schema.yaml and
-studies/schema.yaml: every key, its type, allowed values, default and description.
+"""config/README.md and studies/README.md, generated from config/schema.yaml and the study schema
+(src/chainchaos/studies/study/schema.yaml): every key, its type, allowed values, default and
+description.
 
 The schema is the single place a key is described: a test checks that every key has a
 description and that the committed config/README.md is what this module writes, so the two cannot
@@ -15,7 +16,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[3]
 SCHEMA = Path("config/schema.yaml")
 README = Path("config/README.md")
-STUDY_SCHEMA = Path("studies/schema.yaml")
+STUDY_SCHEMA = Path("src/chainchaos/studies/study/schema.yaml")
 STUDY_README = Path("studies/README.md")
 
 # JSON-schema keywords shown as constraints, with how each reads.
@@ -175,10 +176,10 @@ allowed, stops the run with a message naming the key. Times are in units of `1/o
 
 STUDY_HEADER = """# Study keys
 
-<!-- Generated from studies/schema.yaml by `python -m chainchaos.workflow.config_docs`; do not edit by hand. -->
+<!-- Generated from src/chainchaos/studies/study/schema.yaml by `python -m chainchaos.workflow.config_docs`; do not edit by hand. -->
 
 A study is one file `studies/<name>.yaml`, run by `snakemake --cores 2 study --config study=<name>`
-or, in Python, by `chainchaos.run_study("<name>")`. `studies/schema.yaml` validates it before
+or, in Python, by `chainchaos.run_study("<name>")`. The study schema validates it before
 anything runs: a key not listed here, a value outside what is allowed, or keys that do not fit
 each other (an excited site beyond N, a mode above N, a step longer than the run) stop it with a
 message naming the key. Times are in units of `1/omega_max` of the homogeneous chain.

@@ -1,6 +1,10 @@
 """The groups of a scan merged into one file: the energy scan on its (model, energy) grid, the
 disorder statistics with the fraction of realizations delocalized and chaotic per energy (Wilson
-95% intervals) and the quantiles of the onset times."""
+95% intervals) and the quantiles of the onset times.
+
+The groups are the group files of the scan's study (``runs.scan_study``, run by
+``chainchaos.studies.study.runs.run_group``), read along their orbits as the scan's trajectories
+(:func:`scan_groups`)."""
 
 
 import numpy as np
@@ -21,6 +25,12 @@ from chainchaos.studies.scan.runs import (
     settings_for,
 )
 from chainchaos.system.chain import GENERATOR
+
+
+def scan_groups(study_groups: list[xr.Dataset]) -> list[xr.Dataset]:
+    """The group files of a scan's study, their dimension ``orbit`` read as the scan's
+    ``trajectory`` (one lane per orbit)."""
+    return [g.rename(orbit="trajectory") for g in study_groups]
 
 
 def wilson_interval(k, n, z: float = 1.959963984540054):
@@ -75,7 +85,7 @@ def merge_energy_scan(groups: list[xr.Dataset], scan_cfg: dict, chain=None) -> x
     ds.attrs.update(title="Energy scan: delocalization and chaos of a single-site excitation",
                     integrator=settings.integrator, dt=float(settings.dt), t_final=float(settings.t_final),
                     K4_sign=float(settings.k4_sign), excited_site=int(block.get("site", 21)),
-                    seed=int(groups[0].attrs.get("seed", -1)), n_groups=len(groups))
+                    seed=-1 if chain is None or chain.seed is None else int(chain.seed), n_groups=len(groups))
     if chain is not None:
         ds.attrs.update(alpha=float(chain.alpha))
     return ds

@@ -43,17 +43,24 @@ import math
 from dataclasses import asdict, dataclass
 
 import numpy as np
-import xarray as xr
 
 from chainchaos.engine import exactmath
 from chainchaos.errors import require, require_finite_positive
-from chainchaos.observe.reductions import chaos_onset, final_average, gali_crossing, is_chaotic, sustained_onset
-from chainchaos.observe.registry import REGISTRY
-from chainchaos.output.provenance import provenance_attrs
+from chainchaos.observe.reductions import (
+    chaos_onset,
+    final_average,
+    gali_crossing,
+    is_chaotic,
+    sustained_onset,
+)
 from chainchaos.paper import panels
 from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
 from chainchaos.system.chain import random_chain
-from chainchaos.system.linear import mode_energy_density, normal_modes, participation_number
+from chainchaos.system.linear import (
+    mode_energy_density,
+    normal_modes,
+    participation_number,
+)
 
 #: Version of the numbers of the disorder statistics (the kept full statistics record it,
 #: chainchaos.output.kept): bump only when a change of code changes their numbers (the bit-identity
@@ -125,33 +132,32 @@ def run_trajectories(trajectories: list[Orbit], settings: ScanSettings, progress
     """Integrate every trajectory (``orbits.integrate``) and reduce it to the scan observables
     (module docstring). Returns one dict per trajectory, in the input order."""
     times, runs = integrate(trajectories, settings, progress, gali_stop=math.log(settings.gali_threshold))
-    out = []
+    return [{**reduce_orbit(times, r, settings), "times": times, "participation": r["participation"],
+             "log_growth": r["log_growth"], "eta": r["eta"]} for r in runs]
+
+
+def reduce_orbit(times: np.ndarray, r: dict, settings: ScanSettings) -> dict:
+    """The scan observables (module docstring) of one integrated orbit (a result of
+    ``orbits.integrate``); ``eta_final`` is NaN where the orbit kept no eta."""
     with np.errstate(invalid="ignore", divide="ignore"):
-        for r in runs:
-            P, g = r["participation"], r["log_growth"]
-            P_fin = final_average(times, P)
-            out.append({
-                "participation_final": P_fin,
-                "participation_last": float(P[-1]),
-                "mlce_final": float(g[-1] / times[-1]),
-                "log_growth_final": float(g[-1]),
-                "eta_final": final_average(times, r["eta"]),
-                "max_gaps": r["max_gaps"],
-                "delocalized": bool(P_fin > settings.p_delocalized),
-                "chaotic": is_chaotic(times, g, settings.chaos_slope, settings.chaos_growth_margin),
-                "delocalization_onset": sustained_onset(times, P, settings.p_delocalized,
-                                                        settings.onset_hold_decades),
-                "chaos_onset": chaos_onset(times, g, settings.chaos_slope, settings.chaos_growth_margin),
-                **_gali_reading(times, r, settings),
-                "energy_error_max": float(np.max(r["energy_error"])),
-                "u0": r["u0"],
-                "valid": r["valid"],
-                "times": times,
-                "participation": P,
-                "log_growth": g,
-                "eta": r["eta"],
-            })
-    return out
+        P, g = r["participation"], r["log_growth"]
+        P_fin = final_average(times, P)
+        return {
+            "participation_final": P_fin,
+            "participation_last": float(P[-1]),
+            "mlce_final": float(g[-1] / times[-1]),
+            "log_growth_final": float(g[-1]),
+            "eta_final": final_average(times, r["eta"]) if "eta" in r else float("nan"),
+            "max_gaps": r["max_gaps"],
+            "delocalized": bool(P_fin > settings.p_delocalized),
+            "chaotic": is_chaotic(times, g, settings.chaos_slope, settings.chaos_growth_margin),
+            "delocalization_onset": sustained_onset(times, P, settings.p_delocalized, settings.onset_hold_decades),
+            "chaos_onset": chaos_onset(times, g, settings.chaos_slope, settings.chaos_growth_margin),
+            **_gali_reading(times, r, settings),
+            "energy_error_max": float(np.max(r["energy_error"])),
+            "u0": r["u0"],
+            "valid": r["valid"],
+        }
 
 
 def _gali_reading(times, run: dict, settings: ScanSettings) -> dict:
@@ -179,31 +185,6 @@ def energy_grid(block: dict) -> np.ndarray:
     else:
         grid = np.linspace(lo, hi, n)
     return np.array([float(f"{e:.6g}") for e in grid])
-
-
-def items(kind: str, scan_cfg: dict) -> list[tuple]:
-    """Every trajectory of a scan kind, in the fixed order the groups cut: (model, energy index)
-    for ``energy_scan``, (model, realization index, energy index) for ``disorder``."""
-    block = scan_cfg[kind]
-    models = list(block.get("models", panels.models()))
-    n_e = len(energy_grid(block))
-    if kind == "energy_scan":
-        return [(m, e) for m in models for e in range(n_e)]
-    require(kind == "disorder", "scan kind", kind, "'energy_scan' or 'disorder'")
-    return [(m, r, e) for m in models for r in range(int(block["realizations"])) for e in range(n_e)]
-
-
-def n_groups(kind: str, scan_cfg: dict) -> int:
-    """Number of jobs of a scan kind: ceil(trajectories / trajectories_per_job)."""
-    per = int(scan_cfg[kind]["trajectories_per_job"])
-    return max(1, -(-len(items(kind, scan_cfg)) // per))
-
-
-def group_items(kind: str, scan_cfg: dict, group: int) -> list[tuple]:
-    per = int(scan_cfg[kind]["trajectories_per_job"])
-    all_items = items(kind, scan_cfg)
-    require(0 <= group < n_groups(kind, scan_cfg), "group", group, f"0..{n_groups(kind, scan_cfg) - 1}")
-    return all_items[group * per:(group + 1) * per]
 
 
 #: Scan kinds whose block extends another's: the full disorder statistics, kept in the repository
@@ -293,8 +274,9 @@ SCALARS = {
 }
 #: The per-trajectory series a group file keeps (``orbits.SERIES``; long names from the registry).
 SERIES = ("participation", "log_growth", "eta")
-GROUP_TITLES = {"energy_scan": "Energy scan", "disorder": "Disorder statistics"}
-ENERGY_INDEX = {"units": "1", "long_name": "index of the energy on the scan's grid"}
+#: The studies the scan kinds are (``scan_study``), by their base kind.
+TITLES = {"energy_scan": "Energy scan: delocalization and chaos of a single-site excitation on the chosen chain",
+          "disorder": "Disorder statistics of delocalization and chaos"}
 REALIZATION = {"units": "1", "long_name": "realization r: random_chain(first_seed + r, alpha)"}
 #: the excitation select_excitation picks in each realization: variable -> (its key, dtype)
 EXCITATION_PICKS = {"excited_mode": ("mode", np.int32), "excited_site": ("site", np.int32),
@@ -326,68 +308,53 @@ def criteria_attrs(settings: ScanSettings) -> dict:
     }
 
 
-def _group_dataset(kind, its, results, settings, extra_vars, attrs, series=False):
-    n = len(its)
-    data = {}
-    for key, (long_name, dtype) in SCALARS.items():
-        data[key] = ("trajectory", np.array([r[key] for r in results]).astype(dtype),
-                     {"units": "1", "long_name": long_name})
-    data["model"] = ("trajectory", np.array([i[0] for i in its], dtype=object), {"long_name": "model"})
-    data.update(extra_vars)
-    coords = {"trajectory": ("trajectory", np.arange(n), {"units": "1", "long_name": "trajectory index in the group"})}
-    if series and results:
-        coords["time"] = results[0]["times"]
-        for key in SERIES:
-            data[key] = (("trajectory", "time"), np.stack([r[key] for r in results]),
-                         {"units": "1", "long_name": REGISTRY[key].long_name})
-    ds = xr.Dataset(data, coords=coords)
-    if "time" in ds.coords:
-        ds.time.attrs.update(units="1", long_name="time",
-                             comment="nondimensional time, unit 1/omega_max of the homogeneous linear chain")
-    ds.attrs.update(provenance_attrs({"kind": kind, **asdict(settings)}))
-    ds.attrs.update(criteria_attrs(settings))
-    ds.attrs.update(title=f"{GROUP_TITLES[kind]}: one job's group of trajectories",
-                    integrator=settings.integrator, dt=float(settings.dt), t_final=float(settings.t_final),
-                    K4_sign=float(settings.k4_sign), deviation_seed=int(settings.deviation_seed))
-    ds.attrs.update(attrs)
-    return ds
+# ----------------------------------------------------------------------------------------------
+# The scans as studies
+# ----------------------------------------------------------------------------------------------
+
+#: Keys of the scan's settings that a study states under `integration`, `ensemble` and `criteria`.
+STUDY_BLOCKS = {
+    "integration": ("integrator", "dt", "t_final", "samples_per_decade", "t_first_sample", "final_samples",
+                    "check_every", "max_energy_error", "k4_sign", "deviation_seed"),
+    "ensemble": ("perturbation", "perturbation_seed"),
+    "criteria": ("p_delocalized", "chaos_slope", "chaos_growth_margin", "onset_hold_decades", "gali_order",
+                 "gali_threshold"),
+}
 
 
-def energy_scan_group(chain, scan_cfg: dict, group: int, progress=None) -> xr.Dataset:
-    """Run one job's share of the energy scan on ``chain`` (excited at ``energy_scan.site``)."""
-    settings = settings_for("energy_scan", scan_cfg)
-    block = scan_cfg["energy_scan"]
-    grid = energy_grid(block)
-    site = int(block.get("site", 21))
-    its = group_items("energy_scan", scan_cfg, group)
-    trajs = [Trajectory(m, float(grid[e]), chain, site) for m, e in its]
-    results = run_trajectories(trajs, settings, progress)
-    extra = {"energy_index": ("trajectory", np.array([e for _, e in its], dtype=np.int32), ENERGY_INDEX),
-             "energy": ("trajectory", np.array([grid[e] for _, e in its]), {"units": "1", "long_name": "total energy H"})}
-    return _group_dataset("energy_scan", its, results, settings, extra,
-                          {"group": int(group), "excited_site": site,
-                           "seed": -1 if chain.seed is None else int(chain.seed)}, series=True)
+def scan_study(kind: str, scan_cfg: dict, N: int = 40, chain_file: str | None = None) -> dict:
+    """The study (``chainchaos.studies.study``, the keys of a study file) that a scan kind of the
+    config block ``scan`` is: every orbit of the kind, run by the study's rules and functions.
 
-
-def disorder_group(scan_cfg: dict, group: int, N: int = 40, progress=None) -> xr.Dataset:
-    """Run one job's share of the disorder statistics: realization r is random_chain(first_seed
-    + r, alpha), excited at the bead chosen by ``select_excitation``."""
-    settings = settings_for("disorder", scan_cfg)
-    grid = energy_grid(scan_cfg["disorder"])
-    its = group_items("disorder", scan_cfg, group)
-    sel_kw = selection_kwargs(scan_cfg)
-    chains, picks = {}, {}
-    for _, r, _ in its:
-        if r not in chains:
-            chains[r] = realization_chain(scan_cfg, r, N)
-            picks[r] = select_excitation(chains[r], **sel_kw)
-    trajs = [Trajectory(m, float(grid[e]), chains[r], picks[r]["site"]) for m, r, e in its]
-    results = run_trajectories(trajs, settings, progress)
-    extra = {
-        "energy_index": ("trajectory", np.array([e for *_, e in its], dtype=np.int32), ENERGY_INDEX),
-        "realization": ("trajectory", np.array([r for _, r, _ in its], dtype=np.int32), REALIZATION),
-        "energy": ("trajectory", np.array([grid[e] for *_, e in its]), {"units": "1", "long_name": "total energy H"}),
-        **{key: ("trajectory", np.array([picks[r][pick] for _, r, _ in its], dtype=dtype), EXCITATION[key])
-           for key, (pick, dtype) in EXCITATION_PICKS.items()},
+    ``energy_scan``: the models on the chain of ``chain_file`` (the chosen chain), bead ``site``
+    displaced, on the energy grid of the block; ``disorder`` (and ``disorder_full``, the disorder
+    block with the keys of its own): the realizations random_chain(first_seed + r, alpha, N), each
+    excited at the bead of the paper's rule (site ``selected``, :func:`select_excitation`). Every
+    setting is the value :func:`settings_for` gives, so that an orbit is the one the scan's
+    settings describe; one lane per orbit, the series P, ln|v| and eta, and ln GALI_k with
+    ``alignment``."""
+    base, cfg = scan_config(kind, scan_cfg)
+    block = cfg[base]
+    settings = settings_for(base, cfg)
+    values = {**asdict(settings), "k4_sign": int(settings.k4_sign)}
+    models = list(block.get("models", panels.models()))
+    if base == "energy_scan":
+        lattice = {"model": models, "chain_file": chain_file}
+        site = int(block.get("site", 21))
+    else:
+        lattice = {"model": models, "N": int(N), "alpha": float(block.get("alpha", 5.0)),
+                   "wall_radius": float(block.get("wall_radius", 1.0)), "realizations": int(block["realizations"]),
+                   "first_seed": int(block.get("first_seed", 0))}
+        site = "selected"
+    excitation = {"kind": "site", "variable": "displacement", "site": site,
+                  "energies": {"min": float(block["energy_min"]), "max": float(block["energy_max"]),
+                               "n": int(block["n_energies"]), "spacing": block.get("spacing", "log")}}
+    if site == "selected":
+        excitation["selection"] = selection_kwargs(cfg)
+    return {
+        "name": kind, "title": TITLES[base], "lattice": lattice, "excitation": excitation,
+        **{name: {key: values[key] for key in keys} for name, keys in STUDY_BLOCKS.items()},
+        "observables": ["participation", "log_growth", "eta", *(["log_gali"] if settings.alignment else [])],
+        "jobs": {"orbits_per_job": int(block["trajectories_per_job"])},
+        "figures": [],
     }
-    return _group_dataset("disorder", its, results, settings, extra, {"group": int(group)})

@@ -144,8 +144,8 @@ def comparison_figure(named_stats: dict, title: str = ""):
             for model in (str(m) for m in stats.model.values):
                 n = stats.energy.size
                 for k, energy in enumerate(stats.energy.values):
-                    kw = dict(color=model_colour(model), ls=STUDY_STYLES[s % len(STUDY_STYLES)], lw=0.9,
-                              alpha=0.45 + 0.55 * (k + 1) / n)
+                    kw = {"color": model_colour(model), "ls": STUDY_STYLES[s % len(STUDY_STYLES)], "lw": 0.9,
+                          "alpha": 0.45 + 0.55 * (k + 1) / n}
                     label = f"{name}: {model_label(model)}, $H = {energy:g}$"
                     a_m.plot(x, stats["mean_log10_second_moment"].sel(model=model).isel(energy=k).values,
                              label=label, **kw)

@@ -14,43 +14,26 @@ import math
 import numpy as np
 import xarray as xr
 
-from chainchaos.observe.reductions import final_average, gali_crossing, is_chaotic
 from chainchaos.observe.registry import REGISTRY
 from chainchaos.output.provenance import provenance_attrs
 from chainchaos.run.orbits import integrate
-from chainchaos.studies.scan.runs import criteria_attrs
+from chainchaos.studies.scan.runs import (
+    EXCITATION,
+    EXCITATION_PICKS,
+    SCALARS,
+    criteria_attrs,
+    reduce_orbit,
+)
 
-#: Per-orbit numbers: name -> (long name, dtype, fill on the grid).
-SCALARS = {
-    "u0": ("amplitude of the excitation pattern (initial.Excitation), with the lane's factor", "f8", np.nan),
-    "participation_final": ("time average of P over the last decade (t >= t_final / 10)", "f8", np.nan),
-    "mlce_final": ("finite-time mLCE Lambda(t_final)", "f8", np.nan),
-    "energy_error_max": ("largest relative energy error |H(t) - H(0)| / H(0) at the samples", "f8", np.nan),
-    "delocalized": ("1 if participation_final > p_delocalized", "i1", -1),
-    "chaotic": ("1 if chaotic by Lambda over the last decade (chaos_criterion)", "i1", -1),
-    "chaotic_gali": ("1 if GALI_k fell below gali_threshold by t_final, 0 if not, -1 without GALI_k", "i1", -1),
-    "valid": ("1 if the initial state exists and the run stayed finite with energy error <= max_energy_error",
-              "i1", 0),
-}
 #: What each orbit of a group file is: its place on the study's grid.
 ORBIT_INDEX = {"model": "model of the bond law", "energy_index": "index of the orbit's energy in excitation.energies",
                "realization": "index of the orbit's realization", "lane": "lane of the orbit (0: unperturbed)"}
 TIME_COMMENT = "nondimensional time, unit 1/omega_max of the homogeneous linear chain"
 
 
-def _reduced(times, run: dict, study) -> dict:
-    """The :data:`SCALARS` of one integrated orbit."""
-    settings = study.settings
-    with np.errstate(invalid="ignore", divide="ignore"):
-        P, g = run["participation"], run["log_growth"]
-        p_final = final_average(times, P)
-        gali = -1 if "log_gali" not in run else int(np.isfinite(gali_crossing(times, run["log_gali"],
-                                                                                 settings.gali_threshold)))
-        return {"u0": run["u0"], "participation_final": p_final, "mlce_final": float(g[-1] / times[-1]),
-                "energy_error_max": float(np.max(run["energy_error"])),
-                "delocalized": int(p_final > settings.p_delocalized),
-                "chaotic": int(is_chaotic(times, g, settings.chaos_slope, settings.chaos_growth_margin)),
-                "chaotic_gali": gali, "valid": int(run["valid"])}
+def _fill(dtype: str):
+    """The value of a per-orbit number where the grid has no orbit."""
+    return np.nan if dtype == "f8" else -1
 
 
 def kept_series(study) -> list[str]:
@@ -73,12 +56,16 @@ def run_group(study, group: int, progress=None) -> xr.Dataset:
              "lane": [o.lane for o in orbits]}
     data = {key: ("orbit", np.array(values, dtype=object if key == "model" else np.int32), {"long_name": ORBIT_INDEX[key], **({} if key == "model" else {"units": "1"})})
             for key, values in index.items()}
-    reduced = [_reduced(times, run, study) for run in runs]
-    for key, (long_name, dtype, _) in SCALARS.items():
+    reduced = [reduce_orbit(times, run, settings) for run in runs]
+    for key, (long_name, dtype) in SCALARS.items():
         data[key] = ("orbit", np.array([r[key] for r in reduced]).astype(dtype), {"units": "1", "long_name": long_name})
     for name in kept_series(study):
         values = np.stack([run[name] for run in runs])
         data[name] = (("orbit", "time"), values, {"units": "1", "long_name": REGISTRY[name].long_name})
+    if study.selected:  # the rule's pick in each orbit's realization, as the scan's group files hold it
+        for key, (pick, dtype) in EXCITATION_PICKS.items():
+            data[key] = ("orbit", np.array([study.picks[r][pick] for r in index["realization"]], dtype=dtype),
+                         EXCITATION[key])
     ds = xr.Dataset(data, coords={"time": ("time", times, {"units": "1", "long_name": "time", "comment": TIME_COMMENT})})
     ds.attrs.update(study_attrs(study), group=int(group), title=f"{study.title}: one job's orbits")
     return ds
@@ -87,12 +74,13 @@ def run_group(study, group: int, progress=None) -> xr.Dataset:
 def study_attrs(study) -> dict:
     """The provenance, settings and criteria every file of a study states."""
     settings = study.settings
-    exc = study.excitation
+    exc = study.excitation()
     attrs = provenance_attrs({"study": study.name, **study.spec})
     attrs.update(criteria_attrs(settings))
     attrs.update(study=study.name, study_title=study.title, study_settings=json.dumps(study.spec, sort_keys=True),
                  N=int(study.N), excitation=(f"{exc.kind} {exc.variable}: "
-                                             + (f"mode {exc.mode}" if exc.kind == "mode" else
+                                             + ("the bead of the paper's excitation rule" if study.selected else
+                                                f"mode {exc.mode}" if exc.kind == "mode" else
                                                 f"beads {exc.beads()[0]}..{exc.beads()[1]}")),
                  integrator=settings.integrator, dt=float(settings.dt), t_final=float(settings.t_final),
                  lanes=int(study.lanes), perturbation=float(settings.perturbation),
@@ -103,12 +91,12 @@ def study_attrs(study) -> dict:
 def merge_groups(study, groups: list[xr.Dataset]) -> xr.Dataset:
     """Every group of ``study`` on the grid (model, energy, realization, lane[, time])."""
     models, energies = study.models, study.energies
-    R, L = len(study.seeds), study.lanes
+    R, L = study.realizations, study.lanes
     times = groups[0]["time"].values
     shape = (len(models), energies.size, R, L)
     data = {}
-    for key, (long_name, dtype, fill) in SCALARS.items():
-        data[key] = (("model", "energy", "realization", "lane"), np.full(shape, fill, dtype=dtype),
+    for key, (long_name, dtype) in SCALARS.items():
+        data[key] = (("model", "energy", "realization", "lane"), np.full(shape, _fill(dtype), dtype=dtype),
                      {"units": "1", "long_name": long_name})
     for name in kept_series(study):
         data[name] = (("model", "energy", "realization", "lane", "time"), np.full(shape + (times.size,), np.nan),
@@ -130,6 +118,9 @@ def merge_groups(study, groups: list[xr.Dataset]) -> xr.Dataset:
     ds = xr.Dataset(data, coords=coords)
     ds["seed"] = ("realization", np.array(study.seeds, dtype=np.int64),
                   {"units": "1", "long_name": "seed of the realization's chain (numpy.random.default_rng)"})
+    if study.selected:
+        for key, (pick, dtype) in EXCITATION_PICKS.items():
+            ds[key] = ("realization", np.array([p[pick] for p in study.picks], dtype=dtype), EXCITATION[key])
     ds.attrs.update(study_attrs(study), title=f"{study.title}", n_groups=len(groups))
     return ds
 

@@ -3,8 +3,8 @@
 A study asks one question of the engines: these chains (a model or several, N beads, a disorder
 strength, realizations as seeds, or one chain from a file), this excitation at these energies,
 this integration, these observables per orbit, this many perturbed lanes per realization, these
-figures. :func:`load_study` reads it against ``studies/schema.yaml`` (every key described there
-and in the generated ``studies/README.md``), fills the schema's defaults, resolves ``extends``
+figures. :func:`load_study` reads it against the schema beside this module (every key described
+there and in the generated ``studies/README.md``), fills the schema's defaults, resolves ``extends``
 and checks what holds between keys (an excited site beyond N, a mode above N, a step longer than
 the run), each wrong key named in one line with what is allowed. The :class:`Study` it returns
 says which orbits exist, in a fixed order, and how they are cut into jobs; its results do not
@@ -22,14 +22,22 @@ import numpy as np
 from chainchaos.errors import ParameterError, StudyError
 from chainchaos.observe.registry import study_observables
 from chainchaos.run.orbits import ALIGNMENT_SERIES, Orbit
-from chainchaos.studies.scan.runs import ScanSettings
+from chainchaos.studies.scan.runs import ScanSettings, energy_grid, select_excitation
 from chainchaos.system.chain import random_chain
 from chainchaos.system.initial import Excitation
 from chainchaos.system.models import MODELS
 
-#: Where study files live: ``studies/`` at the repository root.
+#: The schema of a study file (shipped with the package; its keys: ``studies/README.md``).
+SCHEMA = Path(__file__).resolve().with_name("schema.yaml")
+#: Where study files live: ``studies/`` at the repository root (of a checkout).
 STUDIES = Path(__file__).resolve().parents[4] / "studies"
-SCHEMA = STUDIES / "schema.yaml"
+
+
+def studies_dir() -> Path:
+    """Where a study named without a path is looked up: ``./studies`` when the working directory
+    has one, else the checkout's :data:`STUDIES`."""
+    here = Path.cwd() / "studies"
+    return here if here.is_dir() else STUDIES
 #: A study's standard figures (``studies.study.plots``), by name.
 FIGURES = ("spreading", "chaos", "fractions")
 #: Series every orbit keeps whatever the study asks: P judges delocalization, ln|v| chaos by Lambda.
@@ -83,15 +91,16 @@ def _merged(raw: dict, root: Path, seen: tuple = ()) -> dict:
     return out
 
 
-def load_study(source, root: Path = STUDIES) -> "Study":
+def load_study(source, root: Path | None = None) -> "Study":
     """The :class:`Study` of ``source``: a name (``studies/<name>.yaml``), a path to a YAML file,
     or a dict of the file's keys (with an optional ``name``). Raises :class:`StudyError` listing
     every wrong key, each with its value and what is allowed."""
     from chainchaos.workflow.config_check import nonfinite_errors, schema_errors
     from chainchaos.workflow.config_docs import load_schema
 
-    name, raw = _read(source, Path(root))
-    raw = _merged(raw, Path(root))
+    root = studies_dir() if root is None else Path(root)
+    name, raw = _read(source, root)
+    raw = _merged(raw, root)
     schema = load_schema(SCHEMA)
     errors = schema_errors(raw, schema, "study key") or nonfinite_errors(raw, what="study key")
     if errors:
@@ -119,9 +128,13 @@ class Study:
         model = self.spec["lattice"]["model"]
         return [model] if isinstance(model, str) else list(model)
 
-    @property
+    @cached_property
     def energies(self) -> np.ndarray:
+        """The energies: as given, or the grid of ``{min, max, n, spacing}`` (``scan.runs.energy_grid``)."""
         energies = self.spec["excitation"]["energies"]
+        if isinstance(energies, dict):
+            return energy_grid({"n_energies": energies["n"], "energy_min": energies["min"],
+                                "energy_max": energies["max"], "spacing": energies.get("spacing", "log")})
         return np.atleast_1d(np.asarray(energies, dtype=np.float64))
 
     @property
@@ -132,6 +145,14 @@ class Study:
         if lattice["seeds"]:
             return [int(s) for s in lattice["seeds"]]
         return [int(lattice["first_seed"]) + r for r in range(int(lattice["realizations"]))]
+
+    @property
+    def realizations(self) -> int:
+        """Number of realizations (one for a chain file, known before the file exists)."""
+        lattice = self.spec["lattice"]
+        if lattice["chain_file"]:
+            return 1
+        return len(lattice["seeds"]) if lattice["seeds"] else int(lattice["realizations"])
 
     @property
     def lanes(self) -> int:
@@ -174,10 +195,22 @@ class Study:
         return self.file_chain.N if lattice["chain_file"] else int(lattice["N"])
 
     @property
-    def excitation(self) -> Excitation:
+    def selected(self) -> bool:
+        """Each realization's site is chosen by the paper's excitation rule (site ``selected``)."""
+        return self.spec["excitation"]["site"] == "selected"
+
+    @cached_property
+    def picks(self) -> list[dict]:
+        """Per realization, what ``scan.runs.select_excitation`` picks (site ``selected``)."""
+        return [select_excitation(chain, **self.spec["excitation"]["selection"]) for chain in self.chains]
+
+    def excitation(self, realization: int = 0) -> Excitation:
+        """The excitation of realization ``realization`` (they differ only with site ``selected``)."""
         e = self.spec["excitation"]
-        site = (self.N + 1) // 2 if e["site"] == "centre" else int(e["site"])
-        return Excitation(kind=e["kind"], variable=e["variable"], site=site, mode=int(e["mode"]),
+        site = {"centre": (self.N + 1) // 2}.get(e["site"], e["site"])
+        if self.selected:
+            site = self.picks[realization]["site"]
+        return Excitation(kind=e["kind"], variable=e["variable"], site=int(site), mode=int(e["mode"]),
                           width=int(e["width"]))
 
     @property
@@ -217,7 +250,8 @@ class Study:
         def lattice():
             lattice = self.spec["lattice"]
             if lattice["chain_file"]:
-                self.file_chain  # noqa: B018 (reads and checks the file)
+                if Path(lattice["chain_file"]).exists():  # else a rule of the workflow may make it
+                    self.file_chain  # noqa: B018 (reads and checks the file)
             elif "N" not in lattice:
                 raise ParameterError("N", None, "an integer >= 2, or lattice.chain_file")
 
@@ -225,9 +259,9 @@ class Study:
         check("observables", observables)
         check("lattice.N", lattice)
         check("integration", lambda: self.settings)
-        if not errors:
+        if not errors and (not self.spec["lattice"]["chain_file"] or Path(self.spec["lattice"]["chain_file"]).exists()):
             kind = self.spec["excitation"]["kind"]
-            check("excitation.mode" if kind == "mode" else "excitation.site", lambda: self.excitation.check(self.N))
+            check("excitation.mode" if kind == "mode" else "excitation.site", lambda: self.excitation().check(self.N))
         if errors:
             raise StudyError(errors)
 
@@ -235,7 +269,7 @@ class Study:
 
     def items(self) -> list[tuple[str, int, int]]:
         """Every (model, energy index, realization index), in the fixed order jobs are cut from."""
-        return [(m, e, r) for m in self.models for e in range(self.energies.size) for r in range(len(self.seeds))]
+        return [(m, e, r) for m in self.models for e in range(self.energies.size) for r in range(self.realizations)]
 
     @property
     def per_job(self) -> int:
@@ -253,11 +287,12 @@ class Study:
 
     def orbits(self, items) -> list[Orbit]:
         """The orbits of ``items``, every lane of each."""
-        excitation, energies, chains = self.excitation, self.energies, self.chains
-        return [Orbit(m, float(energies[e]), chains[r], excitation.site, lane, excitation)
+        energies, chains = self.energies, self.chains
+        excitations = {r: self.excitation(r) for r in sorted({r for *_, r in items})}
+        return [Orbit(m, float(energies[e]), chains[r], excitations[r].site, lane, excitations[r])
                 for m, e, r in items for lane in range(self.lanes)]
 
 
-def study_names(root: Path = STUDIES) -> list[str]:
-    """The studies in ``root``: the stems of its YAML files but the schema."""
-    return sorted(p.stem for p in Path(root).glob("*.yaml") if p.stem != "schema")
+def study_names(root: Path | None = None) -> list[str]:
+    """The studies in ``root`` (default :func:`studies_dir`): the stems of its YAML files."""
+    return sorted(p.stem for p in (studies_dir() if root is None else Path(root)).glob("*.yaml"))

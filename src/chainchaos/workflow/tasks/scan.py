@@ -1,8 +1,8 @@
-"""Tasks of workflow/rules/scan.smk: the energy scan and the disorder statistics, in groups of
-trajectories merged onto their grid, their figures and the threshold table."""
+"""Tasks of workflow/rules/scan.smk: the energy scan and the disorder statistics (whose groups of
+orbits are those of their studies, workflow/rules/study.smk) merged onto their grids, their
+figures and the threshold table."""
 
 import sys
-import time
 from pathlib import Path
 
 import xarray as xr
@@ -14,41 +14,9 @@ from chainchaos.studies.scan import merge, runs, thresholds
 from chainchaos.studies.search import archive
 
 
-def _run_group(kind: str, group: int, compute, out) -> None:
-    """``compute(progress)``, one group's Dataset, written with its wall time per trajectory."""
-    start = time.perf_counter()
-
-    def progress(done, total):
-        print(f"[{kind} group {group}] {done}/{total} trajectories, {time.perf_counter() - start:.1f} s",
-              file=sys.stderr, flush=True)
-
-    ds = compute(progress)
-    n = ds.sizes["trajectory"]
-    elapsed = time.perf_counter() - start
-    ds.attrs.update(wall_time_s=elapsed, seconds_per_trajectory=elapsed / max(n, 1))
-    print(f"[{kind} group {group}] done: {n} trajectories in {elapsed:.1f} s "
-          f"({elapsed / max(n, 1):.3f} s each); invalid: {int((ds['valid'] == 0).sum())}", file=sys.stderr)
-    write_netcdf(ds, out)
-
-
-def scan_energy_group(inputs, outputs, params, wildcards) -> None:
-    """One group of (model, energy) trajectories on the chosen chain."""
-    group = int(wildcards["group"])
-    _run_group("energy_scan", group,
-               lambda progress: runs.energy_scan_group(read_chain(inputs["chain"]), params["scan"], group, progress),
-               outputs["group"])
-
-
-def scan_disorder_group(inputs, outputs, params, wildcards) -> None:
-    """One group of (model, realization, energy) trajectories on alpha = 5 realizations."""
-    group = int(wildcards["group"])
-    _run_group("disorder", group, lambda progress: runs.disorder_group(params["scan"], group, params["N"], progress),
-               outputs["group"])
-
-
 def _write_merged(kind: str, ds: xr.Dataset, groups: list, out) -> None:
     """The merged Dataset, with the groups' mean wall time per trajectory."""
-    seconds = [g.attrs.get("seconds_per_trajectory") for g in groups if "seconds_per_trajectory" in g.attrs]
+    seconds = [g.attrs["seconds_per_orbit"] for g in groups if "seconds_per_orbit" in g.attrs]
     if seconds:
         ds.attrs["mean_seconds_per_trajectory"] = float(sum(seconds) / len(seconds))
     print(f"{kind}: merged {len(groups)} groups, {int((ds['valid'] == 1).sum())} valid runs", file=sys.stderr)
@@ -57,7 +25,7 @@ def _write_merged(kind: str, ds: xr.Dataset, groups: list, out) -> None:
 
 def merge_energy_scan(inputs, outputs, params, wildcards) -> None:
     """The energy scan's group files on the (model, energy) grid."""
-    groups = [xr.load_dataset(f) for f in inputs["groups"]]
+    groups = merge.scan_groups([xr.load_dataset(f) for f in inputs["groups"]])
     ds = merge.merge_energy_scan(groups, params["scan"], read_chain(inputs["chain"]))
     _write_merged("energy_scan", ds, groups, outputs["merged"])
 
@@ -72,7 +40,7 @@ def merge_disorder(inputs, outputs, params, wildcards) -> None:
               f"energies", file=sys.stderr)
         write_netcdf(ds, outputs["merged"])
         return
-    groups = [xr.load_dataset(f) for f in inputs["groups"]]
+    groups = merge.scan_groups([xr.load_dataset(f) for f in inputs["groups"]])
     _write_merged("disorder", merge.merge_disorder(groups, params["scan"]), groups, outputs["merged"])
 
 
@@ -83,9 +51,9 @@ def disorder_full(inputs, outputs, params, wildcards) -> None:
     target = params.get("archive")
     require(bool(target), "scan.disorder.archive", target,
             "the path of the archived disorder statistics (e.g. data/disorder/disorder_full.nc)")
-    groups = [xr.load_dataset(f) for f in inputs["groups"]]
+    groups = merge.scan_groups([xr.load_dataset(f) for f in inputs["groups"]])
     ds = merge.merge_disorder(groups, params["scan"])
-    costs = archive.job_costs(Path(params["benchmarks"]), "disorder_full", stages=("scan_disorder_group",))
+    costs = archive.job_costs(Path(params["benchmarks"]), "disorder_full", stages=("study_group",))
     ds = archive.archive_dataset(ds, costs, archive.stage_machines(list(inputs["groups"])),
                                  title="Disorder statistics at full scale: delocalization and chaos by two indicators")
     ds.attrs.update(kept.kept_attrs(runs.disorder_settings(params["scan"], params["N"]), runs.DISORDER_RESULT_VERSION))
@@ -96,7 +64,9 @@ def disorder_full(inputs, outputs, params, wildcards) -> None:
 
 def plot_energy_scan(inputs, outputs, params, wildcards) -> None:
     """The energy-scan figure (PDF and PNG)."""
-    from chainchaos.output.plotting.style import save_figure  # matplotlib: only in the plotting jobs
+    from chainchaos.output.plotting.style import (
+        save_figure,  # matplotlib: only in the plotting jobs
+    )
     from chainchaos.studies.scan import plots as scan_plots
 
     fig = scan_plots.energy_scan_figure(xr.load_dataset(inputs["data"]))
@@ -105,7 +75,9 @@ def plot_energy_scan(inputs, outputs, params, wildcards) -> None:
 
 def plot_disorder_statistics(inputs, outputs, params, wildcards) -> None:
     """The disorder-statistics figure (PDF and PNG)."""
-    from chainchaos.output.plotting.style import save_figure  # matplotlib: only in the plotting jobs
+    from chainchaos.output.plotting.style import (
+        save_figure,  # matplotlib: only in the plotting jobs
+    )
     from chainchaos.studies.scan import plots as scan_plots
 
     fig = scan_plots.disorder_figure(xr.load_dataset(inputs["data"]))
@@ -120,5 +92,5 @@ def scan_thresholds(inputs, outputs, params, wildcards) -> None:
     write_text(thresholds.thresholds_tex(rows, ds), outputs["tex"])
 
 
-TASKS = (scan_energy_group, scan_disorder_group, merge_energy_scan, merge_disorder, disorder_full,
+TASKS = (merge_energy_scan, merge_disorder, disorder_full,
          plot_energy_scan, plot_disorder_statistics, scan_thresholds)

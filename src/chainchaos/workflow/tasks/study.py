@@ -30,7 +30,7 @@ def study_group(inputs, outputs, params, wildcards) -> None:
 
     ds = run_group(study, group, progress)
     elapsed = time.perf_counter() - start
-    ds.attrs.update(wall_time_s=elapsed)
+    ds.attrs.update(wall_time_s=elapsed, seconds_per_orbit=elapsed / max(ds.sizes['orbit'], 1))
     print(f"[study {study.name} group {group}] {ds.sizes['orbit']} orbits in {elapsed:.1f} s; "
           f"invalid: {int((ds['valid'] == 0).sum())}", file=sys.stderr)
     write_netcdf(ds, outputs["group"])

@@ -1,5 +1,0 @@
-"""scan_energy_group: see chainchaos.workflow.tasks.scan.scan_energy_group."""
-
-from chainchaos.workflow.tasks import run_rule
-
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
