@@ -247,19 +247,20 @@ class Study:
                 if name not in allowed:
                     raise ParameterError("observable", name, f"one of {allowed}")
 
+        chain_file = self.spec["lattice"]["chain_file"]
+        known_chain = not chain_file or Path(chain_file).exists()  # else a rule of the workflow may make it
+
         def lattice():
-            lattice = self.spec["lattice"]
-            if lattice["chain_file"]:
-                if Path(lattice["chain_file"]).exists():  # else a rule of the workflow may make it
-                    self.file_chain  # noqa: B018 (reads and checks the file)
-            elif "N" not in lattice:
+            if chain_file and known_chain:
+                self.file_chain  # noqa: B018 (reads and checks the file)
+            elif not chain_file and "N" not in self.spec["lattice"]:
                 raise ParameterError("N", None, "an integer >= 2, or lattice.chain_file")
 
         check("lattice.model", models)
         check("observables", observables)
         check("lattice.N", lattice)
         check("integration", lambda: self.settings)
-        if not errors and (not self.spec["lattice"]["chain_file"] or Path(self.spec["lattice"]["chain_file"]).exists()):
+        if not errors and known_chain:
             kind = self.spec["excitation"]["kind"]
             check("excitation.mode" if kind == "mode" else "excitation.site", lambda: self.excitation().check(self.N))
         if errors:
