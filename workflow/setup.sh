@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Set up a fresh machine from the project's own files: the Python package with the workflow and test
-# extras, and (as root, from Debian's packages) the TeX system that builds the manuscript.
+# Set up a fresh machine from the project's own files: the Python package with the workflow, test and
+# docs extras, and (as root, from Debian's packages) the TeX system that builds the manuscript.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-python -m pip install --quiet --disable-pip-version-check -e ".[workflow,test]"
+python -m pip install --quiet --disable-pip-version-check -e ".[workflow,test,docs]"
 tex_packages="texlive-latex-base texlive-latex-recommended texlive-publishers latexmk poppler-utils"
 if ! command -v latexmk >/dev/null || ! command -v pdftotext >/dev/null || ! kpsewhich revtex4-2.cls >/dev/null 2>&1; then
   if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null; then

@@ -34,7 +34,7 @@ from chainchaos.system.models import MODELS, get_model
 @dataclass(kw_only=True)
 class SceneParameters(RunSettings):
     """A scene: a model at an energy, its excited bead (1-based), the observables its file holds
-    and its name, integrated and sampled by the :class:`RunSettings` it extends."""
+    and its name, integrated and sampled by the ``RunSettings`` it extends."""
 
     model: str
     energy: float
@@ -109,8 +109,26 @@ def scene_batches(scenes: dict[str, SceneParameters], lanes: int, serial_remaind
 def simulate(chain, params: SceneParameters, progress=None) -> xr.Dataset:
     """Integrate one scene and return its Dataset (data contract: docs/conventions.md#scene-file).
 
-    Raises SimulationError naming the scene, the time and the value when the state becomes
-    non-finite or the relative energy error exceeds ``params.max_energy_error``.
+    Parameters
+    ----------
+    chain : Chain
+        The chain, e.g. from ``random_chain`` or read from a chain file.
+    params : SceneParameters
+        Model, energy, excited bead, observables, scheme, step, length and sampling.
+    progress : callable, optional
+        Called as ``progress(t, fraction_done)`` after every sample but the first.
+
+    Returns
+    -------
+    xarray.Dataset
+        The scene's observables on the sample times, with its parameters and provenance as
+        attributes.
+
+    Raises
+    ------
+    SimulationError
+        Naming the scene, the time and the value, when the state becomes non-finite or the
+        relative energy error exceeds ``params.max_energy_error``.
     """
     return simulate_scenes(chain, [params], progress)[0]
 

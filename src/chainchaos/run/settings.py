@@ -20,7 +20,7 @@ from chainchaos.system.problem import Problem, check_step
 @dataclass(kw_only=True)
 class RunSettings:
     """The scheme and step, the run's length, the sampling schedule (``samples_per_decade``
-    log-spaced samples from ``t_first_sample``, :func:`~chainchaos.run.driver.sample_steps`), the
+    log-spaced samples from ``t_first_sample``, ``sample_steps``), the
     steps between finiteness checks and deviation-vector renormalisations, the sign of the FPUT
     quartic term, the seed of the initial deviation vector and the energy-error bound."""
 
@@ -51,7 +51,7 @@ class RunSettings:
 
     def problem(self, model, chains, tangent: bool, track_gaps: bool, spectrum: bool = False,
                 alignment: bool = False) -> Problem:
-        """The :class:`Problem` of ``model`` on ``chains`` (one per lane, taken with this run's
+        """The ``Problem`` of ``model`` on ``chains`` (one per lane, taken with this run's
         sign of K4) at this run's scheme, step and check interval; with ``spectrum`` the
         deviation vectors of ``exponents`` Lyapunov exponents, with ``alignment`` those of
         GALI_``gali_order``."""

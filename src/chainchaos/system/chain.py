@@ -110,7 +110,31 @@ def random_radii(seed: int, alpha: float, N: int) -> np.ndarray:
 
 
 def random_chain(seed: int, alpha: float, N: int = 40, wall_radius: float = 1.0) -> Chain:
-    """The realization of disorder strength ``alpha`` drawn with ``seed`` (docs/conventions.md#disorder)."""
+    """The realization of disorder strength ``alpha`` drawn with ``seed`` (docs/conventions.md#disorder).
+
+    Parameters
+    ----------
+    seed : int
+        Seed of ``numpy.random.default_rng``: the same seed gives the same chain everywhere.
+    alpha : float
+        Disorder strength max R / min R (>= 1): the radii are uniform in [R_min, alpha R_min].
+    N : int, default 40
+        Number of beads.
+    wall_radius : float, default 1.0
+        Reduced radius of the fixed wall beads at both ends.
+
+    Returns
+    -------
+    Chain
+        Reduced radii, masses and the bond parameters of every model, correctly rounded.
+
+    Examples
+    --------
+    >>> from chainchaos import random_chain
+    >>> chain = random_chain(879, 5.0, 40)  # the paper's chain
+    >>> chain.N, chain.alpha
+    (40, 5.0)
+    """
     return Chain(random_radii(seed, alpha, N), float(alpha), int(seed), wall_radius)
 
 
@@ -122,6 +146,22 @@ def chain_from_radii(radii, reference_radius: float | None = None, wall_radius: 
     from, which the radii alone do not give: by default R_ref is their (min + max) / 2 and
     ``alpha`` their max / min (the paper's definition). Reduced radii read from a chain file are
     already in units of R_ref: ``reference_radius=1`` and the file's alpha give back that chain.
+
+    Parameters
+    ----------
+    radii : array_like
+        The N >= 2 bead radii, finite and positive, in any unit.
+    reference_radius : float, optional
+        The radius R_ref that becomes 1, in the radii's unit; default (min + max) / 2 of the radii.
+    wall_radius : float, default 1.0
+        Reduced radius of the fixed wall beads at both ends.
+    alpha : float, optional
+        Disorder strength of the distribution the radii came from (at least their max / min);
+        default their max / min.
+
+    Returns
+    -------
+    Chain
     """
     R = np.asarray(radii, dtype=float)
     require(R.ndim == 1 and R.size >= 2, "N", R.size, "N >= 2 radii")

@@ -137,7 +137,19 @@ CONVENTIONS = ("potential", "period_averaged")
 
 def normal_modes(chain: Chain) -> tuple[np.ndarray, np.ndarray]:
     """Frequencies omega_k (increasing, units of omega_max of the homogeneous chain) and mode
-    shapes U[n, k], mass-orthonormal (U^T M U = I), each with its largest component positive."""
+    shapes U[n, k], mass-orthonormal (U^T M U = I), each with its largest component positive.
+
+    Parameters
+    ----------
+    chain : Chain
+
+    Returns
+    -------
+    omega : numpy.ndarray
+        (N,) frequencies, increasing.
+    U : numpy.ndarray
+        (N, N) mode shapes, mode k in column k.
+    """
     K2 = chain.K2
     m = chain.mass
     diag = (K2[:-1] + K2[1:]) / m
@@ -177,12 +189,37 @@ def mode_energy_density(chain: Chain, omega: np.ndarray, U: np.ndarray, conventi
 
 
 def participation_number(h: np.ndarray, axis: int = 0) -> np.ndarray:
-    """P = 1 / sum_n h_n^2 of a normalised density h (sum_n h_n = 1); 1 <= P <= N."""
+    """P = 1 / sum_n h_n^2 of a normalised density h (sum_n h_n = 1); 1 <= P <= N.
+
+    Parameters
+    ----------
+    h : numpy.ndarray
+        Normalised densities, the sites along ``axis``.
+    axis : int, default 0
+        The axis of the sites.
+
+    Returns
+    -------
+    numpy.ndarray
+        P of every density: ``h``'s shape without ``axis``.
+    """
     return 1.0 / np.sum(h**2, axis=axis)
 
 
 def mode_participation(chain: Chain, convention: str = "potential") -> np.ndarray:
-    """Participation number of every normal mode, ordered by increasing frequency."""
+    """Participation number of every normal mode, ordered by increasing frequency.
+
+    Parameters
+    ----------
+    chain : Chain
+    convention : {"potential", "period_averaged"}, default "potential"
+        How a mode's energy is shared among the beads (docs/conventions.md#mode-energy-density).
+
+    Returns
+    -------
+    numpy.ndarray
+        (N,) participation numbers.
+    """
     omega, U = normal_modes(chain)
     return participation_number(mode_energy_density(chain, omega, U, convention))
 
@@ -207,7 +244,24 @@ def ensemble_participation(
 
     Realization i of every alpha is ``random_radii(first_seed + i, alpha, N)`` (docs/conventions.md#disorder):
     the same seeds as the realization search, so any member can be rebuilt from its seed.
-    Returns ``mean`` and ``std`` of shape (len(alphas), N), indexed by rank k = 1..N.
+
+    Parameters
+    ----------
+    alphas : float or array_like
+        Disorder strengths (each >= 1).
+    n_realizations : int
+        Realizations per alpha (>= 2).
+    N : int, default 40
+        Number of beads.
+    first_seed : int, default 0
+        Seed of the first realization.
+    convention : {"potential", "period_averaged"}, default "potential"
+        The mode energy density (docs/conventions.md#mode-energy-density).
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        ``mean`` and ``std`` of shape (len(alphas), N), indexed by rank k = 1..N.
     """
     alphas = np.atleast_1d(np.asarray(alphas, dtype=float))
     require(isinstance(n_realizations, (int, np.integer)) and n_realizations >= 2,

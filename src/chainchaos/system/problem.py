@@ -102,7 +102,7 @@ class Problem:
 
     def engine(self, q, p, dq=None, dp=None, kind: str = "auto", xq=None, xp=None):
         """The engine of this problem from the states q, p (and deviations dq, dp), each (N, B),
-        and its :attr:`extra_vectors` deviation vectors xq, xp (K, N, B): ``kind`` "batch" (every
+        and its ``extra_vectors`` deviation vectors xq, xp (K, N, B): ``kind`` "batch" (every
         lane in SIMD blocks of the batch engine, the last block padded), "single" (the
         single-trajectory engine, lane after lane) or "auto" (blocks, and a remainder of up to
         ``batch.SERIAL_REMAINDER`` lanes beyond them on the single engine); every kind gives the

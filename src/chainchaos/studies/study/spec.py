@@ -92,9 +92,27 @@ def _merged(raw: dict, root: Path, seen: tuple = ()) -> dict:
 
 
 def load_study(source, root: Path | None = None) -> "Study":
-    """The :class:`Study` of ``source``: a name (``studies/<name>.yaml``), a path to a YAML file,
-    or a dict of the file's keys (with an optional ``name``). Raises :class:`StudyError` listing
-    every wrong key, each with its value and what is allowed."""
+    """The ``Study`` of ``source``, checked against the study schema.
+
+    Parameters
+    ----------
+    source : str, path or dict
+        A name (``studies/<name>.yaml``), a path to a YAML file, or a dict of the file's keys
+        (with an optional ``name``).
+    root : path, optional
+        Where a study named without a path is looked up; default ``./studies`` when the working
+        directory has one, else the checkout's ``studies/``.
+
+    Returns
+    -------
+    Study
+        The study's keys, with ``extends`` resolved and the defaults filled in.
+
+    Raises
+    ------
+    StudyError
+        Listing every wrong key, each with its value and what is allowed.
+    """
     from chainchaos.workflow.config_check import nonfinite_errors, schema_errors
     from chainchaos.workflow.config_docs import load_schema
 

@@ -1,0 +1,114 @@
+"""Run a benchmark and keep what it measured as a machine-readable record in benchmarks/results/.
+
+    python benchmarks/record.py batch_throughput [--note TEXT] [-- OPTIONS of the benchmark]
+
+Writes ``benchmarks/results/<benchmark>-<UTC date>-<commit>.json``: the benchmark and the command
+that ran it, the commit (and whether the package's sources differed from it), the UTC date, the CPU
+(``lscpu``: model name and flags; the vector extensions, Numba's target the engines compile
+for, their SIMD width and square root), the load of the machine while it ran (``os.getloadavg`` before and after, the number of
+CPUs, and a note: a benchmark on a machine shared with other work measures less than the CPU can
+do), the benchmark's parameters and its table (``columns``: the keys of ``rows`` in order, each
+with a label; ``rows``: one dict per row).
+
+The documentation's performance page (docs/explanation/performance.md) is generated from every
+record in that folder when the site builds (docs/hooks.py), so the figures it shows are those of
+the files, with their commit, CPU and date, and no measured time is written by hand.
+"""
+
+import argparse
+import datetime as dt
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent
+RESULTS = HERE / "results"
+
+
+def _git(*args: str) -> str:
+    return subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True, check=True).stdout.strip()
+
+
+def lscpu() -> dict:
+    """``lscpu``'s model name and flags (empty strings where lscpu is missing)."""
+    try:
+        text = subprocess.run(["lscpu"], capture_output=True, text=True, check=True).stdout
+    except (OSError, subprocess.CalledProcessError):
+        return {"model_name": "", "flags": ""}
+    fields = dict(line.split(":", 1) for line in text.splitlines() if ":" in line)
+    fields = {key.strip(): value.strip() for key, value in fields.items()}
+    return {"model_name": fields.get("Model name", ""), "flags": fields.get("Flags", "")}
+
+
+def batch_throughput(argv: list[str]) -> dict:
+    """benchmarks/batch_throughput.py: trajectory-steps per second of both engines, N = 40."""
+    sys.path.insert(0, str(HERE))
+    import batch_throughput as bench
+
+    rows = bench.main(argv)
+    ap = argparse.ArgumentParser(add_help=False)
+    ap.add_argument("--steps", type=int, default=20000)
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--dt", type=float, default=5e-3)
+    ap.add_argument("--integrator", default="SRKN6b")
+    ap.add_argument("--no-tangent", action="store_true")
+    known, _ = ap.parse_known_args(argv)
+    parameters = {"N": 40, "chain": "alpha = 5, seed 879", "integrator": known.integrator, "dt": known.dt,
+                  "steps": known.steps, "repeats": known.repeats, "tangent_map": not known.no_tangent,
+                  "timer": "process CPU time, best of the repeats"}
+    columns = [("model", "model"), ("lanes", "trajectories B"), ("batch_us", "batch engine: µs per trajectory-step"),
+               ("single_us", "single engine: µs per trajectory-step"), ("ratio", "batch / single throughput")]
+    table = [{"model": r["model"], "lanes": r["lanes"], "batch_us": 1e6 / r["rate"],
+              "single_us": 1e6 / r["single_rate"], "ratio": r["ratio"]} for r in rows]
+    return {"title": "Batch engine against the single-trajectory engine (Hertz with gap counting; FPUT)",
+            "parameters": parameters, "columns": [{"key": k, "label": label} for k, label in columns], "rows": table}
+
+
+BENCHMARKS = {"batch_throughput": batch_throughput}
+
+
+def record(name: str, argv: list[str], note: str = "") -> Path:
+    """Run benchmark ``name`` with ``argv`` and write its record; return the record's path."""
+    from chainchaos.engine.simd import LANES
+    from chainchaos.output.provenance import cpu_vector_extensions, numba_target_cpu, sqrt_choice
+
+    load_before = os.getloadavg()
+    started = dt.datetime.now(dt.UTC)
+    measured = BENCHMARKS[name](argv)
+    load_after = os.getloadavg()
+    commit = _git("rev-parse", "HEAD")
+    out = {
+        "benchmark": name,
+        "command": " ".join(["python", f"benchmarks/{name}.py", *argv]),
+        "commit": commit,
+        "sources_differ_from_commit": bool(_git("status", "--porcelain", "--", "src", f"benchmarks/{name}.py")),
+        "date": started.replace(microsecond=0).isoformat(),
+        "cpu": {**lscpu(), "vector_extensions": cpu_vector_extensions(), "numba_target": numba_target_cpu(),
+                "simd_width_doubles": LANES, "square_root": sqrt_choice(), "cpus": os.cpu_count()},
+        "load_average_1min": {"before": round(load_before[0], 2), "after": round(load_after[0], 2)},
+        "loaded_machine": max(load_before[0], load_after[0]) > 0.5,
+        "note": note,
+        **measured,
+    }
+    RESULTS.mkdir(exist_ok=True)
+    path = RESULTS / f"{name}-{started:%Y-%m-%d}-{commit[:7]}.json"
+    path.write_text(json.dumps(out, indent=1, ensure_ascii=False) + "\n")
+    return path
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("benchmark", choices=sorted(BENCHMARKS))
+    ap.add_argument("--note", default="", help="what a reader should know about the run (e.g. the machine was loaded)")
+    argv = list(sys.argv[1:] if argv is None else argv)
+    ours, theirs = (argv[:argv.index("--")], argv[argv.index("--") + 1:]) if "--" in argv else (argv, [])
+    a = ap.parse_args(ours)
+    print(f"wrote {record(a.benchmark, theirs, a.note)}", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
