@@ -1,6 +1,7 @@
 """Run a benchmark and keep what it measured as a machine-readable record in benchmarks/results/.
 
     python benchmarks/record.py batch_throughput [--note TEXT] [-- OPTIONS of the benchmark]
+    python benchmarks/record.py pipeline --note TEXT -- [--configfile F] [--config K=V ...] [--warm] TARGET ...
 
 Writes ``benchmarks/results/<benchmark>-<UTC date>-<commit>.json``: the benchmark and the command
 that ran it, the commit (and whether the package's sources differed from it), the UTC date, the CPU
@@ -19,6 +20,7 @@ import argparse
 import datetime as dt
 import json
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -67,13 +69,60 @@ def batch_throughput(argv: list[str]) -> dict:
             "parameters": parameters, "columns": [{"key": k, "label": label} for k, label in columns], "rows": table}
 
 
-BENCHMARKS = {"batch_throughput": batch_throughput}
+def pipeline(argv: list[str]) -> dict:
+    """A Snakemake run timed from the shell's side, into a fresh results directory, with a cold
+    Numba cache unless ``--warm``: its wall time, and its job time per part
+    (benchmarks/pipeline_cost.py)."""
+    import shutil
+    import tempfile
+    import time
+
+    sys.path.insert(0, str(HERE))
+    import pipeline_cost
+
+    ap = argparse.ArgumentParser(prog="record.py pipeline")
+    ap.add_argument("--configfile", default=None)
+    ap.add_argument("--config", nargs="*", default=[], help="KEY=VALUE overrides (results is set here)")
+    ap.add_argument("--cores", type=int, default=2)
+    ap.add_argument("--warm", action="store_true", help="keep the Numba cache (default: compile from scratch)")
+    ap.add_argument("targets", nargs="*")
+    a = ap.parse_args(argv)
+    scratch = Path(tempfile.mkdtemp(prefix="chainchaos-pipeline-"))
+    env = dict(os.environ) if a.warm else {**os.environ, "NUMBA_CACHE_DIR": str(scratch / "numba_cache")}
+    cmd = [sys.executable, "-m", "snakemake", "--cores", str(a.cores), "--nolock",
+           *(["--configfile", a.configfile] if a.configfile else []),
+           "--config", f"results={scratch / 'results'}", *a.config, "--", *a.targets]
+    start = time.perf_counter()
+    done = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True, check=False)
+    wall = time.perf_counter() - start
+    if done.returncode != 0:
+        raise SystemExit((done.stdout + done.stderr)[-4000:])
+    cost = pipeline_cost.main([str(scratch / "results")])
+    shutil.rmtree(scratch, ignore_errors=True)
+    shown = [x for x in cmd[2:] if not x.startswith("results=")]
+    parameters = {"snakemake": " ".join(shown), "numba_cache": "warm" if a.warm else "cold (compiled in the run)",
+                  "cores": a.cores}
+    rows = [{"part": "the whole run (wall)", "jobs": cost["jobs"], "seconds": round(wall, 1)},
+            *({"part": p["part"], "jobs": p["jobs"], "seconds": round(p["seconds"], 1)} for p in cost["parts"])]
+    label = "-".join([*(Path(a.configfile).stem for _ in [0] if a.configfile), *a.targets, *a.config]) or "all"
+    return {"label": re.sub(r"[^A-Za-z0-9_.]+", "_", label),
+            "title": f"Pipeline run: snakemake {' '.join(a.targets) or 'all'}", "parameters": parameters,
+            "columns": [{"key": "part", "label": "part"}, {"key": "jobs", "label": "jobs"},
+                        {"key": "seconds", "label": "seconds (wall for the run; job time for a part)"}],
+            "rows": rows}
+
+
+BENCHMARKS = {"batch_throughput": batch_throughput, "pipeline": pipeline}
 
 
 def record(name: str, argv: list[str], note: str = "") -> Path:
     """Run benchmark ``name`` with ``argv`` and write its record; return the record's path."""
     from chainchaos.engine.simd import LANES
-    from chainchaos.output.provenance import cpu_vector_extensions, numba_target_cpu, sqrt_choice
+    from chainchaos.output.provenance import (
+        cpu_vector_extensions,
+        numba_target_cpu,
+        sqrt_choice,
+    )
 
     load_before = os.getloadavg()
     started = dt.datetime.now(dt.UTC)
@@ -82,7 +131,7 @@ def record(name: str, argv: list[str], note: str = "") -> Path:
     commit = _git("rev-parse", "HEAD")
     out = {
         "benchmark": name,
-        "command": " ".join(["python", f"benchmarks/{name}.py", *argv]),
+        "command": " ".join(["python", "benchmarks/record.py", name, "--", *argv]),
         "commit": commit,
         "sources_differ_from_commit": bool(_git("status", "--porcelain", "--", "src", f"benchmarks/{name}.py")),
         "date": started.replace(microsecond=0).isoformat(),
@@ -94,7 +143,8 @@ def record(name: str, argv: list[str], note: str = "") -> Path:
         **measured,
     }
     RESULTS.mkdir(exist_ok=True)
-    path = RESULTS / f"{name}-{started:%Y-%m-%d}-{commit[:7]}.json"
+    label = measured.pop("label", "")
+    path = RESULTS / f"{name}{'-' + label if label else ''}-{started:%Y-%m-%d}-{commit[:7]}.json"
     path.write_text(json.dumps(out, indent=1, ensure_ascii=False) + "\n")
     return path
 

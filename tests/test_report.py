@@ -8,6 +8,7 @@ from pathlib import Path
 from types import SimpleNamespace
 
 import pytest
+import xarray as xr
 from docutils.core import publish_parts
 from jinja2 import Environment
 
@@ -17,7 +18,7 @@ from chainchaos.paper import panels, statements
 ROOT = Path(__file__).resolve().parents[1]
 
 # Every figure of the workflow besides the paper's panels and composites, and the tables.
-OTHER_RESULTS = ["energy_scan.png", "disorder_statistics.png", "lyapunov_spectra.png", "search.png", "search_joint.png",
+OTHER_RESULTS = ["run_summary.csv", "energy_scan.png", "disorder_statistics.png", "lyapunov_spectra.png", "search.png", "search_joint.png",
                  "work_precision.png", "stability.png", "claims.csv", "thresholds.csv", "work_precision.csv",
                  "work_precision_runs.csv", "stability.csv", "step_advice.csv"]
 
@@ -104,3 +105,23 @@ def test_report_of_the_quick_run_holds_every_figure_with_caption_and_labels(quic
     # the start page (workflow/report/workflow.rst) links every category by its name
     for category in categories:
         assert f"showCategory('{category.replace(' ', '%20')}')" in html, category
+
+
+@pytest.mark.slow
+def test_the_run_summary_says_what_the_quick_run_did_from_its_files(quick):
+    """The quick run pins the archived full search's chain: the summary says so with that search's
+    counts, and the quick scale's times as the project writes them, none of it from the config."""
+    import csv
+
+    with open(quick / "report" / "run_summary.csv", newline="") as f:
+        rows = {row["what"]: row["this run"] for row in csv.DictReader(f)}
+    with xr.open_dataset(ROOT / "data" / "search" / "search_full.nc") as archive:
+        counts = (f"{int(archive.attrs['seeds_scanned'])} seeds scanned, {int(archive.attrs['n_qualifying'])} "
+                  f"candidates passed the linear rule, {int(archive.attrs['n_scored'])} scored")
+        seed = int(archive.attrs["chosen_seed"])
+    assert rows["chain"].startswith(f"seed {seed}, N = 40")
+    assert rows["chain chosen by"].startswith("the archived full search data/search/search_full.nc") and \
+        counts in rows["chain chosen by"]
+    assert rows["scenes"].endswith("to t = 10^3") and "to t = 10^3" in rows["energy scan"]
+    assert rows["disorder statistics"].endswith("this run's own disorder statistics")
+    assert "reproduced" in rows["claims"]

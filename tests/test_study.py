@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from chainchaos import random_chain, run_study
+from chainchaos import run_study
 from chainchaos.errors import StudyError
 from chainchaos.observe import formulas
 from chainchaos.studies.study import statistics as st

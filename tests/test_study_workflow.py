@@ -3,19 +3,19 @@ studies/fput100.yaml, which compares with it) end to end, and a small study whos
 chainchaos.run_study's numbers to the bit, that resumes from its finished jobs and plans nothing
 of the paper."""
 
-import re
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
 from matplotlib.image import imread
+from test_pipeline import planned_jobs, snakemake
 
 from chainchaos import run_study
 
 ROOT = Path(__file__).resolve().parents[1]
+# One worker runs this module's tests (its module-scoped runs happen once under pytest-xdist).
+pytestmark = pytest.mark.xdist_group("study_workflow")
 
 SMALL = """\
 title: a small Hertz study of the tests
@@ -26,17 +26,6 @@ observables: [participation, second_moment, mlce, log_gali]
 ensemble: {lanes: 2}
 jobs: {orbits_per_job: 8}
 """
-
-
-def snakemake(*args, timeout=900):
-    done = subprocess.run([sys.executable, "-m", "snakemake", "--cores", "2", "--nolock", *args], cwd=ROOT,
-                          capture_output=True, text=True, timeout=timeout)
-    return done.returncode, done.stdout + done.stderr
-
-
-def planned_jobs(output: str) -> dict[str, int]:
-    table = output.split("Job stats:")[-1]
-    return {m.group(1): int(m.group(2)) for m in re.finditer(r"^(\w+)\s+(\d+)$", table, re.M) if m.group(1) != "total"}
 
 
 @pytest.fixture(scope="module")
@@ -79,7 +68,7 @@ def test_a_study_resumes_from_its_finished_jobs_and_plans_nothing_of_the_paper(s
 
 @pytest.mark.slow
 def test_a_changed_key_reruns_the_study(small, tmp_path):
-    base, out = small
+    _, out = small
     changed = tmp_path / "small.yaml"
     changed.write_text(SMALL.replace("t_final: 200.0", "t_final: 300.0"))
     code, plan = snakemake("-n", "study", "--config", f"study={changed}", f"results={out.parents[1]}")

@@ -95,6 +95,7 @@ def figure_inputs(number):
 # The categories of the HTML report (snakemake --report; captions in workflow/report/, whose
 # workflow.rst links to them by name).
 REPORT_CATEGORIES = {
+    "run": "This run",
     "figures": "Paper figures",
     "claims": "Claims",
     "scan": "Energy scan and disorder statistics",

@@ -80,4 +80,29 @@ rule build_manuscript:
         "../scripts/build_manuscript.py"
 
 
-MANUSCRIPT_TARGETS = [*CLAIMS_OUTPUTS.values(), MANUSCRIPT_PDF]
+rule run_summary:
+    """What this run did, read from its files (the chain and how it was chosen, the integration,
+    the scans and the archives they came from, the claims' verdicts): the report's front page
+    points to it."""
+    input:
+        chain=result("chain", "chain.nc"),
+        scene=scene_file(sorted(SCENES)[0]),
+        energy_scan=result("scan", "energy_scan.nc"),
+        disorder=result("scan", "disorder_statistics.nc"),
+        claims=CLAIMS_OUTPUTS["csv"],
+    output:
+        csv=report(
+            result("report", "run_summary.csv"),
+            caption="../report/run_summary.rst",
+            category=REPORT_CATEGORIES["run"],
+            labels={"result": "this run", "shows": "what the run did, from its files"},
+        ),
+    log:
+        log_file("run_summary"),
+    benchmark:
+        benchmark_file("run_summary")
+    script:
+        "../scripts/run_summary.py"
+
+
+MANUSCRIPT_TARGETS = [*CLAIMS_OUTPUTS.values(), MANUSCRIPT_PDF, result("report", "run_summary.csv")]

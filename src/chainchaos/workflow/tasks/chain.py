@@ -43,6 +43,8 @@ def select_chain(inputs, outputs, params, wildcards) -> None:
         "selection_pinned": int(found.attrs["pinned"]),
         "selection_search_score": float(found.attrs["chosen_score"]),
         "selection_search_candidates": int(found.attrs["n_candidates"]),
+        "selection_search_scored": int(found.attrs.get("n_scored", -1)),
+        "selection_source": str(inputs["search"]),  # the archived full search, or this run's
         "selection_rule": ("the linear rule (selection module) as a first filter, then the chain whose orbits "
                            "satisfy the most of the paper's qualitative statements (search module)"),
     }

@@ -90,4 +90,14 @@ def build_manuscript(inputs, outputs, params, wildcards) -> None:
                      params["build_dir"])
 
 
-TASKS = (evaluate_claims, build_manuscript)
+def run_summary(inputs, outputs, params, wildcards) -> None:
+    """What this run did, from its files (``output.run_summary``), as the report's table."""
+    from chainchaos.output.run_summary import summary_csv, summary_rows
+
+    with (xr.open_dataset(inputs["chain"]) as chain, xr.open_dataset(inputs["scene"]) as scene,
+          xr.open_dataset(inputs["energy_scan"]) as energy_scan, xr.open_dataset(inputs["disorder"]) as disorder):
+        rows = summary_rows(chain, scene, energy_scan, disorder, inputs["claims"])
+    write_text(summary_csv(rows), outputs["csv"])
+
+
+TASKS = (evaluate_claims, build_manuscript, run_summary)
