@@ -24,14 +24,21 @@ def build(config: Path, site: Path) -> subprocess.CompletedProcess:
                           cwd=ROOT, env=env, capture_output=True, text=True, timeout=900, check=False)
 
 
-@pytest.mark.slow
-def test_the_site_builds_strict(tmp_path):
+@pytest.fixture(scope="module")
+def built(tmp_path_factory):
+    """The site built once, strict: (the build's result, its folder, its seconds)."""
+    site = tmp_path_factory.mktemp("docs") / "site"
     start = time.perf_counter()
-    result = build(ROOT / "mkdocs.yml", tmp_path / "site")
+    result = build(ROOT / "mkdocs.yml", site)
+    return result, site, time.perf_counter() - start
+
+
+@pytest.mark.slow
+def test_the_site_builds_strict(built):
+    result, site, seconds = built
     assert result.returncode == 0, result.stderr[-5000:]
     warnings = [line for line in result.stderr.splitlines() if line.startswith(("WARNING", "ERROR"))]
     assert not warnings, warnings
-    site = tmp_path / "site"
     for page in ("tutorials/first-orbit", "tutorials/ensemble", "reference/config", "reference/study-keys",
                  "reference/cli", "reference/api", "explanation/performance", "conventions"):
         assert (site / page / "index.html").is_file(), page
@@ -44,7 +51,19 @@ def test_the_site_builds_strict(tmp_path):
         assert record.name in performance, record.name
     # the executed examples ran and printed
     assert "Data variables" in (site / "tutorials/first-orbit/index.html").read_text()
-    print(f"mkdocs build --strict: {time.perf_counter() - start:.1f} s")
+    print(f"mkdocs build --strict: {seconds:.1f} s")
+
+
+@pytest.mark.slow
+def test_every_page_of_the_site_loads_in_chromium_without_console_errors(built):
+    from browser import console_errors
+
+    result, site, _ = built
+    assert result.returncode == 0, result.stderr[-5000:]
+    pages = sorted(site.rglob("index.html"))
+    assert len(pages) > 10
+    errors = {page: found for page, found in console_errors(pages, root=site).items() if found}
+    assert not errors, errors
 
 
 def test_a_failing_example_fails_the_build(tmp_path):

@@ -105,6 +105,9 @@ def test_report_of_the_quick_run_holds_every_figure_with_caption_and_labels(quic
     # the start page (workflow/report/workflow.rst) links every category by its name
     for category in categories:
         assert f"showCategory('{category.replace(' ', '%20')}')" in html, category
+    from browser import console_errors
+
+    assert console_errors([out]) == {str(out): []}  # it loads in Chromium without errors
 
 
 @pytest.mark.slow

@@ -133,3 +133,6 @@ def test_the_report_shows_the_studys_figures(worked, tmp_path):
     for figure in ("spreading.png", "chaos.png", "fractions.png", "comparison.png"):
         assert figure in html, figure
     assert "Studies" in html and "fput100" in html
+    from browser import console_errors
+
+    assert console_errors([report]) == {str(report): []}  # it loads in Chromium without errors

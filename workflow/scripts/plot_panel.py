@@ -1,5 +1,0 @@
-"""plot_panel: see chainchaos.workflow.tasks.figures.plot_panel."""
-
-from chainchaos.workflow.tasks import run_rule
-
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
