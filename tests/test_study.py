@@ -182,3 +182,19 @@ def test_every_study_key_is_described_and_the_committed_readme_is_generated():
     assert config_docs.undescribed(schema) == []
     assert (root / config_docs.STUDY_README).read_text() == config_docs.render(schema, config_docs.STUDY_HEADER), \
         "studies/README.md is stale: run python -m chainchaos.workflow.config_docs"
+
+
+def test_edge_energy_counts_each_end_once_and_marks_a_packet_at_the_walls_invalid():
+    h = np.zeros((3, 20))
+    h[0, [0, 10]] = 0.5  # half at the left end
+    h[1, 19] = 1.0  # all at the right end
+    h[2, 5:15] = 0.1  # none within 5 sites of an end
+    assert formulas.edge_energy(h).tolist() == [0.5, 1.0, 0.0]
+    assert formulas.edge_energy(np.full((1, 6), 1 / 6)).tolist() == pytest.approx([1.0])  # overlapping margins
+    # an ordered harmonic chain of 12 beads: the packet reaches the walls, the bound marks it invalid
+    study = {"lattice": {"model": "harmonic", "N": 12, "alpha": 1.0}, "excitation": {"energies": [1.0]},
+             "integration": {"dt": 0.05, "t_final": 200.0}, "observables": ["participation", "edge_energy"]}
+    free = run_study(study)
+    bounded = run_study({**study, "criteria": {"max_edge_energy": 0.2}})
+    assert float(free["edge_energy"].max()) > 0.2 and (free["valid"] == 1).all()
+    assert (bounded["valid"] == 0).all() and np.isnan(bounded["mean_log10_participation"]).all()

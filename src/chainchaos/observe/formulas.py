@@ -29,6 +29,21 @@ def second_moment(h: np.ndarray) -> np.ndarray:
     return exactmath.matmul(h * offset * offset, np.ones(h.shape[-1]))
 
 
+#: Sites at each end whose energy ``edge_energy`` sums.
+EDGE_MARGIN = 5
+
+
+def edge_energy(h: np.ndarray, margin: int = EDGE_MARGIN) -> np.ndarray:
+    """Fraction of the energy within ``margin`` sites of either end, sum_{n <= margin} h_n +
+    sum_{n > N - margin} h_n (each site counted once): a packet that reaches the fixed ends is no
+    longer spreading into an infinite lattice."""
+    N = h.shape[-1]
+    near = np.zeros(N, dtype=bool)
+    near[:min(margin, N)] = True
+    near[max(N - margin, 0):] = True
+    return exactmath.matmul(h, near.astype(np.float64))
+
+
 def compactness(P: np.ndarray, m2: np.ndarray) -> np.ndarray:
     """Compactness index zeta = P^2 / m2 of an energy distribution: 12 L^2 / (L^2 - 1) for energy
     spread evenly over L sites, about 3 for a thermalized packet (site energies exponentially

@@ -108,6 +108,8 @@ REGISTRY: dict[str, Observable] = _registry(
     Observable("compactness", ("time",), "compactness index zeta = P^2 / m2 of the energy distribution",
                r"$\zeta$", lambda run: obs.compactness(participation_number(run.energy_density, axis=-1),
                                                          obs.second_moment(run.energy_density)), by_default=False),
+    Observable("edge_energy", ("time",), f"fraction of the energy within {obs.EDGE_MARGIN} sites of either end",
+               r"$E_{\rm edge}/H$", lambda run: obs.edge_energy(run.energy_density), by_default=False),
     Observable("mlce", ("time",), "finite-time maximum Lyapunov characteristic exponent Lambda(t)",
                r"$\Lambda$ [$\omega_{\max}$]", lambda run: obs.finite_time_mlce(run.log_growth, run.times),
                frozenset({TANGENT}), companions=("initial_deviation",)),

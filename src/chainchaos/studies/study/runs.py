@@ -57,6 +57,10 @@ def run_group(study, group: int, progress=None) -> xr.Dataset:
     data = {key: ("orbit", np.array(values, dtype=object if key == "model" else np.int32), {"long_name": ORBIT_INDEX[key], **({} if key == "model" else {"units": "1"})})
             for key, values in index.items()}
     reduced = [reduce_orbit(times, run, settings) for run in runs]
+    bound = study.spec["criteria"]["max_edge_energy"]
+    if bound is not None and "edge_energy" in study.observables:  # a packet at the walls: not valid
+        for r, run in zip(reduced, runs):
+            r["valid"] = r["valid"] and not bool(np.nanmax(run["edge_energy"]) > bound)
     for key, (long_name, dtype) in SCALARS.items():
         data[key] = ("orbit", np.array([r[key] for r in reduced]).astype(dtype), {"units": "1", "long_name": long_name})
     for name in kept_series(study):
