@@ -68,11 +68,11 @@ def _contract_variables():
 
 
 @pytest.mark.slow
-def test_deleted_panel_reruns_only_its_plot_rule(quick):
+def test_deleted_panel_reruns_only_its_figure_s_drawing_job(quick):
     (quick / "figures" / "fig4d.pdf").unlink()
     code, out = snakemake(str(quick / "figures" / "fig4d.pdf"), *QUICK, "--config", f"results={quick}", "-n")
     assert code == 0, out
-    assert planned_jobs(out) == {"plot_panel": 1}
+    assert planned_jobs(out) == {"plot_figure_4": 1}
 
 
 @pytest.mark.slow
@@ -88,8 +88,8 @@ def test_changed_scene_parameter_reruns_only_its_batch(quick, tmp_path):
     assert "hertz_H1.8" in rerun and all(name.startswith("hertz_") for name in rerun)
     assert jobs["simulate_scene"] == len(rerun) and jobs["simulate_scenes"] == 2
     affected = {p for p, panel in panels.PANELS.items() if rerun & {s.name for s in panel.scenes}}
-    assert jobs["plot_panel"] == len(affected)
-    assert jobs["plot_figure"] == len({p[:-1] for p in affected})
+    drawn = {rule for rule in jobs if rule.startswith("plot_figure_")}
+    assert drawn == {f"plot_figure_{p[:-1]}" for p in affected} and all(jobs[rule] == 1 for rule in drawn)
     assert "compute_ensemble" not in jobs and "select_chain" not in jobs
 
 
@@ -97,7 +97,10 @@ def test_paper_scale_dry_run_plans_every_scene(tmp_path):
     code, out = snakemake("-n", "--config", f"results={tmp_path}")
     assert code == 0, out[-4000:]
     jobs = planned_jobs(out)
-    assert jobs["simulate_scene"] == len(panels.scenes()) and jobs["plot_panel"] == len(panels.PANELS)
+    assert jobs["simulate_scene"] == len(panels.scenes())
+    # one drawing job per figure: its panels and its composite
+    assert {rule: n for rule, n in jobs.items() if rule.startswith("plot_")} == {
+        f"plot_figure_{n}": 1 for n in panels.LAYOUTS}
     # scenes that share their settings run together, one SIMD block per job, and the few left over
     # (at most batch.SERIAL_REMAINDER) one per job, on the single engine
     per_model = [divmod(sum(s.model == model for s in panels.scenes().values()), LANES) for model in ("hertz", "fput")]

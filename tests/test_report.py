@@ -5,7 +5,6 @@ import re
 import subprocess
 import sys
 from pathlib import Path
-from types import SimpleNamespace
 
 import pytest
 import xarray as xr
@@ -23,29 +22,33 @@ OTHER_RESULTS = ["run_summary.csv", "energy_scan.png", "disorder_statistics.png"
                  "work_precision_runs.csv", "stability.csv", "step_advice.csv"]
 
 
-def _render(template: str, **wildcards) -> str:
-    """A caption as Snakemake renders it: Jinja with the job's wildcards, then docutils, here
-    stopping at the first warning (Snakemake would print it into the report)."""
+def _render(figure_id: str) -> str:
+    """The caption of a panel or composite as Snakemake renders it: Jinja (given the job, which
+    the captions do not read), then docutils, here stopping at the first warning (Snakemake would
+    print it into the report)."""
+    template = (ROOT / report_captions.caption_file(figure_id)).read_text()
     env = Environment(trim_blocks=True, lstrip_blocks=True)  # as snakemake.report
-    text = env.from_string(template).render(snakemake=SimpleNamespace(wildcards=SimpleNamespace(**wildcards)))
+    text = env.from_string(template).render()
     return publish_parts(text, writer="html", settings_overrides={"halt_level": 2, "report_level": 2})["body"]
 
 
-def test_committed_caption_templates_are_the_generated_ones():
-    for path, text in report_captions.templates().items():
+def test_committed_caption_files_are_the_generated_ones_and_no_others():
+    generated = report_captions.templates()
+    for path, text in generated.items():
         assert (ROOT / path).read_text() == text, f"{path} is stale: run python -m chainchaos.output.report_captions"
+    assert {p.relative_to(ROOT) for p in (ROOT / report_captions.CAPTIONS).iterdir()} == set(generated)
+    assert subprocess.run([sys.executable, "-m", "chainchaos.output.report_captions", "--check"],
+                          capture_output=True).returncode == 0
 
 
 def test_every_panel_and_figure_has_a_caption_that_renders_cleanly():
-    panel = (ROOT / report_captions.PANEL_TEMPLATE).read_text()
     for p in panels.PANELS:
-        html = _render(panel, panel=p)
+        html = _render(p)
         assert f"Fig. {p[:-1]}({p[-1]})" in html and "Shows" in html and "The paper reports" in html, p
         for s in statements.statements_of_panel(p):
             assert s.text.split("$")[0].strip() in html, (p, s.id)
-    figure = (ROOT / report_captions.FIGURE_TEMPLATE).read_text()
     for n in panels.LAYOUTS:
-        html = _render(figure, number=str(n))
+        html = _render(str(n))
         kinds = {panels.PANELS[p].kind for p in panels.panels_of_figure(n)}
         assert f"Fig. {n}</strong>" in html and html.count("<li>") >= len(kinds), n
         for p in panels.panels_of_figure(n):

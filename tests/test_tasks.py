@@ -28,18 +28,21 @@ RULE_FILES = [ROOT / "Snakefile", *sorted((ROOT / "workflow" / "rules").glob("*.
 
 
 def rules() -> dict[str, tuple[Path, str]]:
-    """Every rule of the workflow: name -> (its rule file, its rule's text)."""
+    """Every rule of the workflow: name -> (its rule file, its rule's text). The rules of a loop
+    (``for number in FIGURES: rule: name: f"plot_figure_{number}"``) count once, by the name
+    before the loop variable (plot_figure), the name of their script and task."""
     found = {}
     for path in RULE_FILES:
         text = path.read_text()
-        for m in re.finditer(r"^(?:rule|checkpoint) (\w+):", text, re.M):
-            end = re.search(r"^\S", text[m.end():], re.M)  # the next line at the top level
-            found[m.group(1)] = (path, text[m.start():m.end() + (end.start() if end else len(text))])
+        for m in re.finditer(r"^(?:rule|checkpoint) (\w+):|^( +)rule:\n\s+name:\n\s+f\"(\w+)_\{\w+\}\"$", text, re.M):
+            indent = m.group(2) or ""
+            end = re.search(rf"^ {{0,{len(indent)}}}\S", text[m.end():], re.M)  # the next line at the rule's level
+            found[m.group(1) or m.group(3)] = (path, text[m.start():m.end() + (end.start() if end else len(text))])
     return found
 
 
 def script_of(rule_text: str) -> str | None:
-    m = re.search(r"^    script:\n\s+\"\.\./scripts/([^\"]+)\"", rule_text, re.M)
+    m = re.search(r"^ +script:\n\s+\"\.\./scripts/([^\"]+)\"", rule_text, re.M)
     return m and m.group(1)
 
 
@@ -68,7 +71,7 @@ def test_every_rule_runs_the_script_and_task_named_like_it():
 def test_a_script_s_task_is_found_through_its_rule_file_alone():
     """A job imports only the task module named like its rule's file (the scripts' `scriptdir`)."""
     code = ("import sys, types\nfrom chainchaos.workflow.tasks import _task\n"
-            f"task = _task(types.SimpleNamespace(rule='plot_panel', scriptdir={str(SCRIPTS)!r}))\n"
+            f"task = _task(types.SimpleNamespace(rule='plot_figure_4', scriptdir={str(SCRIPTS)!r}))\n"
             "print(task.__module__, sorted(m for m in sys.modules if m.startswith(('chainchaos.workflow.tasks.', 'numba'))))")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert done.stdout.split(" ", 1) == ["chainchaos.workflow.tasks.figures", "['chainchaos.workflow.tasks.figures']\n"]

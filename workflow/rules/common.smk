@@ -25,6 +25,7 @@ from chainchaos.studies.study.runs import scene_name
 from chainchaos.studies.study.spec import FIGURES as STUDY_FIGURES
 from chainchaos.studies.study.spec import load_study, study_names
 from chainchaos.workflow.tasks.chain import selection_criteria
+from chainchaos.workflow.tasks.figures import figure_outputs as figure_files
 
 RESULTS = config["results"]
 SCENES = panels.scenes()
@@ -90,6 +91,26 @@ def figure_inputs(number):
     for panel_id in panels.panels_of_figure(number):
         files.update(panel_inputs(panel_id))
     return files
+
+
+def figure_outputs(number):
+    """The files figure `number`'s job draws: each panel's PDF and PNG and the composite's
+    (chainchaos.workflow.tasks.figures.figure_outputs). Every PNG is in the report with its
+    labels and its own caption, workflow/report/figures/<name>.rst (report_captions)."""
+    outputs = {}
+    for key, name in figure_files(number).items():
+        path, stem = result("figures", name), Path(name).stem
+        if key.startswith("png"):
+            panel_id = key.partition("_")[2]
+            path = report(
+                path,
+                caption=f"../report/figures/{stem}.rst",
+                category=REPORT_CATEGORIES["figures"],
+                subcategory=figure_subcategory(number),
+                labels=panel_labels(panel_id) if panel_id else figure_labels(number),
+            )
+        outputs[key] = path
+    return outputs
 
 
 # The categories of the HTML report (snakemake --report; captions in workflow/report/, whose

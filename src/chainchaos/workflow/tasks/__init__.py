@@ -40,6 +40,17 @@ def __getattr__(name):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
+def _task_name(rule: str, text: str) -> str | None:
+    """The task of ``rule`` if the rule file ``text`` defines it: ``rule <rule>:``, or one rule
+    of a loop, ``name: f"<task>_{...}"`` (plot_figure_4 of ``for number in FIGURES``)."""
+    if re.search(rf"^rule {re.escape(rule)}:", text, re.M):
+        return rule
+    for task in re.findall(r'^\s+name:\n\s+f"(\w+)_\{\w+\}"$', text, re.M):
+        if re.fullmatch(rf"{re.escape(task)}_\w+", rule):
+            return task
+    return None
+
+
 def _task(smk):
     """The task of the rule of a workflow script: that of the module named like the rule file
     that defines the rule (``workflow/rules/<family>.smk``, beside the scripts' directory), or,
@@ -47,8 +58,8 @@ def _task(smk):
     rule_files = Path(smk.scriptdir).parent / "rules" if getattr(smk, "scriptdir", None) else None
     if rule_files is not None and rule_files.is_dir():
         for path in sorted(rule_files.glob("*.smk")):
-            if path.stem in FAMILIES and re.search(rf"^rule {re.escape(smk.rule)}:", path.read_text(), re.M):
-                return family_tasks(path.stem)[smk.rule]
+            if path.stem in FAMILIES and (name := _task_name(smk.rule, path.read_text())):
+                return family_tasks(path.stem)[name]
     return _all_tasks()[smk.rule]
 
 #: Errors whose message tells the reader what to do (install TeX, ...): shown without a traceback.
