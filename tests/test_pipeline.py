@@ -99,7 +99,7 @@ def test_paper_scale_dry_run_plans_every_scene(tmp_path):
     jobs = planned_jobs(out)
     assert jobs["simulate_scene"] == len(panels.scenes())
     # one drawing job per figure: its panels and its composite
-    assert {rule: n for rule, n in jobs.items() if rule.startswith("plot_")} == {
+    assert {rule: n for rule, n in jobs.items() if rule.startswith(("plot_figure", "plot_panel"))} == {
         f"plot_figure_{n}": 1 for n in panels.LAYOUTS}
     # scenes that share their settings run together, one SIMD block per job, and the few left over
     # (at most batch.SERIAL_REMAINDER) one per job, on the single engine
