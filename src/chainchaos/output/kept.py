@@ -90,7 +90,8 @@ def read_key(path, remake: str) -> tuple[dict, int]:
         with netCDF4.Dataset(path) as nc:
             attrs = {name: nc.getncattr(name) for name in nc.ncattrs()}
     except (OSError, RuntimeError, ValueError) as err:
-        raise KeptFileError(f"kept file {path} cannot be read ({err}); {_remedy(path, remake)}") from None
+        reason = getattr(err, "strerror", None) or str(err)  # netCDF4: "NetCDF: HDF error", without the path
+        raise KeptFileError(f"kept file {path} cannot be read ({reason}); {_remedy(path, remake)}") from None
     missing = [key for key in (SETTINGS_ATTR, DIGEST_ATTR, VERSION_ATTR) if key not in attrs]
     if missing:
         raise KeptFileError(f"kept file {path} records no {' / '.join(missing)} (made before kept results were "
