@@ -452,3 +452,9 @@ def study_targets(name):
         result("studies", name, "figures", f"{f}.{ext}") for f in figures for ext in ("pdf", "png")
     ]
     return files
+
+
+# A study named on the command line is read and checked before anything is planned: a wrong key
+# stops the run with one line per key, as a wrong config key does.
+if config.get("study"):
+    study_of(study_name(config["study"]))

@@ -118,7 +118,9 @@ def fractions_figure(stats, title: str = ""):
             for flag, label, colour, marker in flags:
                 s = stats.sel(model=model)
                 f = s[f"fraction_{flag}"].values
-                err = np.vstack([f - s[f"fraction_{flag}_lower"].values, s[f"fraction_{flag}_upper"].values - f])
+                # the Wilson bounds can sit an ulp on the wrong side of 0 or 1 from the fraction
+                err = np.clip(np.vstack([f - s[f"fraction_{flag}_lower"].values,
+                                         s[f"fraction_{flag}_upper"].values - f]), 0.0, None)
                 ax.errorbar(E, f, yerr=err, marker=marker, ms=3, lw=0.9, capsize=2, label=label, color=colour)
             ax.set_xscale("log")
             ax.xaxis.set_major_locator(FixedLocator(E))
