@@ -131,3 +131,24 @@ def test_the_run_summary_says_what_the_quick_run_did_from_its_files(quick):
     assert rows["scenes"].endswith("to t = 10^3") and "to t = 10^3" in rows["energy scan"]
     assert rows["disorder statistics"].endswith("this run's own disorder statistics")
     assert "reproduced" in rows["claims"]
+
+
+def test_the_run_summary_names_the_archived_disorder_statistics_it_read(tmp_path):
+    from chainchaos.output.run_summary import summary_rows
+
+    with xr.open_dataset(ROOT / "data" / "disorder" / "disorder_full.nc") as archive:
+        disorder = archive.copy()
+    disorder.attrs["kept_file"] = "data/disorder/disorder_full.nc (the archived full disorder statistics)"
+    scan = xr.Dataset(coords={"energy": [0.1, 10.0]}, attrs={"t_final": 1e5, "dt": 0.01})
+    chain = xr.Dataset(coords={"site": range(40)}, attrs={
+        "seed": 879, "alpha": 5.0, "selection_source": "data/search/search_full.nc", "selection_pinned": 0,
+        "selection_seeds_scanned": 200000, "selection_candidates": 2392, "selection_search_scored": 64,
+        "selection_search_score": 23.625, "selection_site": 21, "selection_mode": 34})
+    scene = xr.Dataset(attrs={"integrator": "SRKN6b", "dt": 5e-4, "t_final": 1e5})
+    claims = tmp_path / "claims.csv"
+    claims.write_text("id,verdict\na,reproduced\nb,differs\nc,reproduced\n")
+    rows = dict(summary_rows(chain, scene, scan, disorder, str(claims)))
+    assert rows["disorder statistics"] == ("100 realizations x 20 energies, to t = 10^4: "
+                                           "data/disorder/disorder_full.nc (the archived full disorder statistics)")
+    assert rows["scenes"] == "SRKN6b at dt = 0.0005, to t = 10^5" and rows["claims"] == "1 differs, 2 reproduced"
+    assert "200000 seeds scanned, 2392 candidates passed the linear rule, 64 scored" in rows["chain chosen by"]

@@ -48,8 +48,7 @@ def summary_rows(chain, scene, energy_scan, disorder, claims_csv: str) -> list[t
                                  f"{plain_number(e.energy.values[-1])}, to t = {plain_time(float(e.attrs['t_final']))}, "
                                  f"dt = {plain_number(e.attrs['dt'])}")))
     d = disorder
-    source = d.attrs.get("source", "")
-    origin = source if "archived" in source else "this run's own disorder statistics"
+    origin = d.attrs.get("kept_file") or "this run's own disorder statistics"
     rows.append(("disorder statistics", (f"{d.sizes['realization']} realizations x {d.sizes['energy']} energies, "
                                          f"to t = {plain_time(float(d.attrs['t_final']))}: {origin}")))
     with open(claims_csv, newline="") as f:

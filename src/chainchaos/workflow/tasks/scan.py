@@ -35,7 +35,8 @@ def merge_disorder(inputs, outputs, params, wildcards) -> None:
     archived full disorder statistics (``scan.disorder.archive``) as they are."""
     if "archive" in inputs.keys():
         ds = xr.load_dataset(inputs["archive"])
-        ds.attrs["source"] = f"the archived full disorder statistics {inputs['archive']} (snakemake disorder_full)"
+        # where the numbers come from (ACDD's `source` names the software on every file)
+        ds.attrs["kept_file"] = f"{inputs['archive']} (the archived full disorder statistics, snakemake disorder_full)"
         print(f"disorder: {inputs['archive']}, {ds.sizes['realization']} realizations x {ds.sizes['energy']} "
               f"energies", file=sys.stderr)
         write_netcdf(ds, outputs["merged"])
