@@ -115,7 +115,8 @@ def test_pyproject_names_the_developers_and_the_licence():
     assert project["license"] == {"text": "MIT"}
     licence = (ROOT / "LICENSE").read_text()
     assert licence.startswith("MIT License") and f"Copyright (c) 2026 {DEVELOPERS}" in licence
-    assert pyproject()["tool"]["setuptools"]["package-data"]["chainchaos"] == ["py.typed"]
+    # the type marker, and the study schema run_study validates a study file against
+    assert pyproject()["tool"]["setuptools"]["package-data"]["chainchaos"] == ["py.typed", "studies/study/schema.yaml"]
     assert (PACKAGE / "py.typed").is_file()
 
 
