@@ -10,8 +10,8 @@ Gerlach 2010) applies the same maps to a deviation vector (du, dp):
     drift(c): du += c dt M^-1 dp        kick(d): dp -= d dt Hess V(u) du
 
 with Hess V tridiagonal from the bond stiffness k = df/dD (plus w''(u_n) on the diagonal for a
-model with a site law, whose kick adds -w'(u_n) to each bead's force). A zero kick is skipped, and a force
-evaluation is reused by the next kick when no drift came in between, so schemes whose step starts
+model with a site law, whose kick adds -w'(u_n) to each bead's force). A zero kick is skipped, and
+a force evaluation is reused by the next kick when no drift came in between, so schemes whose step starts
 and ends with a kick (BAB, "first same as last") cost one force evaluation less per step.
 """
 
@@ -353,9 +353,9 @@ def advance(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, ta
 
     inv_mass (N,); bonds (MAX_BOND_PARAMETERS, N+1), the model's bond parameters
     (``Model.bond_parameters``); sites (MAX_SITE_PARAMETERS, N), the site parameters of a model
-    with a site law (``Model.site_parameters``; required for one, ignored otherwise). Every ``check_every`` steps and at the end the state is checked
-    for finiteness and the deviation vector is renormalised, its log growth added to
-    diagnostics[0]. With ``track_gaps`` (a model whose bonds open) the number of steps each bond
+    with a site law (``Model.site_parameters``; required for one, ignored otherwise). Every
+    ``check_every`` steps and at the end the state is checked for finiteness and the deviation
+    vector is renormalised, its log growth added to diagnostics[0]. With ``track_gaps`` (a model whose bonds open) the number of steps each bond
     ends open is added to gap_steps and the largest number of simultaneously open bonds is kept in
     diagnostics[1]. f and k (N+1) are left holding the last bond forces and stiffnesses.
     Returns -1, or the number of steps done when a non-finite state stopped the run.

@@ -1,8 +1,9 @@
 """The models: a registry of :class:`~chainchaos.system.models.base.Model`, one module each.
 
 Adding a model is its module (name, label, colour, bond parameters, Numba kernels of its bond
-law and, optionally, of its site law: see ``base``) and one line in :data:`MODELS`; the engines, the initial-state solver, the
-energy, the configuration's allowed values and every label take it from here.
+law and, optionally, of its site law: see ``base``) and one line in :data:`MODELS`; the engines,
+the initial-state solver, the energy, the configuration's allowed values and every label take it
+from here.
 """
 
 import numpy as np
@@ -11,7 +12,8 @@ from numba import njit
 from chainchaos.errors import require
 from chainchaos.system.models import fput, harmonic, hertz, klein_gordon, toda
 from chainchaos.system.models.base import (MAX_BOND_PARAMETERS, MAX_SITE_PARAMETERS, Model, SiteLaw, add_site_energy,
-                                           bond_force, bond_force_stiffness, bond_potential, site_potential)
+                                           bond_force, bond_force_stiffness, bond_potential, check_sites,
+                                           site_potential)
 
 #: Every model, by name.
 MODELS: dict[str, Model] = {m.name: m for m in (
@@ -109,6 +111,7 @@ def energy_kernel(model, q, p, mass, bonds, V, sites=None):
     """H of one state, summed in order (``V`` scratch of length N+1; ``sites`` the site
     parameters of a model with a site law, whose potentials come last): :func:`total_energy` for
     compiled loops (the energy checks of ``engine.checked``); the two agree to rounding."""
+    check_sites(model, sites)
     bond_potentials(model, q, bonds, V)
     H = 0.0
     for n in range(q.shape[0]):
