@@ -355,9 +355,9 @@ def advance(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, ta
     (``Model.bond_parameters``); sites (MAX_SITE_PARAMETERS, N), the site parameters of a model
     with a site law (``Model.site_parameters``; required for one, ignored otherwise). Every
     ``check_every`` steps and at the end the state is checked for finiteness and the deviation
-    vector is renormalised, its log growth added to diagnostics[0]. With ``track_gaps`` (a model whose bonds open) the number of steps each bond
-    ends open is added to gap_steps and the largest number of simultaneously open bonds is kept in
-    diagnostics[1]. f and k (N+1) are left holding the last bond forces and stiffnesses.
+    vector is renormalised, its log growth added to diagnostics[0]. With ``track_gaps`` (a model
+    whose bonds open) the number of steps each bond ends open is added to gap_steps and the
+    largest number of simultaneously open bonds is kept in diagnostics[1]. f and k (N+1) are left holding the last bond forces and stiffnesses.
     Returns -1, or the number of steps done when a non-finite state stopped the run.
 
     The state and parameters are copied into one aligned work buffer (``ROWS``), padded to whole
