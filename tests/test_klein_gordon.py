@@ -283,8 +283,9 @@ def test_both_engines_agree_bit_for_bit_on_kg(name, integrator):
             for got, want in ((b.q, sq), (b.p, sp), (b.dq, sdq), (b.dp, sdp)):
                 np.testing.assert_array_equal(got[:, j].view(np.int64), want.view(np.int64))
             assert b.log_growth[j] == log_growth and b.bad[j] == -1
-    H0 = problem.energies(q.T, p.T)
-    assert np.abs(problem.energies(runs["batch"].q.T, runs["batch"].p.T) / H0 - 1).max() < 1e-4
+    H0 = problem.energies(q.T, p.T)  # and the orbits are the KG lattice's (dt = 0.05: verlet to 1e-2)
+    tolerance = 1e-2 if get_scheme(integrator).order == 2 else 1e-4
+    assert np.abs(problem.energies(runs["batch"].q.T, runs["batch"].p.T) / H0 - 1).max() < tolerance
 
 
 def test_an_extra_deviation_vector_equal_to_the_first_stays_equal_on_kg():
