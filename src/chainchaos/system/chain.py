@@ -282,6 +282,11 @@ class KGLattice:
         stiffness matrix (``linear.normal_modes``)."""
         return self.eps
 
+    def with_k4_sign(self, sign: float) -> "KGLattice":
+        """The lattice itself: the sign of the FPUT quartic coefficient, which runs set on every
+        chain they integrate, has no meaning for the harmonic coupling of a KG lattice."""
+        return self
+
 
 def kg_chain(seed: int, W: float, N: int) -> KGLattice:
     """The disordered KG lattice of disorder strength W drawn with ``seed``: eps_l =
