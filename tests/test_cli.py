@@ -14,7 +14,7 @@ from chainchaos import chain_from_radii, normal_modes, random_chain
 from chainchaos.observe.registry import ALIGNMENT, GAPS, OBSERVABLES, SPECTRUM, needing
 from chainchaos.output.io import read_chain
 from chainchaos.run.scenes import SceneParameters, model_observables
-from chainchaos.system.models import MODELS
+from chainchaos.system.models import BEAD_MODELS
 
 CHAIN_PARAMETERS = ("radius", "mass", "A", "delta", "K2", "K3", "K4", "frequency", "mode_shape",
                     "mode_participation")
@@ -87,7 +87,7 @@ def test_chain_from_radii_takes_the_reference_and_alpha():
     assert np.array_equal(default.radius, chain.radius / ((chain.radius.max() + chain.radius.min()) / 2))
 
 
-@pytest.mark.parametrize("model", sorted(MODELS))
+@pytest.mark.parametrize("model", sorted(BEAD_MODELS))
 def test_default_observables_follow_the_model(model):
     params = SceneParameters(model=model, energy=1.0, t_final=10.0, dt=0.01)
     assert params.observables == model_observables(model)
@@ -97,7 +97,7 @@ def test_default_observables_follow_the_model(model):
         indicators | spreading | (set() if model == "hertz" else needing(GAPS))
 
 
-@pytest.mark.parametrize("model", sorted(MODELS))
+@pytest.mark.parametrize("model", sorted(BEAD_MODELS))
 def test_simulate_each_model_with_defaults(workdir, seed_chain_file, model):
     out = f"{model}.nc"
     done = chainchaos("simulate", "--chain", seed_chain_file.name, "--model", model, "--energy", 1,

@@ -16,7 +16,7 @@ from chainchaos import random_chain
 from chainchaos.engine import simd
 from chainchaos.errors import ParameterError
 from chainchaos.run.scenes import SceneParameters, model_observables, simulate, simulate_scenes
-from chainchaos.system.models import MODELS
+from chainchaos.system.models import BEAD_MODELS
 
 OTHER_WIDTH = 4 if simd.LANES == 8 else 8
 
@@ -27,12 +27,12 @@ import numpy as np
 from chainchaos import random_chain
 from chainchaos.engine import simd
 from chainchaos.system.initial import initial_deviation, initial_state
-from chainchaos.system.models import MODELS
+from chainchaos.system.models import BEAD_MODELS
 from chainchaos.system.problem import Problem
 
 chains = [random_chain(s, 5.0) for s in (879, 5346, 11, 12, 13)]
 out = [np.array([simd.LANES], dtype=float)]
-for name, model in MODELS.items():
+for name, model in BEAD_MODELS.items():
     states = [initial_state(model, c, E, 21)[:2] for c, E in zip(chains, (0.25, 0.5, 1.8, 4.0, 9.0))]
     q, p = np.stack([s[0] for s in states], 1), np.stack([s[1] for s in states], 1)
     dq, dp = initial_deviation(40, 1)
@@ -76,7 +76,7 @@ def test_the_fitted_width_matches_the_cpu_numba_compiles_for(monkeypatch):
     assert simd.target_lanes() == (8 if simd.target_has_512_bit_vectors() else 4)
 
 
-@pytest.mark.parametrize("model", sorted(MODELS))
+@pytest.mark.parametrize("model", sorted(BEAD_MODELS))
 def test_scenes_integrated_together_equal_each_scene_alone(model):
     """Four scenes of a model with different energies, beads, deviation seeds and observables in
     one batch (the batch engine): every variable of every scene file is the one of the scene run

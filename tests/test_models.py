@@ -12,11 +12,24 @@ import pytest
 from numba import njit
 
 from chainchaos.errors import ParameterError
-from chainchaos.system.chain import random_chain
+from chainchaos.system.chain import kg_chain, random_chain
 from chainchaos.system.models import MAX_BOND_PARAMETERS, MODELS, energy_kernel, get_model, model_label, total_energy
 from chainchaos.system.models.base import bond_force, bond_force_stiffness, bond_potential
 
 CHAIN = random_chain(879, 5.0, 40)
+KG = kg_chain(879, 4.0, 40)
+
+
+def lattice(model):
+    """The lattice a model's parameters come from: the bead chain CHAIN, or a KG lattice (whose
+    harmonic coupling K2 the bond-law tests below do not use: they take CHAIN's bond parameters)."""
+    return CHAIN if model.lattice == "beads" else KG
+
+
+def extra(model, chain):
+    """The site parameters of a model with a site law, as the optional last argument."""
+    sites = model.site_parameters(chain)
+    return () if sites is None else (sites,)
 
 
 @njit
@@ -61,10 +74,11 @@ def test_every_model_is_at_rest_at_zero_compression_with_the_linear_stiffness_K2
 def test_every_model_fits_the_engines_and_is_labelled(name):
     model = MODELS[name]
     assert model.name == name and get_model(name) is model and model_label(name) == model.label
-    P = model.bond_parameters(CHAIN)
-    assert P.shape == (MAX_BOND_PARAMETERS, CHAIN.N + 1)
+    chain = lattice(model)
+    P = model.bond_parameters(chain)
+    assert P.shape == (MAX_BOND_PARAMETERS, chain.N + 1)
     assert np.all(P[len(model.parameter_names):] == 0.0)
-    assert total_energy(model, CHAIN, np.zeros(CHAIN.N), np.zeros(CHAIN.N)) == 0.0
+    assert total_energy(model, chain, np.zeros(chain.N), np.zeros(chain.N)) == 0.0
 
 
 @pytest.mark.parametrize("name", sorted(MODELS))
@@ -73,8 +87,10 @@ def test_the_compiled_energy_is_the_energy(name):
     model = MODELS[name]
     rng = np.random.default_rng(3)
     u, p = 0.1 * rng.standard_normal(CHAIN.N), 0.1 * rng.standard_normal(CHAIN.N)
-    H = energy_kernel(model, u, p, CHAIN.mass, model.bond_parameters(CHAIN), np.empty(CHAIN.N + 1))
-    assert H > 0 and H == pytest.approx(total_energy(model, CHAIN, u, p), rel=1e-14)
+    chain = lattice(model)
+    H = energy_kernel(model, u, p, chain.mass, model.bond_parameters(chain), np.empty(chain.N + 1),
+                      *extra(model, chain))
+    assert H > 0 and H == pytest.approx(total_energy(model, chain, u, p), rel=1e-14)
 
 
 def test_models_have_distinct_labels_and_colours():

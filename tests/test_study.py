@@ -198,3 +198,23 @@ def test_edge_energy_counts_each_end_once_and_marks_a_packet_at_the_walls_invali
     bounded = run_study({**study, "criteria": {"max_edge_energy": 0.2}})
     assert float(free["edge_energy"].max()) > 0.2 and (free["valid"] == 1).all()
     assert (bounded["valid"] == 0).all() and np.isnan(bounded["mean_log10_participation"]).all()
+
+
+def test_a_klein_gordon_study_runs_on_kg_lattices_with_the_energy_of_its_hamiltonian():
+    """Models kg and kg_linear run on KG lattices (eps_l from the seed, coupling 1/W); a single-site
+    momentum excitation holds the energy asked for exactly, and the run conserves it."""
+    from chainchaos.system.chain import kg_chain
+    from chainchaos.system.models import get_model, total_energy
+
+    spec = {"lattice": {"model": ["kg", "kg_linear"], "N": 32, "W": 4.0, "realizations": 2, "first_seed": 7},
+            "excitation": {"variable": "momentum", "energies": [0.4]},
+            "integration": {"dt": 0.1, "t_final": 50.0}, "observables": ["participation", "second_moment"]}
+    study = load_study(spec)
+    lattice = study.lattices("kg")[1]
+    assert lattice.eps.tolist() == kg_chain(8, 4.0, 32).eps.tolist()
+    u, p, _ = study.excitation(1).state(get_model("kg"), lattice, 0.4)
+    assert float(total_energy(get_model("kg"), lattice, u, p)) == pytest.approx(0.4, rel=1e-14)
+    ds = run_study(spec)
+    assert (ds["valid"] == 1).all() and float(ds["energy_error_max"].max()) < 1e-6
+    with pytest.raises(StudyError, match="a bead model with a chain file"):
+        load_study({**spec, "lattice": {"model": "kg", "chain_file": "results/chain/chain.nc"}})

@@ -24,7 +24,8 @@ Semantics are those of ``integrators.advance`` lane by lane, to the bit (tests/t
 tests/test_lane_width.py, at every width): the same kick/drift table (``integrators.SCHEMES``),
 the same floating-point operations in the same order, a force evaluation reused by the next kick
 when no drift came in between, the tangent map drift(c): dq += c dt M^-1 dp, kick(d): dp -= d dt
-Hess V(u) dq with Hess V tridiagonal from the bond stiffness, and every ``check_every`` steps and
+Hess V(u) dq with Hess V tridiagonal from the bond stiffness (and a site law's w'(u) and w''(u)
+on each bead, for a model with one), and every ``check_every`` steps and
 at the end of a call the deviation vector of each trajectory renormalised, its log growth added
 to ``log_growth[j]``. A trajectory whose state becomes non-finite is reported in ``bad[j]`` (the
 step of the first failed check) while the other lanes go on: lanes never mix.
@@ -38,8 +39,9 @@ from numba import literally, njit
 from chainchaos.engine.integrators import _aligned_zeros, _renormalise, advance, drift_vector, gram_schmidt
 from chainchaos.engine.simd import LANES, vbelow, vload, vstore
 from chainchaos.errors import require
-from chainchaos.system.models import MAX_BOND_PARAMETERS
-from chainchaos.system.models.base import bond_force, bond_force_stiffness, bond_opening
+from chainchaos.system.models import MAX_BOND_PARAMETERS, MAX_SITE_PARAMETERS
+from chainchaos.system.models.base import (bond_force, bond_force_stiffness, bond_opening, check_sites, site_kick,
+                                           site_kick_deviation)
 
 #: Up to this many lanes beyond whole blocks cost no more on the single-trajectory engine than in
 #: a padded block: a block takes the time of LANES / r single-engine trajectories, r the batch
@@ -47,12 +49,13 @@ from chainchaos.system.models.base import bond_force, bond_force_stiffness, bond
 SERIAL_REMAINDER = LANES // 2
 
 #: The per-row contents of a block's buffer, LANES doubles each. Row r of U and DQ is bead r-1
-#: (the walls are rows 0 and N+1); row n of P, DP and IM is bead n; row b of the bond parameters
-#: B0, B1, B2 (the model's, ``models.base``) and of the bond force F and stiffness K is bond b,
-#: which joins beads b-1 and b.
-QUANTITIES = ("U", "DQ", "P", "DP", "IM", "B0", "B1", "B2", "F", "K")
-_U, _DQ, _P, _DP, _IM, _B0, _B1, _B2, _F, _K = (i * LANES for i in range(len(QUANTITIES)))
-assert len(QUANTITIES) == 7 + MAX_BOND_PARAMETERS
+#: (the walls are rows 0 and N+1); row n of P, DP, IM and of the site parameters S0, S1 (a model
+#: with a site law; zero and never read otherwise) is bead n; row b of the bond parameters B0, B1,
+#: B2 (the model's, ``models.base``) and of the bond force F and stiffness K is bond b, which joins
+#: beads b-1 and b.
+QUANTITIES = ("U", "DQ", "P", "DP", "IM", "B0", "B1", "B2", "F", "K", "S0", "S1")
+_U, _DQ, _P, _DP, _IM, _B0, _B1, _B2, _F, _K, _S0, _S1 = (i * LANES for i in range(len(QUANTITIES)))
+assert len(QUANTITIES) == 7 + MAX_BOND_PARAMETERS + MAX_SITE_PARAMETERS and MAX_SITE_PARAMETERS == 2
 #: Doubles per row of a block's buffer.
 ROW = len(QUANTITIES) * LANES
 
@@ -61,6 +64,12 @@ ROW = len(QUANTITIES) * LANES
 def _bond_parameters(Z, bond):
     """The bond parameters (B0, B1, B2) of the bond whose row starts at ``bond``, as vectors."""
     return vload(Z, bond + _B0), vload(Z, bond + _B1), vload(Z, bond + _B2)
+
+
+@njit(cache=True, inline="always")
+def _site_parameters(Z, row):
+    """The site parameters (S0, S1) of the bead whose momenta are in row ``row``, as vectors."""
+    return vload(Z, row + _S0), vload(Z, row + _S1)
 
 
 @njit(cache=True, error_model="numpy")
@@ -103,12 +112,12 @@ def _sweep(model, tangent, drift, kick, keep_forces, N, Z, a, c):
                     vstore(Z, bond + _K, k)
             g = k * (dq_left - dq_right) if tangent else f
             if b >= 2:
-                _kick_bead(tangent, Z, bond - 2 * ROW, c, f2, f1, g2, g1)
+                _kick_bead(model, tangent, Z, bond - 2 * ROW, c, f2, f1, g2, g1)
             f2, g2, f1, g1 = f1, g1, f, g
         u_left, dq_left = u_right, dq_right
         u_right, dq_right = u_next, dq_next
     if kick:
-        _kick_bead(tangent, Z, (N - 1) * ROW, c, f2, f1, g2, g1)
+        _kick_bead(model, tangent, Z, (N - 1) * ROW, c, f2, f1, g2, g1)
 
 
 @njit(cache=True, inline="always")
@@ -120,29 +129,39 @@ def _drift_bead(drift, tangent, Z, bond, a):
 
 
 @njit(cache=True, inline="always")
-def _kick_bead(tangent, Z, row, c, f_left, f_right, g_left, g_right):
+def _kick_bead(model, tangent, Z, row, c, f_left, f_right, g_left, g_right):
     """kick(c) of the bead of ``row`` between bonds whose forces are f_left and f_right (tangent
-    forces g_left, g_right): p += c (f_left - f_right), dp += c (g_left - g_right)."""
-    vstore(Z, row + _P, vload(Z, row + _P) + c * (f_left - f_right))
+    forces g_left, g_right): p += c (f_left - f_right), dp += c (g_left - g_right); with a site law
+    p += c ((f_left - f_right) - w'(u)), dp += c ((g_left - g_right) - w''(u) dq) at the bead's
+    (drifted) u and dq, read back from the buffer (``models.base.site_kick``: nothing of it is
+    compiled for a model without one)."""
+    site = _site_parameters(Z, row)
+    u = vload(Z, row + ROW + _U)
+    vstore(Z, row + _P, vload(Z, row + _P) + c * site_kick(model, site, u, f_left - f_right))
     if tangent:
-        vstore(Z, row + _DP, vload(Z, row + _DP) + c * (g_left - g_right))
+        dq = vload(Z, row + ROW + _DQ)
+        vstore(Z, row + _DP, vload(Z, row + _DP) + c * site_kick_deviation(model, site, u, dq, g_left - g_right))
 
 
 @njit(cache=True, error_model="numpy")
-def _kick_only(tangent, N, Z, c):
+def _kick_only(model, tangent, N, Z, c):
     """kick(c) of every bead with the stored forces and stiffnesses (the tangent force of bond b,
-    g_b = k_b (dq_{b-1} - dq_b), carried from one bead to the next)."""
+    g_b = k_b (dq_{b-1} - dq_b), carried from one bead to the next); a site law's w'(u) and w''(u)
+    are computed again at the unchanged displacements (the same bits)."""
     literally(tangent)
     f_left = vload(Z, _F)
     g_left = vload(Z, _K) * (vload(Z, _DQ) - vload(Z, ROW + _DQ)) if tangent else f_left
     for n in range(N):
         row = n * ROW
+        site = _site_parameters(Z, row)
+        u = vload(Z, row + ROW + _U)
         f = vload(Z, row + ROW + _F)
-        vstore(Z, row + _P, vload(Z, row + _P) + c * (f_left - f))
+        vstore(Z, row + _P, vload(Z, row + _P) + c * site_kick(model, site, u, f_left - f))
         f_left = f
         if tangent:
-            g = vload(Z, row + ROW + _K) * (vload(Z, row + ROW + _DQ) - vload(Z, row + 2 * ROW + _DQ))
-            vstore(Z, row + _DP, vload(Z, row + _DP) + c * (g_left - g))
+            dq = vload(Z, row + ROW + _DQ)
+            g = vload(Z, row + ROW + _K) * (dq - vload(Z, row + 2 * ROW + _DQ))
+            vstore(Z, row + _DP, vload(Z, row + _DP) + c * site_kick_deviation(model, site, u, dq, g_left - g))
             g_left = g
 
 
@@ -164,11 +183,13 @@ VECTOR_GROUP = 3
 
 
 @njit(cache=True, inline="always")
-def _vector_bond(V, vector, b, N, drift, kick, a_im, stiffness, c, wall, dq_left, g_left, dp_left):
+def _vector_bond(model, V, vector, b, N, drift, kick, a_im, stiffness, site, u_left, c, wall, dq_left, g_left,
+                 dp_left):
     """Iteration b of a pass over the bonds for one extra deviation vector starting at ``vector``:
     drift(a) of bead b (dq += a M^-1 dp with its dp before the kick; ``a_im`` = a M^-1 of the
     bead), the tangent force g_b = k_b (dq_{b-1} - dq_b) of bond b and kick(c) of bead b-1, whose
-    dp (``dp_left``, loaded by the iteration before) is stored kicked; bead N is the right
+    dp (``dp_left``, loaded by the iteration before) is stored kicked, with -w''(u) dq of its site
+    law (parameters ``site``, displacement ``u_left``) for a model with one; bead N is the right
     ``wall`` (zero). Returns (dq_b, g_b, dp_b) for iteration b+1."""
     if b < N:
         dp = vload(V, vector + b * VROW + _VP)
@@ -182,12 +203,13 @@ def _vector_bond(V, vector, b, N, drift, kick, a_im, stiffness, c, wall, dq_left
     if kick:
         g = stiffness * (dq_left - dq)
         if b >= 1:
-            vstore(V, vector + (b - 1) * VROW + _VP, dp_left + c * (g_left - g))
+            vstore(V, vector + (b - 1) * VROW + _VP,
+                   dp_left + c * site_kick_deviation(model, site, u_left, dq_left, g_left - g))
     return dq, g, dp
 
 
 @njit(cache=True, error_model="numpy")
-def _drift_kick_vectors(N, Z, V, extra, drift, kick, a, c):
+def _drift_kick_vectors(model, N, Z, V, extra, drift, kick, a, c):
     """drift(a) (if ``drift``) then kick(c) (if ``kick``) of the ``extra`` deviation vectors in V
     with the inverse masses and the stiffnesses stored in the block Z (the orbit's sweep stored
     them at the drifted positions): per lane and element the operations of ``_sweep`` on the
@@ -195,7 +217,8 @@ def _drift_kick_vectors(N, Z, V, extra, drift, kick, a, c):
     dp += c (g_b - g_{b+1}), so a vector equal to it stays equal to it, to the bit. The vectors go
     by groups of ``VECTOR_GROUP``, one pass over the bonds per group (the last ones one by one);
     iteration b drifts bead b, computes bond b (beads b-1 and b, both drifted) and kicks bead
-    b-1 (whose drift used its momentum before the kick)."""
+    b-1 (whose drift used its momentum before the kick; a site law's w''(u) of that bead at the
+    orbit's drifted u, as the block's own vector has it)."""
     literally(drift)
     literally(kick)
     wall = vload(V, _VQ)  # row 0 of vector 0: a wall, zero
@@ -206,16 +229,20 @@ def _drift_kick_vectors(N, Z, V, extra, drift, kick, a, c):
         for b in range(N + 1):
             a_im = a * vload(Z, b * ROW + _IM)  # row N: zero
             k = vload(Z, b * ROW + _K) if kick else wall
-            q0, g0, p0 = _vector_bond(V, v0, b, N, drift, kick, a_im, k, c, wall, q0, g0, p0)
-            q1, g1, p1 = _vector_bond(V, v1, b, N, drift, kick, a_im, k, c, wall, q1, g1, p1)
-            q2, g2, p2 = _vector_bond(V, v2, b, N, drift, kick, a_im, k, c, wall, q2, g2, p2)
+            site = _site_parameters(Z, max(b - 1, 0) * ROW)  # bead b-1's (used from b = 1)
+            u = vload(Z, b * ROW + _U)
+            q0, g0, p0 = _vector_bond(model, V, v0, b, N, drift, kick, a_im, k, site, u, c, wall, q0, g0, p0)
+            q1, g1, p1 = _vector_bond(model, V, v1, b, N, drift, kick, a_im, k, site, u, c, wall, q1, g1, p1)
+            q2, g2, p2 = _vector_bond(model, V, v2, b, N, drift, kick, a_im, k, site, u, c, wall, q2, g2, p2)
     for j in range(grouped, extra):
         v0 = _vector_base(N, j)
         q0 = g0 = p0 = wall
         for b in range(N + 1):
             a_im = a * vload(Z, b * ROW + _IM)  # row N: zero
             k = vload(Z, b * ROW + _K) if kick else wall
-            q0, g0, p0 = _vector_bond(V, v0, b, N, drift, kick, a_im, k, c, wall, q0, g0, p0)
+            site = _site_parameters(Z, max(b - 1, 0) * ROW)
+            u = vload(Z, b * ROW + _U)
+            q0, g0, p0 = _vector_bond(model, V, v0, b, N, drift, kick, a_im, k, site, u, c, wall, q0, g0, p0)
 
 
 @njit(cache=True, error_model="numpy")
@@ -272,13 +299,13 @@ def _advance_block(model, tangent, N, Z, kicks, drifts, dt, n_steps, check_every
         c = kicks[0] * dt
         if c != 0.0:
             if force_valid:
-                _kick_only(tangent, N, Z, c)
+                _kick_only(model, tangent, N, Z, c)
             elif extra:
                 _sweep(model, tangent, False, True, True, N, Z, 0.0, c)
             else:
                 _sweep(model, tangent, False, True, False, N, Z, 0.0, c)
             if extra:
-                _drift_kick_vectors(N, Z, V, extra, False, True, 0.0, c)
+                _drift_kick_vectors(model, N, Z, V, extra, False, True, 0.0, c)
         for i in range(n_stages):
             a, c = drifts[i] * dt, kicks[i + 1] * dt
             if c == 0.0:
@@ -289,9 +316,9 @@ def _advance_block(model, tangent, N, Z, kicks, drifts, dt, n_steps, check_every
                 _sweep(model, tangent, True, True, False, N, Z, a, c)
             if extra:
                 if c == 0.0:
-                    _drift_kick_vectors(N, Z, V, extra, True, False, a, c)
+                    _drift_kick_vectors(model, N, Z, V, extra, True, False, a, c)
                 else:
-                    _drift_kick_vectors(N, Z, V, extra, True, True, a, c)
+                    _drift_kick_vectors(model, N, Z, V, extra, True, True, a, c)
             force_valid = c != 0.0
         if track_gaps:
             _count_gaps(model, N, Z, gap_steps, max_gaps)
@@ -312,13 +339,14 @@ def _advance_block(model, tangent, N, Z, kicks, drifts, dt, n_steps, check_every
 
 @njit(cache=True, error_model="numpy")
 def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, tangent, check_every, track_gaps,
-                  gap_steps, log_growth, max_gaps, bad, lanes, xq, xp, orthogonal, x_growth, vectors_on):
+                  gap_steps, log_growth, max_gaps, bad, lanes, xq, xp, orthogonal, x_growth, vectors_on, sites=None):
     """Advance the first ``lanes`` of the B trajectories (q, p) of ``model`` (a ``chainchaos.system.models``
     Model), shape (N, B), and, if ``tangent``, their deviation vectors (dq, dp) by n_steps steps of
     the scheme (kicks, drifts), in blocks of LANES (the last padded by repeating its last lane).
 
     inv_mass (N, B); bonds (MAX_BOND_PARAMETERS, N+1, B), the model's bond parameters, bond b
-    joining beads b-1 and b (walls at b = 0 and b = N). Every ``check_every`` steps and at the
+    joining beads b-1 and b (walls at b = 0 and b = N); sites (MAX_SITE_PARAMETERS, N, B), the
+    site parameters of a model with a site law (required for one, ignored otherwise). Every ``check_every`` steps and at the
     end: each lane's state is checked for finiteness (``bad[j]`` set to the step count of the
     first failed check if it is still < 0) and, with ``tangent``, its deviation vector
     renormalised, ln|v| added to ``log_growth[j]``. With ``track_gaps`` (a model whose bonds open)
@@ -331,6 +359,7 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
     whose lanes all have ``vectors_on[j]`` False leaves its K vectors as they are (the orbit and
     the mLCE vector run the same either way). All arrays are updated in place.
     """
+    check_sites(model, sites)
     N = q.shape[0]
     B = lanes
     extra = xq.shape[0] if tangent else 0
@@ -352,6 +381,9 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
                 Z[n * ROW + _P + lane] = p[n, j]
                 Z[n * ROW + _DP + lane] = dp[n, j]
                 Z[n * ROW + _IM + lane] = inv_mass[n, j]
+                if sites is not None:
+                    Z[n * ROW + _S0 + lane] = sites[0, n, j]
+                    Z[n * ROW + _S1 + lane] = sites[1, n, j]
                 for k in range(extra):
                     V[_vector_base(N, k) + (n + 1) * VROW + _VQ + lane] = xq[k, n, j]
                     V[_vector_base(N, k) + n * VROW + _VP + lane] = xp[k, n, j]
@@ -411,6 +443,7 @@ class Batch:
     def __init__(self, problem, q, p, dq=None, dp=None, serial_lanes: int = 0, xq=None, xp=None):
         self.problem, self.model, self.scheme = problem, problem.model, problem.scheme
         self.inv_mass, self.bonds = problem.lane_parameters
+        self._sites = () if problem.site_parameters is None else (problem.site_parameters,)
         self.q = np.ascontiguousarray(q, dtype=float).copy()
         self.p = np.ascontiguousarray(p, dtype=float).copy()
         shape = self.q.shape
@@ -450,7 +483,7 @@ class Batch:
             advance_batch(self.model, self.q, self.p, self.dq, self.dp, self.inv_mass, self.bonds, self.scheme.kicks,
                           self.scheme.drifts, pr.dt, int(n_steps), pr.tangent, pr.check_every, pr.track_gaps,
                           self.gap_steps, self.log_growth, self.max_gaps, bad, self.block_lanes, self.xq, self.xp,
-                          pr.spectrum - 1, self.x_growth, self.vectors_on)
+                          pr.spectrum - 1, self.x_growth, self.vectors_on, *self._sites)
         for j, lane in self._serial.items():
             bad[j] = self._advance_serial(j, lane, int(n_steps))
         newly = (bad >= 0) & (self.bad < 0)
@@ -472,8 +505,10 @@ class Batch:
         q, p, dq, dp = (np.ascontiguousarray(a[:, j]) for a in (self.q, self.p, self.dq, self.dp))
         diagnostics = np.array([self.log_growth[j], float(self.max_gaps[j])])
         gaps = np.ascontiguousarray(self.gap_steps[:, j])
+        sites = pr.lane_sites(j)
         bad = advance(self.model, q, p, dq, dp, *lane, self.scheme.kicks, self.scheme.drifts, pr.dt, n_steps,
-                      pr.tangent, pr.check_every, pr.track_gaps, gaps, diagnostics, np.empty(N + 1), np.empty(N + 1))
+                      pr.tangent, pr.check_every, pr.track_gaps, gaps, diagnostics, np.empty(N + 1), np.empty(N + 1),
+                      *(() if sites is None else (sites,)))
         self.q[:, j], self.p[:, j], self.dq[:, j], self.dp[:, j] = q, p, dq, dp
         self.gap_steps[:, j] = gaps
         self.log_growth[j], self.max_gaps[j] = diagnostics[0], int(diagnostics[1])

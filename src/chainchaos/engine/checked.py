@@ -16,17 +16,18 @@ from chainchaos.system.models import energy_kernel
 @njit(cache=True)
 def run_chunks(model, q, p, dq, dp, inv_mass, mass, bonds, kicks, drifts, dt, n_chunks,
                chunk_steps, tangent, H0, err, err_offset, stop_error, track_gaps, gap_steps, diagnostics,
-               f, k, V):
+               f, k, V, sites=None):
     """Advance ``n_chunks`` chunks of ``chunk_steps`` steps with :func:`advance`, recording the
     signed relative energy error (H - H0) / |H0| after each chunk in err[err_offset + i].
 
     Returns -1, or the index of the chunk after which the state was non-finite or the energy
-    error exceeded ``stop_error`` (the run then stops).
+    error exceeded ``stop_error`` (the run then stops). ``sites``: the site parameters of a model
+    with a site law (``advance``).
     """
     for i in range(n_chunks):
         bad = advance(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, chunk_steps,
-                      tangent, chunk_steps, track_gaps, gap_steps, diagnostics, f, k)
-        e = (energy_kernel(model, q, p, mass, bonds, V) - H0) / abs(H0)
+                      tangent, chunk_steps, track_gaps, gap_steps, diagnostics, f, k, sites)
+        e = (energy_kernel(model, q, p, mass, bonds, V, sites) - H0) / abs(H0)
         err[err_offset + i] = e
         if bad >= 0 or not abs(e) <= stop_error:
             if bad >= 0 or not np.isfinite(e):
@@ -45,11 +46,14 @@ class CheckedRun:
         self.problem = problem
         N = problem.N
         self.inv_mass, self.bonds = problem.lane(0)
+        sites = problem.lane_sites(0)
+        self._sites = () if sites is None else (sites,)
         self.mass = problem.chains[0].mass
         self.q, self.p = np.array(q, dtype=float), np.array(p, dtype=float)
         self.dq = np.zeros(N) if dq is None else np.array(dq, dtype=float)
         self.dp = np.zeros(N) if dp is None else np.array(dp, dtype=float)
-        self.H0 = float(energy_kernel(problem.model, self.q, self.p, self.mass, self.bonds, np.empty(N + 1)))
+        self.H0 = float(energy_kernel(problem.model, self.q, self.p, self.mass, self.bonds, np.empty(N + 1),
+                                      *self._sites))
         self.diagnostics = np.zeros(2)
         self.gap_steps = np.zeros(N + 1, dtype=np.int64)
         self._scratch = [np.empty(N + 1) for _ in range(3)]
@@ -61,4 +65,5 @@ class CheckedRun:
         pr, scheme = self.problem, self.problem.scheme
         return run_chunks(pr.model, self.q, self.p, self.dq, self.dp, self.inv_mass, self.mass, self.bonds,
                           scheme.kicks, scheme.drifts, pr.dt, n_chunks, chunk_steps, pr.tangent, self.H0, err,
-                          offset, stop_error, pr.track_gaps, self.gap_steps, self.diagnostics, *self._scratch)
+                          offset, stop_error, pr.track_gaps, self.gap_steps, self.diagnostics, *self._scratch,
+                          *self._sites)

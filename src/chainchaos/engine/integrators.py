@@ -9,8 +9,9 @@ Gerlach 2010) applies the same maps to a deviation vector (du, dp):
 
     drift(c): du += c dt M^-1 dp        kick(d): dp -= d dt Hess V(u) du
 
-with Hess V tridiagonal from the bond stiffness k = df/dD. A zero kick is skipped, and a force
-evaluation is reused by the next kick when no drift came in between, so schemes whose step starts
+with Hess V tridiagonal from the bond stiffness k = df/dD (plus w''(u_n) on the diagonal for a
+model with a site law, whose kick adds -w'(u_n) to each bead's force). A zero kick is skipped, and
+a force evaluation is reused by the next kick when no drift came in between, so schemes whose step starts
 and ends with a kick (BAB, "first same as last") cost one force evaluation less per step.
 """
 
@@ -22,7 +23,8 @@ from numba import literally, njit
 from chainchaos.engine.exactmath import ln
 from chainchaos.engine.simd import LANES, vload, vnext, vprev, vstore
 from chainchaos.errors import require
-from chainchaos.system.models.base import MAX_BOND_PARAMETERS, bond_force, bond_force_stiffness, bond_opening
+from chainchaos.system.models.base import (MAX_BOND_PARAMETERS, MAX_SITE_PARAMETERS, bond_force, bond_force_stiffness,
+                                           bond_opening, check_sites, site_kick, site_kick_deviation)
 
 
 @dataclass(frozen=True)
@@ -159,9 +161,10 @@ def gram_schmidt(W, first, orthogonal, growth):
 #: displacements U and deviations DQ with the walls (U[0] = U[N+1] = 0, beads at 1..N), momenta
 #: P, DP and inverse masses IM of the beads at 1..N, bond force F and stiffness K and the bond
 #: parameters B0, B1, B2 (the model's, ``models.base``) of bond b = 0..N, which joins U[b] and
-#: U[b+1].
-ROWS = ("U", "DQ", "P", "DP", "IM", "F", "K", "B0", "B1", "B2")
-assert len(ROWS) == 7 + MAX_BOND_PARAMETERS
+#: U[b+1], and the site parameters S0, S1 of the beads at 1..N (a model with a site law; zero and
+#: never read otherwise).
+ROWS = ("U", "DQ", "P", "DP", "IM", "F", "K", "B0", "B1", "B2", "S0", "S1")
+assert len(ROWS) == 7 + MAX_BOND_PARAMETERS + MAX_SITE_PARAMETERS and MAX_SITE_PARAMETERS == 2
 
 
 @njit(cache=True, inline="always")
@@ -170,6 +173,19 @@ def _row_offsets(L):
     row starts on a vector boundary and a sweep may read one vector past L."""
     R = L + LANES
     return 0, R, 2 * R, 3 * R, 4 * R, 5 * R, 6 * R, 7 * R, 8 * R, 9 * R
+
+
+@njit(cache=True, inline="always")
+def _site_rows(L):
+    """Where the site parameter rows S0 and S1 of ``ROWS`` start in the work buffer."""
+    R = L + LANES
+    return 10 * R, 11 * R
+
+
+@njit(cache=True, inline="always")
+def _site_vector(Z, S0, S1, n):
+    """The site parameters (S0, S1) of the beads of vector n, as vectors."""
+    return vload(Z, S0 + n), vload(Z, S1 + n)
 
 
 @njit(cache=True, inline="always")
@@ -189,16 +205,19 @@ def drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, n, a):
 
 
 @njit(cache=True, inline="always")
-def _kick_vector(tangent, Z, P, DP, n, c, f_before, f, g_before, k, dq, dq_after):
+def _kick_vector(model, tangent, Z, P, DP, site, n, c, f_before, f, g_before, k, u, dq, dq_after):
     """kick(c) of the beads of vector n: p_i += c (F_{i-1} - F_i) and, with the tangent map,
     dp_i += c (G_{i-1} - G_i), G_b = K_b (dq_b - dq_{b+1}); f, k are the forces and stiffnesses of
-    the vector's bonds, f_before, g_before those of the vector before, dq, dq_after the deviations
-    of this vector's beads and the next's. Returns (f, G) for the next vector."""
-    vstore(Z, P + n, vload(Z, P + n) + c * (vprev(f_before, f) - f))
+    the vector's bonds, f_before, g_before those of the vector before, u, dq the displacements and
+    deviations of this vector's beads, dq_after the next's. With a site law (parameters ``site``)
+    p_i += c ((F_{i-1} - F_i) - w'(u_i)), dp_i += c ((G_{i-1} - G_i) - w''(u_i) dq_i)
+    (``models.base.site_kick``; nothing of it is compiled for a model without one). Returns (f, G)
+    for the next vector."""
+    vstore(Z, P + n, vload(Z, P + n) + c * site_kick(model, site, u, vprev(f_before, f) - f))
     g = f
     if tangent:
         g = k * (dq - vnext(dq, dq_after))
-        vstore(Z, DP + n, vload(Z, DP + n) + c * (vprev(g_before, g) - g))
+        vstore(Z, DP + n, vload(Z, DP + n) + c * site_kick_deviation(model, site, u, dq, vprev(g_before, g) - g))
     return f, g
 
 
@@ -218,6 +237,7 @@ def _stage(model, tangent, drift, kick, keep_forces, L, Z, a, c):
     literally(kick)
     literally(keep_forces)
     U, DQ, P, DP, IM, F, K, B0, B1, B2 = _row_offsets(L)
+    S0, S1 = _site_rows(L)
     u, dq = drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, 0, a)
     f_before = g_before = vload(Z, U + L)  # U[L:L+LANES], always zero
     for b in range(0, L, LANES):
@@ -235,22 +255,25 @@ def _stage(model, tangent, drift, kick, keep_forces, L, Z, a, c):
                 vstore(Z, F + b, f)
                 if tangent:
                     vstore(Z, K + b, k)
-            f_before, g_before = _kick_vector(tangent, Z, P, DP, b, c, f_before, f, g_before, k, dq, dq_after)
+            f_before, g_before = _kick_vector(model, tangent, Z, P, DP, _site_vector(Z, S0, S1, b), b, c, f_before,
+                                              f, g_before, k, u, dq, dq_after)
         u, dq = u_after, dq_after
 
 
 @njit(cache=True, error_model="numpy")
-def _kick(tangent, L, Z, c):
+def _kick(model, tangent, L, Z, c):
     """kick(c) of every bead with the stored forces F and stiffnesses K:
-    p_i += c (F_{i-1} - F_i);  dp_i += c (G_{i-1} - G_i), G_b = K_b (dq_b - dq_{b+1})."""
+    p_i += c (F_{i-1} - F_i);  dp_i += c (G_{i-1} - G_i), G_b = K_b (dq_b - dq_{b+1}); a site law's
+    w'(u_i) and w''(u_i) are computed again at the unchanged displacements (the same bits)."""
     literally(tangent)
     U, DQ, P, DP, _, F, K, _, _, _ = _row_offsets(L)
+    S0, S1 = _site_rows(L)
     f_before = g_before = vload(Z, U + L)  # zero
     dq = vload(Z, DQ)
     for n in range(0, L, LANES):
         dq_after = vload(Z, DQ + n + LANES)
-        f_before, g_before = _kick_vector(tangent, Z, P, DP, n, c, f_before, vload(Z, F + n), g_before,
-                                          vload(Z, K + n), dq, dq_after)
+        f_before, g_before = _kick_vector(model, tangent, Z, P, DP, _site_vector(Z, S0, S1, n), n, c, f_before,
+                                          vload(Z, F + n), g_before, vload(Z, K + n), vload(Z, U + n), dq, dq_after)
         dq = dq_after
 
 
@@ -281,7 +304,7 @@ def _step_loop(model, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every,
         c = kicks[0] * dt
         if c != 0.0:
             if force_valid:
-                _kick(tangent, L, Z, c)
+                _kick(model, tangent, L, Z, c)
             else:
                 _stage(model, tangent, False, True, True, L, Z, 0.0, c)
         for i in range(n_stages):
@@ -324,24 +347,26 @@ def _aligned_zeros(n):
 
 @njit(cache=True, error_model="numpy")
 def advance(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, tangent, check_every, track_gaps,
-            gap_steps, diagnostics, f, k):
+            gap_steps, diagnostics, f, k, sites=None):
     """Advance the state (q, p) of ``model`` (a ``chainchaos.system.models`` Model) and, if ``tangent``,
     the deviation vector (dq, dp) by n_steps.
 
     inv_mass (N,); bonds (MAX_BOND_PARAMETERS, N+1), the model's bond parameters
-    (``Model.bond_parameters``). Every ``check_every`` steps and at the end the state is checked
-    for finiteness and the deviation vector is renormalised, its log growth added to
-    diagnostics[0]. With ``track_gaps`` (a model whose bonds open) the number of steps each bond
-    ends open is added to gap_steps and the largest number of simultaneously open bonds is kept in
-    diagnostics[1]. f and k (N+1) are left holding the last bond forces and stiffnesses.
+    (``Model.bond_parameters``); sites (MAX_SITE_PARAMETERS, N), the site parameters of a model
+    with a site law (``Model.site_parameters``; required for one, ignored otherwise). Every
+    ``check_every`` steps and at the end the state is checked for finiteness and the deviation
+    vector is renormalised, its log growth added to diagnostics[0]. With ``track_gaps`` (a model
+    whose bonds open) the number of steps each bond ends open is added to gap_steps and the
+    largest number of simultaneously open bonds is kept in diagnostics[1]. f and k (N+1) are left holding the last bond forces and stiffnesses.
     Returns -1, or the number of steps done when a non-finite state stopped the run.
 
     The state and parameters are copied into one aligned work buffer (``ROWS``), padded to whole
     SIMD vectors (``chainchaos.engine.simd``), and the steps run on explicit vectors across the bonds:
     no loop has a scalar remainder or needs a runtime check that two arrays do not overlap. The
-    model's bond law is compiled in (each model gets its own machine code); the cache directory is
+    model's bond law and site law are compiled in (each model gets its own machine code); the cache directory is
     keyed by the kernels' source (chainchaos.engine.cache), so an edit there recompiles this.
     """
+    check_sites(model, sites)
     N = q.shape[0]
     L = (N + 1 + LANES) // LANES * LANES
     Z = _aligned_zeros(len(ROWS) * (L + LANES))
@@ -353,6 +378,10 @@ def advance(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, ta
     Z[IM + 1:IM + N + 1] = inv_mass
     for r, start in enumerate((B0, B1, B2)):
         Z[start:start + N + 1] = bonds[r]
+    if sites is not None:
+        S0, S1 = _site_rows(L)
+        Z[S0 + 1:S0 + N + 1] = sites[0]
+        Z[S1 + 1:S1 + N + 1] = sites[1]
     # the tangent flag literal: each case compiles to its own code without these branches
     if tangent:
         bad = _step_loop(model, True, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,

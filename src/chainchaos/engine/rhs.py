@@ -12,22 +12,33 @@ import numpy as np
 from numba import njit
 
 from chainchaos.system.models import bond_forces, energy_kernel, get_model
+from chainchaos.system.models.base import check_sites, site_kick, site_kick_deviation
+
+
+@njit(cache=True, inline="always")
+def _site(sites, n):
+    """Site n's parameters, or a placeholder (never read) without a site law."""
+    if sites is None:
+        return (0.0, 0.0)
+    return (sites[0, n], sites[1, n])
 
 
 @njit(cache=True)
-def rhs_kernel(y, out, model, inv_mass, bonds, tangent, f, k):
+def rhs_kernel(y, out, model, inv_mass, bonds, tangent, f, k, sites=None):
     """Fill ``out`` with dy/dt at state ``y`` (length 2N, or 4N when ``tangent``).
 
     u' = p/m, p' = f_n - f_{n+1}; tangent: du' = dp/m, dp' = g_n - g_{n+1} with
     g_b = k_b (du_{b-1} - du_b), k the bond stiffness (the variational equations).
-    ``f`` and ``k`` are scratch arrays of length N+1.
+    ``f`` and ``k`` are scratch arrays of length N+1. A model with a site law (parameters
+    ``sites``) adds -w'(u_n) to p_n' and -w''(u_n) du_n to dp_n'.
     """
+    check_sites(model, sites)
     N = inv_mass.shape[0]
     u = y[:N]
     bond_forces(model, u, bonds, f, k, tangent)
     for n in range(N):
         out[n] = inv_mass[n] * y[N + n]
-        out[N + n] = f[n] - f[n + 1]
+        out[N + n] = site_kick(model, _site(sites, n), u[n], f[n] - f[n + 1])
     if tangent:
         for n in range(N):
             out[2 * N + n] = inv_mass[n] * y[3 * N + n]
@@ -37,7 +48,7 @@ def rhs_kernel(y, out, model, inv_mass, bonds, tangent, f, k):
                 g_next = k[n + 1] * (y[2 * N + n] - y[2 * N + n + 1])
             else:
                 g_next = k[N] * y[2 * N + N - 1]
-            out[3 * N + n] = g_prev - g_next
+            out[3 * N + n] = site_kick_deviation(model, _site(sites, n), u[n], y[2 * N + n], g_prev - g_next)
             g_prev = g_next
 
 
@@ -53,8 +64,10 @@ class RightHandSide:
         self.model, self.chain, self.tangent = get_model(model), chain, bool(tangent)
         self.N = chain.N
         self.bonds = self.model.bond_parameters(chain)
+        sites = self.model.site_parameters(chain)
+        self._sites = () if sites is None else (sites,)
         self._args = (self.model, 1.0 / chain.mass, self.bonds, self.tangent, np.empty(self.N + 1),
-                      np.empty(self.N + 1))
+                      np.empty(self.N + 1), *self._sites)
         self.size = (4 if tangent else 2) * self.N
         self.nfev = 0
 
@@ -68,7 +81,7 @@ class RightHandSide:
         """Total energy of the state part of ``y``."""
         c, N = self.chain, self.N
         return float(energy_kernel(self.model, np.ascontiguousarray(y[:N]), np.ascontiguousarray(y[N:2 * N]),
-                                   c.mass, self.bonds, np.empty(N + 1)))
+                                   c.mass, self.bonds, np.empty(N + 1), *self._sites))
 
 
 def rhs(model, chain, tangent: bool = False) -> RightHandSide:

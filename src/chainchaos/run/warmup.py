@@ -15,7 +15,7 @@ from chainchaos.engine.checked import CheckedRun
 from chainchaos.engine.rhs import RightHandSide
 from chainchaos.observe.registry import ALIGNMENT, OBSERVABLES, REGISTRY, SPECTRUM, model_observables, variables
 from chainchaos.run.driver import sample, sample_steps
-from chainchaos.system.chain import random_chain
+from chainchaos.system.chain import kg_chain, random_chain
 from chainchaos.system.models import MODELS, get_model
 from chainchaos.system.problem import Problem
 
@@ -61,8 +61,9 @@ def warm_up(models=None) -> str:
     (``chainchaos.studies.numerics``) of ``models`` use (default: every registered model).
     Returns the cache directory. A model not warmed up here compiles in the first job that runs
     it."""
-    chain = random_chain(0, 2.0, 4)
+    chains = {"beads": random_chain(0, 2.0, 4), "kg": kg_chain(0, 4.0, 4)}  # a lattice of each kind
     for model in map(get_model, MODELS if models is None else models):
+        chain = chains[model.lattice]
         _sampled_runs(model, chain)
         _measured_runs(model, chain)
     return os.environ.get("NUMBA_CACHE_DIR", "")

@@ -239,3 +239,73 @@ def chain_at_alpha(chain, alpha: float) -> Chain:
     U = (chain.radius * (chain.alpha + 1.0) / 2.0 - 1.0) / (chain.alpha - 1.0)
     radius = (1.0 + (alpha - 1.0) * U) / ((alpha + 1.0) / 2.0)
     return Chain(radius, float(alpha), chain.seed, chain.wall_radius, chain.k4_sign)
+
+
+# ---- the disordered Klein-Gordon lattice (models.klein_gordon) --------------------------------
+
+
+@dataclass(frozen=True)
+class KGLattice:
+    """A disordered Klein-Gordon lattice of N sites (docs/conventions.md#klein-gordon), in its
+    Hamiltonian's own units (not the bead chains' 1/omega_max of the homogeneous chain):
+
+        H = sum_l [ p_l^2/2 + eps_l u_l^2/2 + u_l^4/4 ] + sum_{b=1}^{N+1} (u_b - u_{b-1})^2 / (2W)
+
+    with fixed ends u_0 = u_{N+1} = 0. ``mass`` (N,) is 1 on every site, ``K2`` (N+1,) the
+    harmonic coupling 1/W on every bond (the harmonic bond law's parameter), ``eps`` (N,) the
+    on-site linear stiffness (the site law's parameter), ``site_stiffness`` its linear limit."""
+
+    eps: np.ndarray
+    W: float
+    seed: int | None = None
+    mass: np.ndarray = field(init=False, repr=False)
+    K2: np.ndarray = field(init=False, repr=False)
+
+    def __post_init__(self):
+        eps = np.ascontiguousarray(self.eps, dtype=float)
+        require(eps.ndim == 1 and eps.size >= 2, "N", eps.size, "N >= 2 sites")
+        require(bool(np.all(np.isfinite(eps))), "eps", eps.tolist(), "finite on-site stiffnesses")
+        require(isinstance(self.W, (int, float, np.floating)) and np.isfinite(self.W) and self.W > 0, "W", self.W,
+                "a finite disorder strength W > 0")
+        object.__setattr__(self, "eps", eps)
+        object.__setattr__(self, "W", float(self.W))
+        object.__setattr__(self, "mass", np.ones(eps.size))
+        object.__setattr__(self, "K2", np.full(eps.size + 1, 1.0 / self.W))
+
+    @property
+    def N(self) -> int:
+        return self.eps.size
+
+    @property
+    def site_stiffness(self) -> np.ndarray:
+        """w''(0) of every site, eps_l: what the linear modes add to the diagonal of the bonds'
+        stiffness matrix (``linear.normal_modes``)."""
+        return self.eps
+
+    def with_k4_sign(self, sign: float) -> "KGLattice":
+        """The lattice itself: the sign of the FPUT quartic coefficient, which runs set on every
+        chain they integrate, has no meaning for the harmonic coupling of a KG lattice."""
+        return self
+
+
+def kg_chain(seed: int, W: float, N: int) -> KGLattice:
+    """The disordered KG lattice of disorder strength W drawn with ``seed``: eps_l =
+    default_rng(seed).uniform(0.5, 1.5, N), coupling 1/W, masses 1 (docs/conventions.md#klein-gordon).
+
+    Parameters
+    ----------
+    seed : int
+        Seed of ``numpy.random.default_rng``: the same seed gives the same lattice everywhere.
+    W : float
+        Disorder strength (> 0); the harmonic coupling is 1/W.
+    N : int
+        Number of sites (>= 2).
+
+    Returns
+    -------
+    KGLattice
+    """
+    require(isinstance(seed, (int, np.integer)) and seed >= 0, "seed", seed, "an integer >= 0")
+    require(isinstance(N, (int, np.integer)) and N >= 2, "N", N, "an integer >= 2")
+    eps = np.random.default_rng(int(seed)).uniform(0.5, 1.5, int(N))
+    return KGLattice(eps, W, int(seed))

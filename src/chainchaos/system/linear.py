@@ -138,10 +138,12 @@ CONVENTIONS = ("potential", "period_averaged")
 def normal_modes(chain: Chain) -> tuple[np.ndarray, np.ndarray]:
     """Frequencies omega_k (increasing, units of omega_max of the homogeneous chain) and mode
     shapes U[n, k], mass-orthonormal (U^T M U = I), each with its largest component positive.
+    A lattice with an on-site potential (``site_stiffness``, e.g. a KGLattice, in its own units)
+    adds its linear on-site stiffness to the diagonal of K.
 
     Parameters
     ----------
-    chain : Chain
+    chain : Chain or KGLattice
 
     Returns
     -------
@@ -152,7 +154,8 @@ def normal_modes(chain: Chain) -> tuple[np.ndarray, np.ndarray]:
     """
     K2 = chain.K2
     m = chain.mass
-    diag = (K2[:-1] + K2[1:]) / m
+    onsite = getattr(chain, "site_stiffness", None)  # a lattice with a site law (KGLattice): w''(0)
+    diag = (K2[:-1] + K2[1:]) / m if onsite is None else (K2[:-1] + K2[1:] + onsite) / m
     off = -K2[1:-1] / np.sqrt(m[:-1] * m[1:])
     w2, V = tridiagonal_eigh(diag, off)
     U = V / np.sqrt(m)[:, None]

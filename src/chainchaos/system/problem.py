@@ -2,7 +2,8 @@
 
 A :class:`Problem` holds what stays fixed while states change (the split of scipy.integrate and
 DynamicalSystems.jl between a problem and the algorithms that solve it): the force law (a model of
-``chainchaos.system.models``), one chain per lane, the splitting scheme (``integrators.SCHEMES``) and its
+``chainchaos.system.models``), one chain per lane (a bead ``Chain``, or a ``KGLattice`` for a model
+of that lattice: its masses, bond parameters and, with a site law, site parameters per lane), the splitting scheme (``integrators.SCHEMES``) and its
 step dt (units of 1/omega_max, docs/conventions.md#units), and what runs beside the orbit: the
 tangent map with its renormalisation every ``check_every`` steps, and the counting of open gaps.
 The engine (``batch.Batch``: SIMD blocks, or the single-trajectory engine lane by lane), the
@@ -17,6 +18,7 @@ import numpy as np
 
 from chainchaos.engine.integrators import get_scheme
 from chainchaos.errors import require
+from chainchaos.system.chain import KGLattice
 from chainchaos.system.models import get_model, total_energy
 
 #: The engines a problem runs on (:meth:`Problem.engine`).
@@ -49,6 +51,9 @@ class Problem:
         object.__setattr__(self, "chains", tuple(self.chains))
         get_scheme(self.integrator)
         require(len(self.chains) >= 1, "chains", len(self.chains), "at least one chain")
+        kinds = {"kg" if isinstance(c, KGLattice) else "beads" for c in self.chains}
+        require(kinds == {self.model.lattice}, "chains", sorted(kinds),
+                f"{self.model.lattice!r} lattices for model {self.model.name!r}")
         Ns = sorted({c.N for c in self.chains})
         require(len(Ns) == 1, "N", Ns, "one N per problem")
         check_step(self.dt)
@@ -89,6 +94,20 @@ class Problem:
         inv_mass = np.ascontiguousarray(np.stack([1.0 / c.mass for c in self.chains], axis=1))
         bonds = np.ascontiguousarray(np.stack([self.model.bond_parameters(c) for c in self.chains], axis=2))
         return inv_mass, bonds
+
+    @cached_property
+    def site_parameters(self) -> np.ndarray | None:
+        """The model's site parameters (MAX_SITE_PARAMETERS, N, B), C-contiguous, next to
+        ``lane_parameters``; None for a model without a site law."""
+        if not self.model.has_site_law:
+            return None
+        return np.ascontiguousarray(np.stack([self.model.site_parameters(c) for c in self.chains], axis=2))
+
+    def lane_sites(self, j: int) -> np.ndarray | None:
+        """Lane j's site parameters (MAX_SITE_PARAMETERS, N), contiguous (None without a site law):
+        the single-trajectory engine's ``sites``."""
+        sites = self.site_parameters
+        return None if sites is None else np.ascontiguousarray(sites[:, :, j])
 
     def lane(self, j: int) -> tuple[np.ndarray, np.ndarray]:
         """Lane j's inverse masses (N,) and bond parameters (MAX_BOND_PARAMETERS, N+1), contiguous:

@@ -136,7 +136,7 @@ def build_parser() -> argparse.ArgumentParser:
     from chainchaos.engine.integrators import SCHEMES
     from chainchaos.observe.registry import OBSERVABLES
     from chainchaos.system.linear import CONVENTIONS
-    from chainchaos.system.models import MODELS
+    from chainchaos.system.models import BEAD_MODELS as MODELS  # the CLI reads bead chain files
 
     package = __import__("chainchaos")
     parser = argparse.ArgumentParser(prog="chainchaos", description=package.__doc__,

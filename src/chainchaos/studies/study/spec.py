@@ -23,9 +23,9 @@ from chainchaos.errors import ParameterError, StudyError
 from chainchaos.observe.registry import study_observables
 from chainchaos.run.orbits import ALIGNMENT_SERIES, Orbit
 from chainchaos.studies.scan.runs import ScanSettings, energy_grid, select_excitation
-from chainchaos.system.chain import random_chain
+from chainchaos.system.chain import kg_chain, random_chain
 from chainchaos.system.initial import Excitation
-from chainchaos.system.models import MODELS
+from chainchaos.system.models import BEAD_MODELS, MODELS
 
 #: The schema of a study file (shipped with the package; its keys: ``studies/README.md``).
 SCHEMA = Path(__file__).resolve().with_name("schema.yaml")
@@ -200,12 +200,22 @@ class Study:
 
     @cached_property
     def chains(self) -> list:
-        """One chain per realization, in the order of :attr:`seeds`."""
+        """One bead chain per realization, in the order of :attr:`seeds`."""
         lattice = self.spec["lattice"]
         if lattice["chain_file"]:
             return [self.file_chain]
         return [random_chain(seed, float(lattice["alpha"]), int(lattice["N"]), float(lattice["wall_radius"]))
                 for seed in self.seeds]
+
+    @cached_property
+    def kg_lattices(self) -> list:
+        """One Klein-Gordon lattice per realization (disorder strength W), in the order of :attr:`seeds`."""
+        lattice = self.spec["lattice"]
+        return [kg_chain(seed, float(lattice["W"]), int(lattice["N"])) for seed in self.seeds]
+
+    def lattices(self, model: str) -> list:
+        """The realizations ``model`` runs on: KG lattices for a KG model, else bead chains."""
+        return self.kg_lattices if MODELS[model].lattice == "kg" else self.chains
 
     @property
     def N(self) -> int:
@@ -219,8 +229,10 @@ class Study:
 
     @cached_property
     def picks(self) -> list[dict]:
-        """Per realization, what ``scan.runs.select_excitation`` picks (site ``selected``)."""
-        return [select_excitation(chain, **self.spec["excitation"]["selection"]) for chain in self.chains]
+        """Per realization, what ``scan.runs.select_excitation`` picks (site ``selected``) in the
+        lattices of the study's first model."""
+        return [select_excitation(chain, **self.spec["excitation"]["selection"])
+                for chain in self.lattices(self.models[0])]
 
     def excitation(self, realization: int = 0) -> Excitation:
         """The excitation of realization ``realization`` (they differ only with site ``selected``)."""
@@ -244,6 +256,8 @@ class Study:
     def check(self) -> None:
         """StudyError naming every key that does not fit the others."""
         errors = []
+        chain_file = self.spec["lattice"]["chain_file"]
+        known_chain = not chain_file or Path(chain_file).exists()  # else a rule of the workflow may make it
 
         def check(key, test):
             try:
@@ -258,6 +272,8 @@ class Study:
             for model in self.models:
                 if model not in MODELS:
                     raise ParameterError("model", model, f"a model of the registry: {sorted(MODELS)}")
+                if chain_file and MODELS[model].lattice != "beads":
+                    raise ParameterError("model", model, f"a bead model with a chain file: {sorted(BEAD_MODELS)}")
 
         def observables():
             allowed = study_observables()
@@ -265,8 +281,6 @@ class Study:
                 if name not in allowed:
                     raise ParameterError("observable", name, f"one of {allowed}")
 
-        chain_file = self.spec["lattice"]["chain_file"]
-        known_chain = not chain_file or Path(chain_file).exists()  # else a rule of the workflow may make it
 
         def lattice():
             if chain_file and known_chain:
@@ -306,9 +320,9 @@ class Study:
 
     def orbits(self, items) -> list[Orbit]:
         """The orbits of ``items``, every lane of each."""
-        energies, chains = self.energies, self.chains
+        energies = self.energies
         excitations = {r: self.excitation(r) for r in sorted({r for *_, r in items})}
-        return [Orbit(m, float(energies[e]), chains[r], excitations[r].site, lane, excitations[r])
+        return [Orbit(m, float(energies[e]), self.lattices(m)[r], excitations[r].site, lane, excitations[r])
                 for m, e, r in items for lane in range(self.lanes)]
 
 

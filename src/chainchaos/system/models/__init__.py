@@ -1,16 +1,19 @@
-"""The bond models: a registry of :class:`~chainchaos.system.models.base.Model`, one module each.
+"""The models: a registry of :class:`~chainchaos.system.models.base.Model`, one module each.
 
 Adding a model is its module (name, label, colour, bond parameters, Numba kernels of its bond
-law: see ``base``) and one line in :data:`MODELS`; the engines, the initial-state solver, the
-energy, the configuration's allowed values and every label take it from here.
+law and, optionally, of its site law: see ``base``) and one line in :data:`MODELS`; the engines,
+the initial-state solver, the energy, the configuration's allowed values and every label take it
+from here.
 """
 
 import numpy as np
 from numba import njit
 
 from chainchaos.errors import require
-from chainchaos.system.models import fput, harmonic, hertz, toda
-from chainchaos.system.models.base import MAX_BOND_PARAMETERS, Model, bond_force, bond_force_stiffness, bond_potential
+from chainchaos.system.models import fput, harmonic, hertz, klein_gordon, toda
+from chainchaos.system.models.base import (MAX_BOND_PARAMETERS, MAX_SITE_PARAMETERS, Model, SiteLaw, add_site_energy,
+                                           bond_force, bond_force_stiffness, bond_potential, check_sites,
+                                           site_potential)
 
 #: Every model, by name.
 MODELS: dict[str, Model] = {m.name: m for m in (
@@ -18,7 +21,13 @@ MODELS: dict[str, Model] = {m.name: m for m in (
     fput.MODEL,
     harmonic.MODEL,
     toda.MODEL,
+    klein_gordon.MODEL,
+    klein_gordon.LINEAR_MODEL,
 )}
+
+#: The models of bead chains (``chain.Chain``: their parameters come from the bead radii), the
+#: ones the granular studies, the CLI's chain files and the paper's pipeline run.
+BEAD_MODELS: dict[str, Model] = {name: m for name, m in MODELS.items() if m.lattice == "beads"}
 
 
 def get_model(name) -> Model:
@@ -75,30 +84,62 @@ def bond_potential_energy(model, chain, u: np.ndarray) -> np.ndarray:
 
 
 @njit(cache=True)
-def energy_kernel(model, q, p, mass, bonds, V):
-    """H of one state, summed in order (``V`` scratch of length N+1): :func:`total_energy` for
+def site_potentials(model, u, S, W):
+    """Fill W[n], the on-site potential of every bead n = 0..N-1 (a model with a site law; S its
+    site parameters (MAX_SITE_PARAMETERS, N))."""
+    for n in range(u.shape[0]):
+        W[n] = site_potential(model, (S[0, n], S[1, n]), u[n])
+
+
+def site_potential_energy(model, chain, u: np.ndarray) -> np.ndarray | None:
+    """On-site potentials w_n for one state u (N,) or many (..., N): shape (..., N); None for a
+    model without a site law."""
+    model = get_model(model)
+    if not model.has_site_law:
+        return None
+    u = np.ascontiguousarray(u, dtype=float)
+    flat = u.reshape(-1, u.shape[-1])
+    out = np.empty(flat.shape)
+    S = model.site_parameters(chain)
+    for i in range(flat.shape[0]):
+        site_potentials(model, flat[i], S, out[i])
+    return out.reshape(u.shape)
+
+
+@njit(cache=True)
+def energy_kernel(model, q, p, mass, bonds, V, sites=None):
+    """H of one state, summed in order (``V`` scratch of length N+1; ``sites`` the site
+    parameters of a model with a site law, whose potentials come last): :func:`total_energy` for
     compiled loops (the energy checks of ``engine.checked``); the two agree to rounding."""
+    check_sites(model, sites)
     bond_potentials(model, q, bonds, V)
     H = 0.0
     for n in range(q.shape[0]):
         H += 0.5 * p[n] * p[n] / mass[n]
     for b in range(V.shape[0]):
         H += V[b]
-    return H
+    return add_site_energy(model, q, sites, H)
 
 
 def total_energy(model, chain, u: np.ndarray, p: np.ndarray) -> np.ndarray:
-    """H = sum_n p_n^2 / (2 m_n) + sum_b V_b, every bond counted in full, for one state or many
-    (docs/conventions.md#hamiltonian); NumPy's sums (the initial state is solved on it)."""
+    """H = sum_n p_n^2 / (2 m_n) + sum_b V_b (+ sum_n w_n with a site law), every bond counted in
+    full, for one state or many (docs/conventions.md#hamiltonian); NumPy's sums (the initial state
+    is solved on it)."""
     kinetic = np.sum(p**2 / (2.0 * chain.mass), axis=-1)
-    return kinetic + bond_potential_energy(model, chain, u).sum(axis=-1)
+    H = kinetic + bond_potential_energy(model, chain, u).sum(axis=-1)
+    W = site_potential_energy(model, chain, u)
+    return H if W is None else H + W.sum(axis=-1)
 
 
 def energy_density(model, chain, u: np.ndarray, p: np.ndarray) -> np.ndarray:
     """Normalised energy density h_n = H_n / sum_m H_m with
-    H_n = p_n^2/(2 m_n) + (V_n + V_{n+1})/2 (the paper's Eq. 1 read literally)."""
+    H_n = p_n^2/(2 m_n) + (V_n + V_{n+1})/2 (the paper's Eq. 1 read literally), plus the bead's own
+    on-site potential w_n for a model with a site law."""
     V = bond_potential_energy(model, chain, u)
     H = p**2 / (2.0 * chain.mass) + 0.5 * (V[..., :-1] + V[..., 1:])
+    W = site_potential_energy(model, chain, u)
+    if W is not None:
+        H = H + W
     return H / H.sum(axis=-1, keepdims=True)
 
 
@@ -115,5 +156,8 @@ def open_bonds(model, chain, u: np.ndarray) -> np.ndarray:
     return model.opening(P, np.ascontiguousarray(padded[..., :-1]), np.ascontiguousarray(padded[..., 1:])) < 0
 
 
-__all__ = ["MAX_BOND_PARAMETERS", "MODELS", "Model", "bond_forces", "bond_potential_energy", "bond_potentials",
-           "energy_density", "energy_kernel", "get_model", "model_label", "open_bonds", "total_energy"]
+assert MAX_SITE_PARAMETERS == 2  # the site tuples of site_potentials and base.add_site_energy
+
+__all__ = ["BEAD_MODELS", "MAX_BOND_PARAMETERS", "MAX_SITE_PARAMETERS", "MODELS", "Model", "SiteLaw", "bond_forces",
+           "bond_potential_energy", "bond_potentials", "energy_density", "energy_kernel", "get_model", "model_label",
+           "open_bonds", "site_potential_energy", "site_potentials", "total_energy"]

@@ -13,6 +13,16 @@ batch engine (``chainchaos.engine.simd``), for which force and stiffness must us
 ``max``, ``np.sqrt`` (or ``chainchaos.engine.sqrt.root``) and ``np.expm1`` (each lane then gets
 exactly the scalar result).
 
+A model may also have a site law (:class:`SiteLaw`): an on-site potential w(u) of each bead, with
+its own parameters per site (rows of one array, at most :data:`MAX_SITE_PARAMETERS`, computed from
+the chain) and kernels ``force(S, u)`` (w'(u), which enters m_n u_n'' = f_n - f_{n+1} - w'(u_n)),
+``force_stiffness(S, u)`` (w', w'') and ``potential(S, u)`` (w, zero at rest), under the same
+rules for vectors as the bond law's. S is the tuple of the site's parameters, u the bead's
+displacement. A model without a site law compiles without one: the dispatchers below
+(``site_kick``, ``site_kick_deviation``, ``add_site_energy``) are then the identity at compile
+time, not a zero law, so its machine code and its numbers are those of a model that never heard of
+site laws.
+
 A model is also a Numba type: passed to a compiled function it selects its kernels at compile
 time (``bond_force`` and the other dispatchers below), so one engine source serves every model
 and each model gets its own machine code, without a branch on the model in the inner loop.
@@ -23,6 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from numba import njit, types
+from numba.core.errors import TypingError
 from numba.extending import NativeValue, models, overload, register_model, typeof_impl, unbox
 
 from chainchaos.errors import require
@@ -30,8 +41,27 @@ from chainchaos.errors import require
 #: Rows of bond parameters the engines carry: a model may use up to this many.
 MAX_BOND_PARAMETERS = 3
 
+#: Rows of site parameters the engines carry: a site law may use up to this many.
+MAX_SITE_PARAMETERS = 2
+
 #: Every Model created, by name: what its Numba type compiles in (``_kernels``).
 _BY_NAME: dict[str, "Model"] = {}
+
+
+@dataclass(frozen=True, eq=False)
+class SiteLaw:
+    """An on-site potential w(u) of every bead: its parameters per site and its Numba kernels."""
+
+    parameter_names: tuple[str, ...]  # the rows of ``parameters(chain)``
+    parameters: Callable  # chain -> tuple of arrays (N,), one per parameter name
+    force: Callable  # w'(S, u)
+    force_stiffness: Callable  # (w', w'')
+    potential: Callable  # w, zero at u = 0
+    description: str = ""  # the site law, one line, for documentation
+
+    def __post_init__(self):
+        require(0 < len(self.parameter_names) <= MAX_SITE_PARAMETERS, "site parameter_names",
+                self.parameter_names, f"1 to {MAX_SITE_PARAMETERS} site parameters")
 
 
 @dataclass(frozen=True, eq=False)
@@ -48,11 +78,19 @@ class Model:
     potential: Callable
     opening: Callable | None = None  # None: the bonds never open
     description: str = ""  # the bond law, one line, for documentation
+    site: SiteLaw | None = None  # the on-site potential; None: the beads feel only their bonds
+    lattice: str = "beads"  # what ``parameters`` read: a bead Chain ("beads") or a KGLattice ("kg")
 
     def __post_init__(self):
         require(0 < len(self.parameter_names) <= MAX_BOND_PARAMETERS, "parameter_names",
                 self.parameter_names, f"1 to {MAX_BOND_PARAMETERS} bond parameters")
+        require(self.lattice in LATTICES, "lattice", self.lattice, f"one of {LATTICES}")
         _BY_NAME[self.name] = self
+
+    @property
+    def has_site_law(self) -> bool:
+        """Whether the beads of this model also feel an on-site potential."""
+        return self.site is not None
 
     @property
     def has_gaps(self) -> bool:
@@ -68,8 +106,23 @@ class Model:
             out[i] = row
         return out
 
+    def site_parameters(self, chain) -> np.ndarray | None:
+        """The engines' site parameter array (MAX_SITE_PARAMETERS, N): the site law's rows, then
+        zeros; None for a model without a site law."""
+        if self.site is None:
+            return None
+        rows = self.site.parameters(chain)
+        out = np.zeros((MAX_SITE_PARAMETERS, chain.N))
+        for i, row in enumerate(rows):
+            out[i] = row
+        return out
+
     def __repr__(self) -> str:
         return f"Model({self.name})"
+
+
+#: The kinds of lattice a model's parameters are read from (``Model.lattice``).
+LATTICES = ("beads", "kg")
 
 
 class ModelType(types.Type):
@@ -131,3 +184,86 @@ _dispatch(bond_force, lambda m: m.force)
 _dispatch(bond_force_stiffness, lambda m: m.force_stiffness)
 _dispatch(bond_potential, lambda m: m.potential)
 _dispatch(bond_opening, lambda m: m.opening or never_open)
+
+
+def site_kick(model, S, u, f):
+    """The force on a bead whose two bonds give it f = f_n - f_{n+1}: f - w'(u) with its site
+    law (parameters S, displacement u); f itself, unchanged, for a model without a site law."""
+
+
+def site_kick_deviation(model, S, u, dq, g):
+    """The tangent force on a bead whose bonds give it g = g_n - g_{n+1}: g - w''(u) dq with its
+    site law; g itself for a model without one."""
+
+
+def add_site_energy(model, u, sites, H):
+    """H + sum_n w(u_n) (summed in order, sites the (MAX_SITE_PARAMETERS, N) parameters); H itself
+    for a model without a site law."""
+
+
+def site_potential(model, S, u):
+    """w(u) of one site (models with a site law only)."""
+
+
+def check_sites(model, sites):
+    """Nothing at run time; a compile-time error where a model with a site law is given no site
+    parameters (``sites`` None or omitted)."""
+
+
+def _site_law(model_type) -> SiteLaw | None:
+    return _kernels(model_type).site if isinstance(model_type, ModelType) else None
+
+
+@overload(site_kick, inline="always")
+def _site_kick(model, S, u, f):
+    if isinstance(model, ModelType):
+        law = _site_law(model)
+        if law is None:
+            return lambda model, S, u, f: f
+        kernel = law.force
+        return lambda model, S, u, f: f - kernel(S, u)
+
+
+@overload(site_kick_deviation, inline="always")
+def _site_kick_deviation(model, S, u, dq, g):
+    if isinstance(model, ModelType):
+        law = _site_law(model)
+        if law is None:
+            return lambda model, S, u, dq, g: g
+        kernel = law.force_stiffness
+
+        def with_site(model, S, u, dq, g):
+            return g - kernel(S, u)[1] * dq
+
+        return with_site
+
+
+@overload(site_potential, inline="always")
+def _site_potential(model, S, u):
+    if isinstance(model, ModelType) and _site_law(model) is not None:
+        kernel = _site_law(model).potential
+        return lambda model, S, u: kernel(S, u)
+
+
+@overload(add_site_energy, inline="always")
+def _add_site_energy(model, u, sites, H):
+    if isinstance(model, ModelType):
+        law = _site_law(model)
+        if law is None:
+            return lambda model, u, sites, H: H
+        kernel = law.potential
+
+        def with_site(model, u, sites, H):
+            for n in range(u.shape[0]):
+                H += kernel((sites[0, n], sites[1, n]), u[n])
+            return H
+
+        return with_site
+
+
+@overload(check_sites, inline="always")
+def _check_sites(model, sites):
+    if isinstance(model, ModelType):
+        if _site_law(model) is not None and isinstance(sites, (types.NoneType, types.Omitted)):
+            raise TypingError(f"model {model.model_name!r} has a site law: pass its site parameters (sites)")
+        return lambda model, sites: None
