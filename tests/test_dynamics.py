@@ -24,7 +24,7 @@ def integrate(chain, model, q, p, n_steps, dt, scheme="SRKN6b", dq=None, dp=None
     model = get_model(model)
     bad = advance(model, q, p, dq, dp, 1 / chain.mass, model.bond_parameters(chain), s.kicks, s.drifts,
                   dt, n_steps, tangent, 10**9, track_gaps, gaps, diagnostics, np.empty(N + 1),
-                  np.empty(N + 1))
+                  np.empty(N + 1), model.site_parameters(chain))
     assert bad == -1
     return q, p, dq, dp, diagnostics[0], gaps, diagnostics[1]
 

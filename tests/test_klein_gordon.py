@@ -11,6 +11,7 @@ Units: the KG Hamiltonian's own (docs/conventions.md#klein-gordon).
 import numpy as np
 import pytest
 from numba.core.errors import TypingError
+from test_dynamics import integrate as engine_run
 
 from chainchaos.engine.batch import Batch
 from chainchaos.engine.integrators import SCHEMES, advance, get_scheme
@@ -18,9 +19,16 @@ from chainchaos.errors import ParameterError
 from chainchaos.system.chain import KGLattice, kg_chain, random_chain
 from chainchaos.system.initial import initial_deviation, initial_state
 from chainchaos.system.linear import normal_modes
-from chainchaos.system.models import (MAX_SITE_PARAMETERS, MODELS, energy_density, energy_kernel, get_model,
-                                      total_energy)
-from chainchaos.system.models import hertz, klein_gordon
+from chainchaos.system.models import (
+    MAX_SITE_PARAMETERS,
+    MODELS,
+    energy_density,
+    energy_kernel,
+    get_model,
+    hertz,
+    klein_gordon,
+    total_energy,
+)
 from chainchaos.system.models.base import Model
 from chainchaos.system.problem import Problem
 
@@ -43,20 +51,8 @@ def tridiagonal(lattice: KGLattice) -> np.ndarray:
 
 
 def integrate(model, chain, q, p, n_steps, dt, scheme="SRKN6b", dq=None, dp=None):
-    """The single engine on copies of the state: (q, p, dq, dp, log growth)."""
-    model = get_model(model)
-    n = chain.N
-    q, p = q.copy(), p.copy()
-    tangent = dq is not None
-    dq = np.zeros(n) if dq is None else dq.copy()
-    dp = np.zeros(n) if dp is None else dp.copy()
-    s = get_scheme(scheme)
-    diagnostics, gaps = np.zeros(2), np.zeros(n + 1, dtype=np.int64)
-    bad = advance(model, q, p, dq, dp, 1.0 / chain.mass, model.bond_parameters(chain), s.kicks, s.drifts, dt,
-                  n_steps, tangent, 10**9, False, gaps, diagnostics, np.empty(n + 1), np.empty(n + 1),
-                  model.site_parameters(chain))
-    assert bad == -1
-    return q, p, dq, dp, diagnostics[0]
+    """The single engine on copies of the state (test_dynamics.integrate): (q, p, dq, dp, log growth)."""
+    return engine_run(chain, model, q, p, n_steps, dt, scheme, dq, dp)[:5]
 
 
 # ---- the lattice and its site law ---------------------------------------------------------------
