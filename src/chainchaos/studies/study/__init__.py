@@ -11,9 +11,15 @@ import xarray as xr
 def study_dataset(study, groups: list[xr.Dataset]) -> xr.Dataset:
     """The merged groups of ``study`` with its ensemble statistics, in one Dataset."""
     from chainchaos.studies.study.runs import merge_groups
+
+    return with_statistics(study, merge_groups(study, groups))
+
+
+def with_statistics(study, merged: xr.Dataset) -> xr.Dataset:
+    """``merged`` (the study's grid, or a part of it: the statistics of a (model, energy) read
+    its own orbits only) with the ensemble statistics, in one Dataset."""
     from chainchaos.studies.study.statistics import statistics
 
-    merged = merge_groups(study, groups)
     stats = statistics(merged, float(study.spec["criteria"]["slope_window_decades"]))
     out = xr.merge([merged, stats], combine_attrs="override")
     out.attrs.update(stats.attrs)

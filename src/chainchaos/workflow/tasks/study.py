@@ -38,14 +38,16 @@ def study_group(inputs, outputs, params, wildcards) -> None:
 
 def study_scene(inputs, outputs, params, wildcards) -> None:
     """Every realization and lane of one model and energy, with their statistics."""
-    from chainchaos.studies.study import study_dataset
-    from chainchaos.studies.study.runs import scene_dataset, scene_name
+    from chainchaos.studies.study import with_statistics
+    from chainchaos.studies.study.runs import merge_groups, scene_dataset, scene_name
 
     study = _study(params)
-    ds = study_dataset(study, [xr.load_dataset(f) for f in inputs["groups"]])
     for model in study.models:
         for energy in study.energies:
             if scene_name(model, energy) == f"{wildcards['model']}_H{wildcards['energy']}":
+                # the statistics of this model and energy only (each reads its own orbits)
+                merged = merge_groups(study, [xr.load_dataset(f) for f in inputs["groups"]])
+                ds = with_statistics(study, merged.sel(model=[model], energy=[energy]))
                 write_netcdf(scene_dataset(ds, model, energy), outputs["scene"])
                 return
     raise ValueError(f"study {study.name}: no model and energy {wildcards['model']}_H{wildcards['energy']}")
