@@ -19,8 +19,9 @@ from chainchaos.output.report_captions import figure_labels, figure_subcategory,
 from chainchaos.paper import panels, statements
 from chainchaos.run.scenes import scene_batches, scene_parameters
 from chainchaos.studies.scan import runs as scan_runs
-from chainchaos.studies.search import archive
+from chainchaos.studies.search import archive, rejudge
 from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION, SearchPlan
+from chainchaos.studies.study import runs as study_runs
 from chainchaos.studies.study.runs import scene_name
 from chainchaos.studies.study.spec import FIGURES as STUDY_FIGURES
 from chainchaos.studies.study.spec import load_study, study_names
@@ -294,6 +295,36 @@ def search_score_files(wildcards):
     return [result(wildcards.search, "score", f"{k:03d}.nc") for k in range(n)]
 
 
+def rejudge_params():
+    """The full search's parameters, its archive and the statements config `rejudge` names."""
+    return {
+        **search_params("search_full"),
+        "archive": SEARCH_ARCHIVE,
+        "rejudge": list(config.get("rejudge") or []),
+    }
+
+
+def _kept_candidates():
+    """How many candidates the kept full search holds (0 when there is none)."""
+    if not SEARCH_ARCHIVE or not os.path.exists(SEARCH_ARCHIVE):
+        return 0
+    with xr.open_dataset(SEARCH_ARCHIVE) as ds:
+        return ds.sizes["candidate"]
+
+
+def rejudge_filter_files():
+    if not config.get("rejudge"):
+        return []
+    plan = rejudge.filter_plan(SEARCH_PLANS["search_full"], rejudge.check_ids(config["rejudge"]))
+    n = plan.n_filter_jobs(_kept_candidates())
+    return [result("search_rejudge", "filter", f"{g:03d}.nc") for g in range(n)]
+
+
+def rejudge_score_files():
+    n = SEARCH_PLANS["search_full"].n_score_jobs(_kept_candidates())
+    return [result("search_rejudge", "score", f"{k:03d}.nc") for k in range(n)]
+
+
 def search_runtime(stage):
     """Minutes a stage-1 ("filter") or stage-2 ("score") job of a search may take."""
 
@@ -403,10 +434,52 @@ def study_spec(name):
     return {"name": name, **study_of(name).spec}
 
 
+def kept_group_file(name, group):
+    """Where a study's group is kept in the repository (`snakemake keep_study` writes it)."""
+    return f"data/studies/{name}/groups/{group:04d}.nc"
+
+
+@functools.cache
+def study_group_file(name, group):
+    """A group of a study: its kept file when that exists and was made with this study's
+    settings and code (a finished group is never rerun), else the file study_group computes."""
+    if name not in SCAN_STUDIES:
+        study = study_of(name)
+        used = kept_file(
+            kept_group_file(name, group),
+            study_runs.group_settings(study, group),
+            study_runs.STUDY_RESULT_VERSION,
+            f"keep_study --config study={name}",
+        )
+        if used:
+            return used
+    return result("studies", name, "groups", f"{group:04d}.nc")
+
+
 def study_group_files(name):
-    return [
-        result("studies", name, "groups", f"{g:04d}.nc") for g in range(study_of(name).n_groups)
+    return [study_group_file(name, g) for g in range(study_of(name).n_groups)]
+
+
+def keep_study_targets(name):
+    """The kept files of every group of a study; a kept group made with other settings is not
+    overwritten silently: delete the study's kept directory to remake it."""
+    if not name:
+        raise ValueError(
+            f"the target keep_study needs a study: --config study=<name>, one of {study_names()}"
+        )
+    name = study_name(name)
+    stale = [
+        kept_group_file(name, g)
+        for g in range(study_of(name).n_groups)
+        if os.path.exists(kept_group_file(name, g))
+        and study_group_file(name, g) != kept_group_file(name, g)
     ]
+    if stale:
+        raise ValueError(
+            f"kept groups of study {name} made with other settings: {', '.join(stale)}; "
+            f"delete data/studies/{name} to remake them, or restore the study file they were made with"
+        )
+    return [kept_group_file(name, g) for g in range(study_of(name).n_groups)]
 
 
 def study_group_inputs(wildcards):

@@ -19,6 +19,7 @@ wildcard_constraints:
 
 localrules:
     search_full,
+    search_rejudge,
 
 
 rule search_seeds:
@@ -134,6 +135,60 @@ rule search_full:
         log_file("search_full"),
     script:
         "../scripts/search_full.py"
+
+
+# Re-judging the kept full search when the code that judges some statements changed (their ids:
+# --config rejudge='[id, ...]'): only those statements' scenes are integrated again
+# (chainchaos.studies.search.rejudge), in resumable jobs; the result replaces search.archive.
+rule search_rejudge_filter:
+    """Stage 1 again on the re-judged statements' scenes, for a group of the kept candidates."""
+    input:
+        kernels=result("kernels_compiled.txt"),
+    output:
+        result=result("search_rejudge", "filter", "{group}.nc"),
+    params:
+        **rejudge_params(),
+    log:
+        log_file("search_rejudge_filter", "search_full-{group}"),
+    benchmark:
+        benchmark_file("search_rejudge_filter", "search_full-{group}")
+    resources:
+        mem_mb=1000,
+    script:
+        "../scripts/search_rejudge_filter.py"
+
+
+rule search_rejudge_score:
+    """Stage 2 again for the survivor of a given rank of the re-judged filter."""
+    input:
+        filters=rejudge_filter_files(),
+        kernels=result("kernels_compiled.txt"),
+    output:
+        result=result("search_rejudge", "score", "{rank}.nc"),
+    params:
+        **rejudge_params(),
+    log:
+        log_file("search_rejudge_score", "search_full-{rank}"),
+    benchmark:
+        benchmark_file("search_rejudge_score", "search_full-{rank}")
+    resources:
+        mem_mb=1000,
+    script:
+        "../scripts/search_rejudge_score.py"
+
+
+rule search_rejudge:
+    """The kept full search with the re-judged statements, written to search.archive."""
+    input:
+        filters=rejudge_filter_files(),
+        scores=rejudge_score_files(),
+    params:
+        **rejudge_params(),
+        benchmarks=result("benchmarks"),
+    log:
+        log_file("search_rejudge"),
+    script:
+        "../scripts/search_rejudge.py"
 
 
 rule plot_search:

@@ -17,6 +17,7 @@ wildcard_constraints:
 # Seconds of work each: on a cluster they run on the submitting host.
 localrules:
     study,
+    keep_study_group,
     study_scene,
     study_statistics,
     plot_study,
@@ -118,6 +119,26 @@ rule plot_study_comparison:
         benchmark_file("plot_study_comparison", "{study}")
     script:
         "../scripts/plot_study_comparison.py"
+
+
+rule keep_study_group:
+    """A finished group of a study, kept in the repository under data/studies/ (commit it)."""
+    input:
+        group=result("studies", "{study}", "groups", "{group}.nc"),
+    output:
+        group="data/studies/{study}/groups/{group}.nc",
+    log:
+        log_file("keep_study_group", "{study}-{group}"),
+    script:
+        "../scripts/keep_study_group.py"
+
+
+rule keep_study:
+    """Every group of the study named by config `study`, computed where not yet kept and kept
+    under data/studies/<name>/groups/: a computation of hours, resumable by committing its
+    finished groups."""
+    input:
+        lambda wildcards: keep_study_targets(config.get("study")),
 
 
 rule study:

@@ -22,6 +22,8 @@ from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION, SearchPlan
 
 #: The rules of a search, in the order they run (workflow/rules/search.smk).
 STAGES = ("search_seeds", "search_candidates", "search_filter", "search_score", "search_merge")
+#: The rules that re-judge a kept search (``rejudge``).
+REJUDGE_STAGES = ("search_rejudge_filter", "search_rejudge_score")
 
 #: Settings that say how the work is cut, not what it computes (the engines, batches and chunks
 #: give identical numbers): left out of the settings that key the kept search.

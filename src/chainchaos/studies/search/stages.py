@@ -37,7 +37,7 @@ from chainchaos.system.chain import random_chain
 
 #: Version of the numbers a search computes (the kept full search records it, chainchaos.output.kept):
 #: bump only when a change of code changes its numbers (a bit-identity test tells).
-SEARCH_RESULT_VERSION = 1
+SEARCH_RESULT_VERSION = 2  # 2: spread-level-H1.8-hertz and eta-H4-fput follow their sentences
 
 
 @dataclass(frozen=True)
@@ -86,18 +86,27 @@ class SearchPlan:
         return 1 if self.pinned else min(self.survivors, int(n_candidates))
 
 
-def _statement_orbits(chains: list, site: int, lanes: int) -> list[Orbit]:
+def _scene_names(scenes=None) -> list[str]:
+    """The statement scenes run, in table order: all, or those named in ``scenes``."""
+    return [name for name in statements.statement_scenes() if scenes is None or name in scenes]
+
+
+def _statement_orbits(chains: list, site: int, lanes: int, scenes=None) -> list[Orbit]:
     """Every (chain, statement scene, lane), chain-major."""
-    return [Orbit(s.model, s.energy, chain, site, lane) for chain in chains
-            for s in statements.statement_scenes().values() for lane in range(lanes)]
+    of = statements.statement_scenes()
+    return [Orbit(of[name].model, of[name].energy, chain, site, lane) for chain in chains
+            for name in _scene_names(scenes) for lane in range(lanes)]
 
 
-def _outcomes(chains: list, site: int, lanes: int, settings: OrbitSettings, criteria: Criteria, progress=None):
+def _outcomes(chains: list, site: int, lanes: int, settings: OrbitSettings, criteria: Criteria, progress=None,
+              scenes=None):
     """Per-orbit outcomes and measured values (``verdicts.evaluate``'s keys, arrays (chain,
-    statement, lane)) of every statement on every chain, and each chain's largest energy error."""
-    orbits = _statement_orbits(chains, site, lanes)
+    statement, lane)) of every statement on every chain, and each chain's largest energy error.
+    ``scenes``: run only these statement scenes (the others' statements stay NaN); an orbit's
+    numbers do not depend on which others run beside it."""
+    orbits = _statement_orbits(chains, site, lanes, scenes)
     t, runs = integrate(orbits, settings, progress, gali_stop=np.log(criteria.gali_threshold))
-    names = list(statements.statement_scenes())
+    names = _scene_names(scenes)
     C, L = len(chains), lanes
     ids = [st.id for st in statements.STATEMENTS]
     keys = ("value", "outcome", "value_gali", "outcome_gali")

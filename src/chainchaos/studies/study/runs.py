@@ -15,6 +15,7 @@ import numpy as np
 import xarray as xr
 
 from chainchaos.observe.registry import REGISTRY
+from chainchaos.output import kept
 from chainchaos.output.provenance import provenance_attrs
 from chainchaos.run.orbits import integrate
 from chainchaos.studies.scan.runs import (
@@ -24,11 +25,37 @@ from chainchaos.studies.scan.runs import (
     criteria_attrs,
     reduce_orbit,
 )
+from chainchaos.system.models import MODELS
 
 #: What each orbit of a group file is: its place on the study's grid.
 ORBIT_INDEX = {"model": "model of the bond law", "energy_index": "index of the orbit's energy in excitation.energies",
                "realization": "index of the orbit's realization", "lane": "lane of the orbit (0: unperturbed)"}
 TIME_COMMENT = "nondimensional time, unit 1/omega_max of the homogeneous linear chain"
+KG_TIME_COMMENT = ("nondimensional time of the Klein-Gordon Hamiltonian H = sum p^2/2 + eps_l u^2/2 + u^4/4 + "
+                   "(u_l+1 - u_l)^2/(2W) (masses 1), not 1/omega_max")
+
+
+def time_comment(study) -> str:
+    """The unit of time of ``study``'s files: bead chains use 1/omega_max of the homogeneous
+    chain, Klein-Gordon lattices the time of their Hamiltonian."""
+    kinds = {MODELS[m].lattice == "kg" for m in study.models}
+    if kinds == {True}:
+        return KG_TIME_COMMENT
+    if kinds == {False}:
+        return TIME_COMMENT
+    return f"bead models: {TIME_COMMENT}; Klein-Gordon models: {KG_TIME_COMMENT}"
+
+#: Version of the numbers a study group computes (kept groups record it, chainchaos.output.kept):
+#: bump only when a change of code changes them (a bit-identity test tells).
+STUDY_RESULT_VERSION = 1
+#: Keys of a study that say how it is shown, not what its orbits compute.
+_PRESENTATION = ("title", "extends", "figures", "compare_with")
+
+
+def group_settings(study, group: int) -> dict:
+    """What determines the numbers of one group of ``study``: every key of the study but those
+    of its presentation, and the group's index (with ``jobs``, which orbits it holds)."""
+    return {**{k: v for k, v in study.spec.items() if k not in _PRESENTATION}, "group": int(group)}
 
 
 def _fill(dtype: str):
@@ -70,8 +97,9 @@ def run_group(study, group: int, progress=None) -> xr.Dataset:
         for key, (pick, dtype) in EXCITATION_PICKS.items():
             data[key] = ("orbit", np.array([study.picks[r][pick] for r in index["realization"]], dtype=dtype),
                          EXCITATION[key])
-    ds = xr.Dataset(data, coords={"time": ("time", times, {"units": "1", "long_name": "time", "comment": TIME_COMMENT})})
-    ds.attrs.update(study_attrs(study), group=int(group), title=f"{study.title}: one job's orbits")
+    ds = xr.Dataset(data, coords={"time": ("time", times, {"units": "1", "long_name": "time", "comment": time_comment(study)})})
+    ds.attrs.update(study_attrs(study), group=int(group), title=f"{study.title}: one job's orbits",
+                    **kept.kept_attrs(group_settings(study, group), STUDY_RESULT_VERSION))
     return ds
 
 
@@ -117,7 +145,7 @@ def merge_groups(study, groups: list[xr.Dataset]) -> xr.Dataset:
         "realization": ("realization", np.arange(R), {"units": "1", "long_name": "realization r, of seed seed[r]"}),
         "lane": ("lane", np.arange(L), {"units": "1", "long_name": "lane j: the initial state times 1 + perturbation xi_j"
                                                                     " (lane 0 unperturbed)"}),
-        "time": ("time", times, {"units": "1", "long_name": "time", "comment": TIME_COMMENT}),
+        "time": ("time", times, {"units": "1", "long_name": "time", "comment": time_comment(study)}),
     }
     ds = xr.Dataset(data, coords=coords)
     ds["seed"] = ("realization", np.array(study.seeds, dtype=np.int64),

@@ -122,9 +122,85 @@ def search_full(inputs, outputs, params, wildcards) -> None:
           f"{ds.attrs['cost_total_jobs']} jobs, {ds.attrs['cost_total_cpu_seconds'] / 60:.1f} CPU-min", file=sys.stderr)
 
 
+def _kept_search(params: dict) -> xr.Dataset:
+    """The kept full search to re-judge: made with the full search's settings as this run has
+    them (only the code that judges statements may differ) by older code."""
+    path = params["archive"]
+    settings = archive.search_settings(params)
+    why = kept.why_not_usable(path, settings, SEARCH_RESULT_VERSION, "snakemake --cores 2 search_full")
+    recorded, version = kept.read_key(path, "snakemake --cores 2 search_full")
+    require(kept.digest(recorded) == kept.digest(settings), "kept search settings", why,
+            "those of this run's full search (re-judging reuses its orbits: remake it with search_full)")
+    require(version < SEARCH_RESULT_VERSION, "kept search result_version", version,
+            f"older than this code's {SEARCH_RESULT_VERSION} (it is current: nothing to re-judge)")
+    return xr.load_dataset(path)
+
+
+def search_rejudge_filter(inputs, outputs, params, wildcards) -> None:
+    """Stage 1 again, on the scenes of the re-judged statements, for one group of candidates."""
+    from chainchaos.studies.search import rejudge
+
+    selection, plan, settings, criteria, site = _search_parts(params)
+    group = int(wildcards["group"])
+    ds = rejudge.filter_group(_kept_search(params), selection, plan, settings, criteria,
+                              rejudge.check_ids(params["rejudge"]), group, site, _progress(f"rejudge filter {group}"))
+    _write_search_product(ds, params, selection, outputs["result"])
+
+
+def search_rejudge_score(inputs, outputs, params, wildcards) -> None:
+    """Stage 2 again for the survivor of the given rank of the re-judged filter."""
+    from chainchaos.studies.search import rejudge
+
+    selection, plan, settings, criteria, site = _search_parts(params)
+    ids = rejudge.check_ids(params["rejudge"])
+    kept_search = _kept_search(params)
+    filtered = rejudge.rejudged_filter(kept_search, [xr.load_dataset(p) for p in _as_list(inputs["filters"])], ids, plan)
+    rank = int(wildcards["rank"])
+    candidate = rejudge.survivor(kept_search, filtered, plan, rank)
+    print(f"survivor {rank}: candidate {candidate}", file=sys.stderr)
+    ds = rejudge.score_candidate(kept_search, selection, plan, settings, criteria, ids, candidate, site,
+                                 _progress(f"rejudge score {rank}"))
+    _write_search_product(ds, params, selection, outputs["result"])
+
+
+def search_rejudge(inputs, outputs, params, wildcards) -> None:
+    """The kept full search with the re-judged statements, written over it (keyed by this code's
+    result version), with what the re-judging cost and where it ran beside the original's."""
+    from chainchaos.studies.search import rejudge
+
+    selection, plan, settings, criteria, _ = _search_parts(params)
+    ids = rejudge.check_ids(params["rejudge"])
+    old = _kept_search(params)
+    filtered = rejudge.rejudged_filter(old, [xr.load_dataset(p) for p in _as_list(inputs["filters"])], ids, plan)
+    merged = rejudge.rejudged_search(old, selection, plan, settings, criteria, filtered,
+                                     [xr.load_dataset(p) for p in _as_list(inputs["scores"])])
+    stage_files = _as_list(inputs["filters"]) + _as_list(inputs["scores"])
+    machines = archive.stage_machines(stage_files)
+    costs = archive.job_costs(Path(params["benchmarks"]), stages=archive.REJUDGE_STAGES)
+    merged.attrs = {
+        **{k: v for k, v in old.attrs.items() if k.startswith(("cost_", "stage_")) or k in ("git_commit",)},
+        **merged.attrs,
+        "title": old.attrs["title"],
+        "rejudged_statements": " ".join(ids),
+        "rejudged_from_version": int(old.attrs[kept.VERSION_ATTR]),
+        "rejudged_from_chosen_seed": int(old.attrs["chosen_seed"]),
+        **{f"rejudge_cost_{stage}_{key}": (int(v) if key == "jobs" else float(v))
+           for stage, cost in costs.items() for key, v in cost.items()},
+        **{f"rejudge_{k}": v for k, v in machines.items()},
+    }
+    merged.attrs.update(provenance_attrs({"search": params["search"], "selection": vars(selection)}))
+    merged.attrs.update(kept.kept_attrs(archive.search_settings(params), SEARCH_RESULT_VERSION))
+    write_netcdf(merged, params["archive"])
+    print(f"{params['archive']}: re-judged {', '.join(ids)}; chose seed {merged.attrs['chosen_seed']} "
+          f"(was {old.attrs['chosen_seed']}); {costs['total']['jobs']} jobs, "
+          f"{costs['total']['cpu_seconds'] / 60:.1f} CPU-min", file=sys.stderr)
+
+
 def plot_search(inputs, outputs, params, wildcards) -> None:
     """The search figure: how many candidates satisfy each statement, and every candidate."""
-    from chainchaos.studies.search.plots import plot_search as draw  # matplotlib: only in the plotting jobs
+    from chainchaos.studies.search.plots import (
+        plot_search as draw,  # matplotlib: only in the plotting jobs
+    )
 
     draw(xr.load_dataset(inputs["search"]), outputs["pdf"], outputs["png"], int(params.get("dpi", 200)))
 
@@ -132,7 +208,9 @@ def plot_search(inputs, outputs, params, wildcards) -> None:
 def plot_search_joint(inputs, outputs, params, wildcards) -> None:
     """The joint-analysis figure: statements that hold together, the scores, and Hertz H = 1.8's
     onset of chaos against its level, with the claims' tolerances on the paper's values."""
-    from chainchaos.studies.search.plots import plot_search_joint as draw  # matplotlib: only in the plotting jobs
+    from chainchaos.studies.search.plots import (
+        plot_search_joint as draw,  # matplotlib: only in the plotting jobs
+    )
 
     tol = Criteria.from_config(params.get("claims")).tolerance
     draw(xr.load_dataset(inputs["search"]), outputs["pdf"], outputs["png"], int(params.get("dpi", 200)),
@@ -161,5 +239,6 @@ def ensemble_verdicts(inputs, outputs, params, wildcards) -> None:
     write_netcdf(ds, outputs["result"])
 
 
-TASKS = (search_seeds, search_candidates, search_filter, search_score, search_merge, search_full, plot_search,
-         plot_search_joint, ensemble_verdicts)
+TASKS = (search_seeds, search_candidates, search_filter, search_score, search_merge, search_full,
+         search_rejudge_filter, search_rejudge_score, search_rejudge, plot_search, plot_search_joint,
+         ensemble_verdicts)

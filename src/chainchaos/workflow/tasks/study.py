@@ -36,6 +36,16 @@ def study_group(inputs, outputs, params, wildcards) -> None:
     write_netcdf(ds, outputs["group"])
 
 
+def keep_study_group(inputs, outputs, params, wildcards) -> None:
+    """Copy a finished group into the repository's kept files, byte for byte (its key is in it)."""
+    import shutil
+
+    from chainchaos.output.io import atomic_output
+
+    with atomic_output(outputs["group"]) as tmp:
+        shutil.copyfile(inputs["group"], tmp)
+
+
 def study_scene(inputs, outputs, params, wildcards) -> None:
     """Every realization and lane of one model and energy, with their statistics."""
     from chainchaos.studies.study import with_statistics
@@ -85,4 +95,4 @@ def plot_study_comparison(inputs, outputs, params, wildcards) -> None:
     save_figure(fig, Path(outputs["pdf"]).with_suffix(""), dpi=params["dpi"])
 
 
-TASKS = (study_group, study_scene, study_statistics, plot_study, plot_study_comparison)
+TASKS = (study_group, keep_study_group, study_scene, study_statistics, plot_study, plot_study_comparison)
