@@ -14,7 +14,7 @@ import xarray as xr
 
 from chainchaos.engine.batch import SERIAL_REMAINDER
 from chainchaos.engine.simd import LANES
-from chainchaos.output import kept
+from chainchaos.output import beyond, kept
 from chainchaos.output.report_captions import figure_labels, figure_subcategory, panel_labels
 from chainchaos.paper import panels, statements
 from chainchaos.run.scenes import scene_batches, scene_parameters
@@ -386,6 +386,42 @@ def claims_inputs(wildcards=None):
     return files
 
 
+def beyond_studies():
+    """The studies of config manuscript.beyond that are kept in full (every group under
+    data/studies/ with the study's settings); one line on stderr for each that is not."""
+    shown = []
+    for name in config.get("manuscript", {}).get("beyond", []):
+        groups = range(study_of(name).n_groups)
+        missing = [g for g in groups if study_group_file(name, g) != kept_group_file(name, g)]
+        if missing:
+            print(
+                f"study {name}: {len(missing)} of {len(groups)} groups not kept; the section Beyond the paper "
+                f"leaves it out (snakemake --cores 2 keep_study --config study={name})",
+                file=sys.stderr,
+            )
+        else:
+            shown.append(name)
+    return shown
+
+
+def study_figure_names(name):
+    spec = study_of(name).spec
+    return [*spec["figures"], *(["comparison"] if spec["compare_with"] else [])]
+
+
+def manuscript_beyond():
+    """The inputs of the section Beyond the paper: its generated body and the shown studies' figures."""
+    if not BEYOND_STUDIES:
+        return {}
+    files = {"beyond_body": result("tables", "beyond_the_paper.tex")}
+    for name in BEYOND_STUDIES:
+        for figure in study_figure_names(name):
+            files[f"beyond_{beyond.figure_key(name, figure)}"] = result(
+                "studies", name, "figures", f"{figure}.pdf"
+            )
+    return files
+
+
 def manuscript_inputs(wildcards=None):
     files = {
         "tex": "manuscript/ms.tex",
@@ -403,6 +439,7 @@ def manuscript_inputs(wildcards=None):
         }
     )
     files.update({f"numerics_{key}": path for key, path in manuscript_numerics().items()})
+    files.update(manuscript_beyond())
     return files
 
 
@@ -520,11 +557,16 @@ def study_targets(name):
         for e in study.energies
     ]
     files.append(result("studies", name, "statistics.nc"))
+    if study.spec["laws"]["fits"]:
+        files.append(result("studies", name, "laws.nc"))
     figures = [*study.spec["figures"], *(["comparison"] if study.spec["compare_with"] else [])]
     files += [
         result("studies", name, "figures", f"{f}.{ext}") for f in figures for ext in ("pdf", "png")
     ]
     return files
+
+
+BEYOND_STUDIES = beyond_studies()
 
 
 # A study named on the command line is read and checked before anything is planned: a wrong key

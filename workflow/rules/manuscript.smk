@@ -63,6 +63,24 @@ rule evaluate_claims:
         "../scripts/evaluate_claims.py"
 
 
+rule beyond_the_paper:
+    """The generated body of the section Beyond the paper: the kept studies' power laws beside the
+    published exponents, and their figures."""
+    input:
+        laws=[result("studies", name, "laws.nc") for name in BEYOND_STUDIES],
+    output:
+        body=result("tables", "beyond_the_paper.tex"),
+    params:
+        studies=BEYOND_STUDIES,
+        figures={name: study_figure_names(name) for name in BEYOND_STUDIES},
+    log:
+        log_file("beyond_the_paper"),
+    benchmark:
+        benchmark_file("beyond_the_paper")
+    script:
+        "../scripts/beyond_the_paper.py"
+
+
 rule build_manuscript:
     """latexmk in results/manuscript_build/ on a copy of manuscript/ms.tex and of its inputs; stops
     with a message naming the Debian TeX packages when TeX or revtex4-2 is missing."""

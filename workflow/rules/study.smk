@@ -20,6 +20,7 @@ localrules:
     keep_study_group,
     study_scene,
     study_statistics,
+    study_laws,
     plot_study,
     plot_study_comparison,
 
@@ -73,6 +74,22 @@ rule study_statistics:
         benchmark_file("study_statistics", "{study}")
     script:
         "../scripts/study_statistics.py"
+
+
+rule study_laws:
+    """The power laws a study names (key laws), fitted to its ensemble means."""
+    input:
+        groups=lambda wildcards: study_group_files(wildcards.study),
+    output:
+        laws=result("studies", "{study}", "laws.nc"),
+    params:
+        spec=lambda wildcards: study_spec(wildcards.study),
+    log:
+        log_file("study_laws", "{study}"),
+    benchmark:
+        benchmark_file("study_laws", "{study}")
+    script:
+        "../scripts/study_laws.py"
 
 
 rule plot_study:

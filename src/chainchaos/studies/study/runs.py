@@ -48,8 +48,8 @@ def time_comment(study) -> str:
 #: Version of the numbers a study group computes (kept groups record it, chainchaos.output.kept):
 #: bump only when a change of code changes them (a bit-identity test tells).
 STUDY_RESULT_VERSION = 1
-#: Keys of a study that say how it is shown, not what its orbits compute.
-_PRESENTATION = ("title", "extends", "figures", "compare_with")
+#: Keys of a study that say how it is shown and read, not what its orbits compute.
+_PRESENTATION = ("title", "extends", "figures", "compare_with", "laws")
 
 
 def group_settings(study, group: int) -> dict:

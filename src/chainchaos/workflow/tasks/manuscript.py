@@ -85,9 +85,18 @@ def build_manuscript(inputs, outputs, params, wildcards) -> None:
     """latexmk in the build directory on a copy of manuscript/ms.tex and of its inputs; a
     :class:`~chainchaos.errors.BuildError` (TeX missing, a LaTeX error) names what to do."""
     figures = {k: v for k, v in inputs.items() if k.startswith("fig")}
-    numerics = {k[len("numerics_"):]: v for k, v in inputs.items() if k.startswith("numerics_")}
-    manuscript.build(inputs["tex"], {k: inputs[k] for k in manuscript.GENERATED}, figures, numerics, outputs["pdf"],
+    parts = {part: {k[len(part) + 1:]: v for k, v in inputs.items() if k.startswith(f"{part}_")}
+             for part in manuscript.PARTS}
+    manuscript.build(inputs["tex"], {k: inputs[k] for k in manuscript.GENERATED}, figures, parts, outputs["pdf"],
                      params["build_dir"])
+
+
+def beyond_the_paper(inputs, outputs, params, wildcards) -> None:
+    """The section Beyond the paper's table of laws and figures, from the kept studies' laws files."""
+    from chainchaos.output.beyond import body
+
+    named = {name: xr.load_dataset(path) for name, path in zip(params["studies"], inputs["laws"])}
+    write_text(body(named, dict(params["figures"])), outputs["body"])
 
 
 def run_summary(inputs, outputs, params, wildcards) -> None:
@@ -100,4 +109,4 @@ def run_summary(inputs, outputs, params, wildcards) -> None:
     write_text(summary_csv(rows), outputs["csv"])
 
 
-TASKS = (evaluate_claims, build_manuscript, run_summary)
+TASKS = (evaluate_claims, beyond_the_paper, build_manuscript, run_summary)

@@ -75,6 +75,26 @@ def study_statistics(inputs, outputs, params, wildcards) -> None:
     write_netcdf(stats, outputs["statistics"])
 
 
+def study_laws(inputs, outputs, params, wildcards) -> None:
+    """The power laws a study's file names, fitted with bootstrap intervals (studies.study.laws)."""
+    from chainchaos.output.provenance import provenance_attrs
+    from chainchaos.studies.study.laws import laws
+    from chainchaos.studies.study.runs import merge_groups
+
+    study = _study(params)
+    merged = merge_groups(study, [xr.load_dataset(f) for f in inputs["groups"]])
+    ds = laws(merged, study.spec, study.settings)
+    ds.attrs.update(provenance_attrs({"study": study.name, **study.spec}), study=study.name,
+                    study_title=study.title, title=f"{study.title}: power laws of the ensemble means")
+    for m in ds["model"].values:
+        for law in ds["law"].values:
+            fit = ds.sel(model=m, law=law).isel(energy=0)
+            print(f"[study {study.name}] {m} {law}: exponent {float(fit['exponent']):.3f} "
+                  f"[{float(fit['lower']):.3f}, {float(fit['upper']):.3f}] over t = {float(fit['t_start']):.3g}.."
+                  f"{float(fit['t_end']):.3g} (published {float(fit['expected']):.3g})", file=sys.stderr)
+    write_netcdf(ds, outputs["laws"])
+
+
 def plot_study(inputs, outputs, params, wildcards) -> None:
     """One of a study's standard figures (PDF and PNG)."""
     from chainchaos.output.plotting.style import save_figure  # matplotlib: only in the plotting jobs
@@ -95,4 +115,4 @@ def plot_study_comparison(inputs, outputs, params, wildcards) -> None:
     save_figure(fig, Path(outputs["pdf"]).with_suffix(""), dpi=params["dpi"])
 
 
-TASKS = (study_group, keep_study_group, study_scene, study_statistics, plot_study, plot_study_comparison)
+TASKS = (study_group, keep_study_group, study_scene, study_statistics, study_laws, plot_study, plot_study_comparison)

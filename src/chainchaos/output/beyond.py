@@ -1,0 +1,110 @@
+"""The manuscript's "Beyond the paper" table: the power laws of kept studies beside published values.
+
+One row per (study, model, energy, law) of the studies' ``laws.nc`` files
+(``chainchaos.studies.study.laws``): the exponent fitted over its window, its 95% bootstrap
+interval over realizations, whether the window settled, the published exponent and whether it
+lies inside the interval. Every number comes from the files.
+"""
+
+import math
+import re
+
+import xarray as xr
+
+#: How a law's series reads in the table.
+SYMBOLS = {"second_moment": r"$\langle\log_{10} m_2\rangle$", "participation": r"$\langle\log_{10} P\rangle$",
+           "mlce": r"$\langle\log_{10}\Lambda\rangle$"}
+
+
+_TEX_SPECIAL = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "#": r"\#", "_": r"\_", "$": r"\$",
+                "^": r"\^{}", "~": r"\~{}", "{": r"\{", "}": r"\}"}
+
+
+def tex_text(text: str) -> str:
+    """Plain text set in LaTeX: its special characters escaped (in one pass)."""
+    return re.sub(r"[\\&%#_$^~{}]", lambda m: _TEX_SPECIAL[m.group(0)], text)
+
+
+def _number(x: float) -> str:
+    return f"${x:.3f}$" if math.isfinite(x) else "---"
+
+
+def _decade(t: float) -> str:
+    return f"$10^{{{math.log10(t):.1f}}}$"
+
+
+def law_rows(name: str, ds: xr.Dataset) -> list[dict]:
+    """The rows of one study's laws file, plain values."""
+    rows = []
+    for model in ds["model"].values:
+        for energy in ds["energy"].values:
+            for law in range(ds.sizes["law"]):
+                fit = ds.sel(model=model, energy=energy).isel(law=law)
+                lower, upper, expected = float(fit["lower"]), float(fit["upper"]), float(fit["expected"])
+                rows.append({
+                    "study": name, "model": str(model), "energy": float(energy),
+                    "series": str(fit["series"].values), "exponent": float(fit["exponent"]),
+                    "lower": lower, "upper": upper, "t_start": float(fit["t_start"]), "t_end": float(fit["t_end"]),
+                    "settled": bool(int(fit["settled"])), "realizations": int(fit["realizations"]),
+                    "expected": expected, "reference": str(fit["reference"].values),
+                    "inside": lower <= expected <= upper,
+                })
+    return rows
+
+
+def beyond_table(named: dict[str, xr.Dataset]) -> str:
+    """The LaTeX table (a tabular) of every law of the studies ``named`` (name -> laws Dataset)."""
+    lines = [r"\begin{tabular}{llllllll}", r"\hline",
+             r"study & model, $E$ & law & exponent [95\,\%] & window & $R$ & published & inside \\", r"\hline"]
+    for name, ds in named.items():
+        for r in law_rows(name, ds):
+            study, model = tex_text(r["study"]), tex_text(r["model"])
+            bounded = math.isfinite(r["lower"]) and math.isfinite(r["upper"])
+            interval = f"[{_number(r['lower'])}, {_number(r['upper'])}]" if bounded else "(no interval)"
+            inside = ("yes" if r["inside"] else "no") if bounded else "---"
+            window = f"{_decade(r['t_start'])}--{_decade(r['t_end'])}" + ("" if r["settled"] else r"$^\dagger$")
+            lines.append(f"\\texttt{{{study}}} & {model}, {r['energy']:g} & {SYMBOLS[r['series']]} & "
+                         f"{_number(r['exponent'])} {interval} & {window} & "
+                         f"{r['realizations']} & ${r['expected']:.3g}$ & {inside} \\\\")
+    lines += [r"\hline", r"\end{tabular}"]
+    return "\n".join(lines) + "\n"
+
+
+def figure_key(study: str, figure: str) -> str:
+    """The name of a study's figure among the manuscript's "beyond" files."""
+    return f"{study}_{figure}"
+
+
+def body(named: dict[str, xr.Dataset], figures: dict[str, list[str]]) -> str:
+    """The generated part of the section: the table of laws with its sources, and each study's
+    ``figures`` (study -> figure names, files ``beyond/<study>_<figure>.pdf``)."""
+    sources = dict.fromkeys(r["reference"] for name, ds in named.items() for r in law_rows(name, ds))
+    rules = "; ".join(
+        f"\\texttt{{{tex_text(name)}}}: from $t = {ds.attrs['fit_t_min']:g}$, band "
+        f"${ds.attrs['fit_band']:g}$ around the median running slope (over {ds.attrs['fit_window_decades']:g} "
+        f"decade) of the last {ds.attrs['fit_min_decades']:g} decade, {ds.attrs['fit_bootstrap']} resamples"
+        for name, ds in named.items())
+    out = [r"\begin{table}[htbp]",
+           r"\caption{\label{tab:laws}Exponents of the ensemble means against $\log_{10} t$ (valid realizations, "
+           r"$R$ the fewest in the window), with 95\,\% bootstrap intervals over realizations and the window "
+           r"chosen by the running slope (Sec.~\ref{sec:beyond}; $^\dagger$: the slope has not settled, the window "
+           r"is the minimum), beside the published exponents. Rules: " + rules + ". Sources: " + "; ".join(tex_text(s) for s in sources) + ".}",
+           r"\centering\small", r"\fitwidth{" + beyond_table(named).rstrip() + "}", r"\end{table}"]
+    for study, names in figures.items():
+        for figure in names:
+            label = tex_text(study)
+            out += [r"\begin{figure}[htbp]", r"\centering",
+                    (f"\\includegraphics[width=\\linewidth,height=0.42\\textheight,keepaspectratio]"
+                     f"{{beyond/{figure_key(study, figure)}}}"),
+                    (f"\\caption{{\\label{{fig:beyond-{study}-{figure}}}Study \\texttt{{{label}}}: its {figure} "
+                     f"figure ({FIGURE_TEXT[figure]}).}}"), r"\end{figure}"]
+    return "\n".join(out) + "\n"
+
+
+FIGURE_TEXT = {
+    "spreading": r"$\langle\log_{10} m_2\rangle$ and $\langle\log_{10} P\rangle$ against $\log_{10} t$ with "
+                 r"quantile bands and running slopes",
+    "chaos": r"$\langle\log_{10}\Lambda\rangle$ against $\log_{10} t$ with quantile bands and its running slope",
+    "comparison": "the ensemble means of the study beside those of the studies it compares with",
+    "fractions": "fractions chaotic and delocalized against the energy, Wilson 95\\,\\% bands",
+}

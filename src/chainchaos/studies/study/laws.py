@@ -1,0 +1,136 @@
+"""Power laws of a study's ensemble means: exponents with bootstrap intervals over realizations.
+
+The disordered-lattice literature reads spreading and chaos as power laws of averages over
+realizations: <log10 m2> ~ a_m log10 t, <log10 P> ~ (a_m / 2) log10 t, <log10 Lambda> ~ alpha_L
+log10 t (Flach, Krimer & Skokos, PRL 102, 024101 (2009); Skokos, Gkolias & Flach, PRL 111, 064101
+(2013); Senyange, Many Manda & Skokos, PRE 98, 052229 (2018)). For each law a study's file names
+(key ``laws``), over the valid realizations (lane 0) of every (model, energy):
+
+1. **The samples**: those of the log-spaced grid only (t = t_first 10^(k / samples_per_decade));
+   the run's extra final samples would weigh its last decade more in a least-squares fit.
+2. **The window, by rule** (:func:`fit_window`): the running slope s(t) of the mean (least
+   squares over ``window_decades`` decades centred on each sample) is compared with its median
+   over the run's last ``min_decades`` decades, s_end. The window is the longest final stretch
+   of the run, starting no earlier than ``t_min``, on which every running slope lies within
+   ``band`` of s_end; at least the last ``min_decades`` decades. A window that the band cuts to
+   that minimum is reported as not settled (``settled`` = 0): the slope still drifts.
+3. **The exponent**: the least-squares slope of the mean over the window.
+4. **Its interval**: the 2.5 and 97.5 % quantiles of the exponent over ``bootstrap`` resamples
+   of the realizations that enter (valid ones) with replacement (``numpy.random.default_rng(seed)``),
+   the window kept; none with fewer than two realizations.
+
+Sums in index order and fdlibm's logarithms (``engine.exactmath``): the same bits on every CPU.
+"""
+
+import numpy as np
+import xarray as xr
+
+from chainchaos.engine import exactmath
+from chainchaos.errors import require
+from chainchaos.studies.study.statistics import (
+    LOG_SERIES,
+    log10,
+    ordered_mean,
+    running_slope,
+)
+
+
+def log_grid(t: np.ndarray, settings) -> np.ndarray:
+    """Which samples ``t`` lie on the log-spaced grid of ``settings`` (``sample_steps``)."""
+    steps = np.rint(np.asarray(t) / settings.dt).astype(np.int64)
+    return np.isin(steps, settings.sample_steps())
+
+
+def fit_window(log_t: np.ndarray, slope: np.ndarray, *, min_decades: float, band: float,
+               t_min: float) -> tuple[int, int, bool]:
+    """(first, last) sample indices of the fit window (module docstring, step 2) and whether it
+    is settled: longer than the last ``min_decades`` decades. ``slope``: the running slope at
+    each sample of ``log_t`` (NaN where undefined)."""
+    finite = np.flatnonzero(np.isfinite(slope) & np.isfinite(log_t))
+    require(finite.size >= 3, "running slope", f"{finite.size} finite samples", "at least 3")
+    last = int(finite[-1])
+    tail = finite[log_t[finite] >= log_t[last] - min_decades - 1e-9]  # a sample on the edge is in
+    reference = float(np.median(slope[tail]))
+    first = last
+    for i in finite[::-1]:
+        if log_t[i] < log10(np.array([t_min]))[0] or abs(slope[i] - reference) > band:
+            break
+        first = int(i)
+    minimal = int(tail[0])
+    return min(first, minimal), last, first < minimal
+
+
+def _slope(log_t, y) -> float:
+    use = np.isfinite(y)
+    return exactmath.line_slope(log_t[use], y[use]) if use.sum() >= 3 else float("nan")
+
+
+def fit_law(t: np.ndarray, x: np.ndarray, *, window_decades: float, min_decades: float, band: float, t_min: float,
+            bootstrap: int, seed: int) -> dict:
+    """The exponent of <log10 x> against log10 t over the realizations ``x`` (realization, time;
+    NaN where a realization is left out), its window and bootstrap interval (module docstring)."""
+    log_t = log10(t)
+    logs = log10(x)
+    logs = logs[np.isfinite(logs).any(axis=1)]  # resample the realizations that enter, not those left out
+    mean, count = ordered_mean(logs, axis=0)
+    slope_t = running_slope(log_t, mean, window_decades)
+    first, last, settled = fit_window(log_t, slope_t, min_decades=min_decades, band=band, t_min=t_min)
+    window = slice(first, last + 1)
+    exponent = _slope(log_t[window], mean[window])
+    rng = np.random.default_rng(seed)
+    R = logs.shape[0]
+    draws = np.empty(bootstrap)
+    for b in range(bootstrap):
+        pick = rng.integers(0, R, R)
+        draws[b] = _slope(log_t[window], ordered_mean(logs[pick, window], axis=0)[0])
+    lower, upper = np.quantile(draws, [0.025, 0.975]) if R >= 2 else (np.nan, np.nan)
+    return {"exponent": exponent, "lower": float(lower), "upper": float(upper), "t_start": float(t[first]),
+            "t_end": float(t[last]), "settled": bool(settled), "realizations": int(count[window].min())}
+
+
+FIELDS = {
+    "exponent": ("f8", "least-squares slope of the realization mean of log10 {x} against log10 t over the fit window"),
+    "lower": ("f8", "2.5% quantile of the exponent over bootstrap resamples of the realizations"),
+    "upper": ("f8", "97.5% quantile of the exponent over bootstrap resamples of the realizations"),
+    "t_start": ("f8", "start of the fit window (chosen by the rule of chainchaos.studies.study.laws)"),
+    "t_end": ("f8", "end of the fit window"),
+    "settled": ("i1", "1 if the running slope stays within the band longer than the minimum window"),
+    "realizations": ("i4", "valid realizations that enter every sample of the window"),
+}
+
+
+def laws(merged: xr.Dataset, spec: dict, settings) -> xr.Dataset:
+    """Every law of ``spec['laws']`` fitted on every (model, energy) of a merged study (its
+    ``study.runs.merge_groups``): dims model, energy, law; ``expected`` the published exponent."""
+    block = spec["laws"]
+    fits = block["fits"]
+    require(len(fits) > 0, "laws.fits", fits, "at least one {series, expected, reference}")
+    keys = {"window_decades": float(spec["criteria"]["slope_window_decades"]),
+            "min_decades": float(block["min_decades"]), "band": float(block["band"]), "t_min": float(block["t_min"]),
+            "bootstrap": int(block["bootstrap"]), "seed": int(block["seed"])}
+    grid = log_grid(merged["time"].values, settings)
+    t = merged["time"].values[grid]
+    M, E, L = merged.sizes["model"], merged.sizes["energy"], len(fits)
+    out = {key: np.zeros((M, E, L), dtype=dtype) for key, (dtype, _) in FIELDS.items()}
+    valid = merged["valid"].isel(lane=0) == 1
+    for m in range(M):
+        for e in range(E):
+            for k, fit in enumerate(fits):
+                series = merged[fit["series"]].isel(model=m, energy=e, lane=0).where(valid.isel(model=m, energy=e))
+                found = fit_law(t, series.values[:, grid], **keys)
+                for key in FIELDS:
+                    out[key][m, e, k] = found[key]
+    data = {key: (("model", "energy", "law"), out[key], {"units": "1", "long_name": text.format(x="x")})
+            for key, (_, text) in FIELDS.items()}
+    data["expected"] = ("law", np.array([float(f["expected"]) for f in fits]),
+                        {"units": "1", "long_name": "the published exponent"})
+    data["reference"] = ("law", np.array([str(f["reference"]) for f in fits], dtype=object),
+                         {"long_name": "where the published exponent is from"})
+    data["series"] = ("law", np.array([f["series"] for f in fits], dtype=object),
+                      {"long_name": "the series whose realization mean of log10 the law is about"})
+    ds = xr.Dataset(data, coords={"model": merged["model"], "energy": merged["energy"],
+                                  "law": ("law", np.array([f"{LOG_SERIES[f['series']]}" for f in fits], dtype=object),
+                                          {"long_name": "the law, by the series it fits"})})
+    ds.attrs.update(fit_rule=__doc__.split("\n\n", 2)[2].split("\n\nSums")[0].replace("\n", " "),
+                    **{f"fit_{k}": v for k, v in keys.items()})
+    return ds
