@@ -218,3 +218,24 @@ def test_a_klein_gordon_study_runs_on_kg_lattices_with_the_energy_of_its_hamilto
     assert (ds["valid"] == 1).all() and float(ds["energy_error_max"].max()) < 1e-6
     with pytest.raises(StudyError, match="a bead model with a chain file"):
         load_study({**spec, "lattice": {"model": "kg", "chain_file": "results/chain/chain.nc"}})
+
+
+def test_run_study_reads_a_kept_group_with_its_settings_and_computes_the_others(tmp_path, monkeypatch):
+    from chainchaos.output.io import write_netcdf
+    from chainchaos.studies.study import spec as study_spec
+    from chainchaos.studies.study.runs import run_group
+
+    (tmp_path / "studies").mkdir()
+    (tmp_path / "studies" / "kept.yaml").write_text(
+        "title: kept\nlattice: {model: fput, N: 12, realizations: 2}\nexcitation: {energies: [1.0]}\n"
+        "integration: {dt: 0.05, t_final: 20.0}\njobs: {orbits_per_job: 1}\n")
+    monkeypatch.setattr(study_spec, "studies_dir", lambda: tmp_path / "studies")
+    study = study_spec.load_study("kept")
+    group = run_group(study, 0)
+    group["participation"] = group["participation"] * 2  # marks the kept file's numbers
+    write_netcdf(group, study_spec.kept_group_path("kept", 0))
+    ds = run_study("kept")
+    fresh = run_group(study, 0)["participation"].values[0]
+    np.testing.assert_array_equal(ds["participation"].isel(model=0, energy=0, lane=0, realization=0).values, 2 * fresh)
+    np.testing.assert_array_equal(ds["participation"].isel(model=0, energy=0, lane=0, realization=1).values,
+                                  run_group(study, 1)["participation"].values[0])

@@ -140,3 +140,41 @@ def test_the_report_shows_the_studys_figures(worked, tmp_path):
     from browser import console_errors
 
     assert console_errors([report]) == {str(report): []}  # it loads in Chromium without errors
+
+
+TINY = """\
+title: a tiny study kept as data
+lattice: {model: fput, N: 16, realizations: 2}
+excitation: {energies: [1.0]}
+integration: {dt: 0.05, t_final: 50.0}
+figures: [chaos]
+jobs: {orbits_per_job: 1}
+"""
+
+
+@pytest.mark.slow
+def test_a_kept_study_is_read_not_run_while_its_settings_hold(tmp_path):
+    """keep_study keeps each group with its key; the study then plans no group job, a change of
+    a key its numbers do not depend on (its figures) neither, a changed step says which key
+    differs and computes again, and keep_study refuses to overwrite the stale groups."""
+    study, results, kept = tmp_path / "tiny.yaml", tmp_path / "results", tmp_path / "kept"
+    study.write_text(TINY)
+    config = ("--config", f"study={study}", f"results={results}", f"kept_studies={kept}")
+    code, out = snakemake("keep_study", *config)
+    assert code == 0, out[-4000:]
+    files = sorted((kept / "tiny" / "groups").glob("*.nc"))
+    assert [f.name for f in files] == ["0000.nc", "0001.nc"]
+    key = xr.open_dataset(files[0]).attrs
+    assert len(key["kept_settings_digest"]) == 64 and key["result_version"] >= 1
+    shutil.rmtree(results / "studies")  # only the kept files remain
+    code, plan = snakemake("-n", "study", *config)
+    assert code == 0 and "study_group" not in planned_jobs(plan), plan[-3000:]
+    study.write_text(TINY.replace("figures: [chaos]", "figures: [chaos, spreading]"))
+    code, plan = snakemake("-n", "study", *config)
+    assert code == 0 and "study_group" not in planned_jobs(plan), plan[-3000:]
+    study.write_text(TINY.replace("dt: 0.05", "dt: 0.04"))
+    code, plan = snakemake("-n", "study", *config)
+    assert code == 0 and planned_jobs(plan)["study_group"] == 2, plan[-3000:]
+    assert "integration.dt is 0.05 in the file, 0.04 in this run; not used" in plan
+    code, out = snakemake("-n", "keep_study", *config)
+    assert code != 0 and f"delete {kept / 'tiny'} to remake them" in out

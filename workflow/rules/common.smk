@@ -24,7 +24,7 @@ from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION, SearchPlan
 from chainchaos.studies.study import runs as study_runs
 from chainchaos.studies.study.runs import scene_name
 from chainchaos.studies.study.spec import FIGURES as STUDY_FIGURES
-from chainchaos.studies.study.spec import load_study, study_names
+from chainchaos.studies.study.spec import kept_group_path, load_study, study_names
 from chainchaos.workflow.tasks.chain import selection_criteria
 from chainchaos.workflow.tasks.figures import figure_outputs as figure_files
 
@@ -471,9 +471,16 @@ def study_spec(name):
     return {"name": name, **study_of(name).spec}
 
 
+def study_group_spec(name):
+    """The keys of a study that its groups' numbers depend on (with the title their files state):
+    a changed figure, comparison or law reruns no group."""
+    study = study_of(name)
+    return {"name": name, "title": study.spec["title"], **study_runs.numbers_spec(study)}
+
+
 def kept_group_file(name, group):
     """Where a study's group is kept in the repository (`snakemake keep_study` writes it)."""
-    return f"data/studies/{name}/groups/{group:04d}.nc"
+    return str(kept_group_path(name, group, config["kept_studies"]))
 
 
 @functools.cache
@@ -514,9 +521,15 @@ def keep_study_targets(name):
     if stale:
         raise ValueError(
             f"kept groups of study {name} made with other settings: {', '.join(stale)}; "
-            f"delete data/studies/{name} to remake them, or restore the study file they were made with"
+            f"delete {Path(config['kept_studies']) / name} to remake them, or restore the study file they were made with"
         )
-    return [kept_group_file(name, g) for g in range(study_of(name).n_groups)]
+    # a group kept already is done: asking for it again would rerun its job when a key that does
+    # not change its numbers (figures, laws, ...) changed
+    return [
+        kept_group_file(name, g)
+        for g in range(study_of(name).n_groups)
+        if study_group_file(name, g) != kept_group_file(name, g)
+    ]
 
 
 def study_group_inputs(wildcards):

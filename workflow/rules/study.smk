@@ -32,7 +32,7 @@ rule study_group:
     output:
         group=result("studies", "{study}", "groups", "{group}.nc"),
     params:
-        spec=lambda wildcards: study_spec(wildcards.study),
+        spec=lambda wildcards: study_group_spec(wildcards.study),
     log:
         log_file("study_group", "{study}-{group}"),
     benchmark:
@@ -143,7 +143,8 @@ rule keep_study_group:
     input:
         group=result("studies", "{study}", "groups", "{group}.nc"),
     output:
-        group="data/studies/{study}/groups/{group}.nc",
+        group=str(Path(config["kept_studies"], "{study}", "groups", "{group}.nc")),
+    priority: 10  # kept as soon as computed: a stopped run loses no finished group
     log:
         log_file("keep_study_group", "{study}-{group}"),
     script:

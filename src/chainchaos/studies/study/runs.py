@@ -52,10 +52,15 @@ STUDY_RESULT_VERSION = 1
 _PRESENTATION = ("title", "extends", "figures", "compare_with", "laws")
 
 
+def numbers_spec(study) -> dict:
+    """The keys of ``study`` its orbits' numbers depend on: all but those of its presentation."""
+    return {k: v for k, v in study.spec.items() if k not in _PRESENTATION}
+
+
 def group_settings(study, group: int) -> dict:
-    """What determines the numbers of one group of ``study``: every key of the study but those
-    of its presentation, and the group's index (with ``jobs``, which orbits it holds)."""
-    return {**{k: v for k, v in study.spec.items() if k not in _PRESENTATION}, "group": int(group)}
+    """What determines the numbers of one group of ``study``: :func:`numbers_spec` and the
+    group's index (with ``jobs``, which orbits it holds)."""
+    return {**numbers_spec(study), "group": int(group)}
 
 
 def _fill(dtype: str):

@@ -33,6 +33,14 @@ SCHEMA = Path(__file__).resolve().with_name("schema.yaml")
 STUDIES = Path(__file__).resolve().parents[4] / "studies"
 
 
+def kept_group_path(name: str, group: int, root=None) -> Path:
+    """Where group ``group`` of study ``name`` is kept (``snakemake keep_study``):
+    ``<root>/<name>/groups/<group>.nc``, ``root`` by default ``data/studies`` beside the
+    ``studies/`` of :func:`studies_dir` (the workflow's config ``kept_studies``)."""
+    root = Path(root) if root is not None else studies_dir().parent / "data" / "studies"
+    return root / name / "groups" / f"{group:04d}.nc"
+
+
 def studies_dir() -> Path:
     """Where a study named without a path is looked up: ``./studies`` when the working directory
     has one, else the checkout's :data:`STUDIES`."""
