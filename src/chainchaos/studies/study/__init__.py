@@ -58,7 +58,11 @@ def run_study(source, progress=None) -> xr.Dataset:
     ``run_study("kg_weak_chaos")`` returns the kept Klein-Gordon archive in seconds.
     """
     from chainchaos.output import kept
-    from chainchaos.studies.study.runs import STUDY_RESULT_VERSION, group_settings, run_group
+    from chainchaos.studies.study.runs import (
+        STUDY_RESULT_VERSION,
+        group_settings,
+        run_group,
+    )
     from chainchaos.studies.study.spec import kept_group_path, load_study
 
     study = load_study(source)
