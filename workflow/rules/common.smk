@@ -312,17 +312,26 @@ def _kept_candidates():
         return ds.sizes["candidate"]
 
 
+# The re-judging's stage files are kept beside the archive (committed in chunks: it may take more
+# than a session), and so are its jobs' benchmark files, from which the archive states its cost.
+REJUDGE_DIR = str(Path(SEARCH_ARCHIVE or "data/search/search_full.nc").parent / "rejudge")
+
+
+def rejudge_file(*parts):
+    return str(Path(REJUDGE_DIR, *parts))
+
+
 def rejudge_filter_files():
     if not config.get("rejudge"):
         return []
     plan = rejudge.filter_plan(SEARCH_PLANS["search_full"], rejudge.check_ids(config["rejudge"]))
     n = plan.n_filter_jobs(_kept_candidates())
-    return [result("search_rejudge", "filter", f"{g:03d}.nc") for g in range(n)]
+    return [rejudge_file("filter", f"{g:03d}.nc") for g in range(n)]
 
 
 def rejudge_score_files():
     n = SEARCH_PLANS["search_full"].n_score_jobs(_kept_candidates())
-    return [result("search_rejudge", "score", f"{k:03d}.nc") for k in range(n)]
+    return [rejudge_file("score", f"{k:03d}.nc") for k in range(n)]
 
 
 def search_runtime(stage):

@@ -139,19 +139,21 @@ rule search_full:
 
 # Re-judging the kept full search when the code that judges some statements changed (their ids:
 # --config rejudge='[id, ...]'): only those statements' scenes are integrated again
-# (chainchaos.studies.search.rejudge), in resumable jobs; the result replaces search.archive.
+# (chainchaos.studies.search.rejudge), in resumable jobs whose files are kept beside the archive
+# (data/search/rejudge/, committed as they finish); the result replaces search.archive, after
+# which that directory can go.
 rule search_rejudge_filter:
     """Stage 1 again on the re-judged statements' scenes, for a group of the kept candidates."""
     input:
         kernels=result("kernels_compiled.txt"),
     output:
-        result=result("search_rejudge", "filter", "{group}.nc"),
+        result=rejudge_file("filter", "{group}.nc"),
     params:
         **rejudge_params(),
     log:
         log_file("search_rejudge_filter", "search_full-{group}"),
     benchmark:
-        benchmark_file("search_rejudge_filter", "search_full-{group}")
+        rejudge_file("benchmarks", "search_rejudge_filter", "search_full-{group}.tsv")
     resources:
         mem_mb=1000,
     script:
@@ -164,13 +166,13 @@ rule search_rejudge_score:
         filters=rejudge_filter_files(),
         kernels=result("kernels_compiled.txt"),
     output:
-        result=result("search_rejudge", "score", "{rank}.nc"),
+        result=rejudge_file("score", "{rank}.nc"),
     params:
         **rejudge_params(),
     log:
         log_file("search_rejudge_score", "search_full-{rank}"),
     benchmark:
-        benchmark_file("search_rejudge_score", "search_full-{rank}")
+        rejudge_file("benchmarks", "search_rejudge_score", "search_full-{rank}.tsv")
     resources:
         mem_mb=1000,
     script:
@@ -184,7 +186,7 @@ rule search_rejudge:
         scores=rejudge_score_files(),
     params:
         **rejudge_params(),
-        benchmarks=result("benchmarks"),
+        benchmarks=rejudge_file("benchmarks"),
     log:
         log_file("search_rejudge"),
     script:
