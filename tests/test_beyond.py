@@ -1,0 +1,49 @@
+"""The manuscript's section Beyond the paper (chainchaos.output.beyond) and its optional part."""
+
+import numpy as np
+import xarray as xr
+
+from chainchaos.output import manuscript
+from chainchaos.output.beyond import body, law_rows, tex_text
+
+
+def _laws(lower, upper, expected=1 / 3):
+    ds = xr.Dataset(coords={"model": ["kg"], "energy": [0.4], "law": ["m2"]})
+    for key, value, dtype in (("exponent", 0.3, float), ("lower", lower, float), ("upper", upper, float),
+                              ("t_start", 1e4, float), ("t_end", 1e7, float), ("settled", 1, np.int8),
+                              ("realizations", 64, np.int32)):
+        ds[key] = (("model", "energy", "law"), np.full((1, 1, 1), value, dtype=dtype))
+    ds["expected"] = ("law", [expected])
+    ds["reference"] = ("law", np.array(["Flach, Krimer & Skokos_2009"], dtype=object))
+    ds["series"] = ("law", np.array(["second_moment"], dtype=object))
+    ds.attrs.update(fit_t_min=100.0, fit_band=0.1, fit_window_decades=1.0, fit_min_decades=1.0, fit_bootstrap=1000)
+    return ds
+
+
+def test_a_published_exponent_inside_or_outside_the_interval_is_said_so():
+    assert law_rows("kg_weak_chaos", _laws(0.25, 0.35))[0]["inside"]
+    assert not law_rows("kg_weak_chaos", _laws(0.25, 0.30))[0]["inside"]
+    text = body({"kg_weak_chaos": _laws(0.25, 0.35)}, {"kg_weak_chaos": ["chaos"]})
+    assert r"\texttt{kg\_weak\_chaos}" in text and "& yes" in text and r"Krimer \& Skokos\_2009" in text
+    assert r"{beyond/kg_weak_chaos_chaos}" in text
+    assert "(no interval)" in body({"s": _laws(np.nan, np.nan)}, {})
+
+
+def test_tex_text_escapes_in_one_pass():
+    assert tex_text(r"a_b & {c} 5% ^ \ ") == r"a\_b \& \{c\} 5\% \^{} \textbackslash{} "
+
+
+def test_an_optional_part_without_files_switches_its_section_off(tmp_path):
+    tex = tmp_path / "ms.tex"
+    tex.write_text("x")
+    generated = {}
+    for key, name in manuscript.GENERATED.items():
+        (tmp_path / name).write_text("%")
+        generated[key] = tmp_path / name
+    figure = tmp_path / "spreading.pdf"
+    figure.write_bytes(b"%PDF-")
+    manuscript.prepare(tmp_path / "build", tex, generated, {}, {"beyond": {"kg_spreading": figure}})
+    assert r"\beyondtrue" in (tmp_path / "build" / "generated" / "beyond.tex").read_text()
+    assert r"{beyond/kg_spreading.pdf}" in (tmp_path / "build" / "generated" / "beyond.tex").read_text()
+    assert (tmp_path / "build" / "beyond" / "kg_spreading.pdf").exists()
+    assert r"\numericsfalse" in (tmp_path / "build" / "generated" / "numerics.tex").read_text()
