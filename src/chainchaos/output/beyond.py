@@ -105,6 +105,7 @@ FIGURE_TEXT = {
     "spreading": r"$\langle\log_{10} m_2\rangle$ and $\langle\log_{10} P\rangle$ against $\log_{10} t$ with "
                  r"quantile bands and running slopes",
     "chaos": r"$\langle\log_{10}\Lambda\rangle$ against $\log_{10} t$ with quantile bands and its running slope",
-    "comparison": "the ensemble means of the study beside those of the studies it compares with",
+    "comparison": ("the ensemble means of the study beside those of the studies it compares with; a Klein--Gordon "
+                   "chain's times are in the units of its Hamiltonian, the bead chains' in $1/\\omega_{\\max}$"),
     "fractions": "fractions chaotic and delocalized against the energy, Wilson 95\\,\\% bands",
 }
