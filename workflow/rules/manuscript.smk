@@ -73,6 +73,9 @@ rule beyond_the_paper:
     params:
         studies=BEYOND_STUDIES,
         figures={name: study_figure_names(name) for name in BEYOND_STUDIES},
+        missing=[
+            name for name in config["manuscript"].get("beyond", []) if name not in BEYOND_STUDIES
+        ],
     log:
         log_file("beyond_the_paper"),
     benchmark:

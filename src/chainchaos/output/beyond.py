@@ -75,9 +75,10 @@ def figure_key(study: str, figure: str) -> str:
     return f"{study}_{figure}"
 
 
-def body(named: dict[str, xr.Dataset], figures: dict[str, list[str]]) -> str:
-    """The generated part of the section: the table of laws with its sources, and each study's
-    ``figures`` (study -> figure names, files ``beyond/<study>_<figure>.pdf``)."""
+def body(named: dict[str, xr.Dataset], figures: dict[str, list[str]], missing: tuple = ()) -> str:
+    """The generated part of the section: the table of laws with its sources, each study's
+    ``figures`` (study -> figure names, files ``beyond/<study>_<figure>.pdf``), and the studies
+    of the configuration left out because they are not kept (``missing``)."""
     sources = dict.fromkeys(r["reference"] for name, ds in named.items() for r in law_rows(name, ds))
     rules = "; ".join(
         f"\\texttt{{{tex_text(name)}}}: from $t = {ds.attrs['fit_t_min']:g}$, band "
@@ -90,6 +91,9 @@ def body(named: dict[str, xr.Dataset], figures: dict[str, list[str]]) -> str:
            r"chosen by the running slope (Sec.~\ref{sec:beyond}; $^\dagger$: the slope has not settled, the window "
            r"is the minimum), beside the published exponents. Rules: " + rules + ". Sources: " + "; ".join(tex_text(s) for s in sources) + ".}",
            r"\centering\small", r"\fitwidth{" + beyond_table(named).rstrip() + "}", r"\end{table}"]
+    if missing:
+        out.append("Not kept yet, so not shown: " + ", ".join(f"\\texttt{{{tex_text(m)}}}" for m in missing)
+                   + " (\\texttt{snakemake --cores 2 keep\\_study --config study=<name>}).\n")
     for study, names in figures.items():
         for figure in names:
             label = tex_text(study)

@@ -96,7 +96,7 @@ def beyond_the_paper(inputs, outputs, params, wildcards) -> None:
     from chainchaos.output.beyond import body
 
     named = {name: xr.load_dataset(path) for name, path in zip(params["studies"], inputs["laws"])}
-    write_text(body(named, dict(params["figures"])), outputs["body"])
+    write_text(body(named, dict(params["figures"]), tuple(params["missing"])), outputs["body"])
 
 
 def run_summary(inputs, outputs, params, wildcards) -> None:
