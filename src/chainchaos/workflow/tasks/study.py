@@ -28,9 +28,11 @@ def study_group(inputs, outputs, params, wildcards) -> None:
         print(f"[study {study.name} group {group}/{study.n_groups}] {done}/{total} orbits, "
               f"{time.perf_counter() - start:.1f} s", file=sys.stderr, flush=True)
 
+    cpu = time.process_time()
     ds = run_group(study, group, progress)
     elapsed = time.perf_counter() - start
-    ds.attrs.update(wall_time_s=elapsed, seconds_per_orbit=elapsed / max(ds.sizes['orbit'], 1))
+    ds.attrs.update(wall_time_s=elapsed, cpu_time_s=time.process_time() - cpu,
+                    seconds_per_orbit=elapsed / max(ds.sizes['orbit'], 1))
     print(f"[study {study.name} group {group}] {ds.sizes['orbit']} orbits in {elapsed:.1f} s; "
           f"invalid: {int((ds['valid'] == 0).sum())}", file=sys.stderr)
     write_netcdf(ds, outputs["group"])
