@@ -535,7 +535,7 @@ def keep_study_targets(name):
     # a group kept already is done: asking for it again would rerun its job when a key that does
     # not change its numbers (figures, laws, ...) changed
     return [
-        kept_group_file(name, g)
+        result("studies", name, "kept", f"{g:04d}.txt")
         for g in range(study_of(name).n_groups)
         if study_group_file(name, g) != kept_group_file(name, g)
     ]

@@ -139,11 +139,15 @@ rule plot_study_comparison:
 
 
 rule keep_study_group:
-    """A finished group of a study, kept in the repository under data/studies/ (commit it)."""
+    """A finished group of a study, copied to the study's kept files (config kept_studies; commit
+    it). The kept file is written beside the declared output, a marker in results/: no rule has
+    a kept file as its output, so no run ever remakes one."""
     input:
         group=result("studies", "{study}", "groups", "{group}.nc"),
     output:
-        group=str(Path(config["kept_studies"], "{study}", "groups", "{group}.nc")),
+        done=result("studies", "{study}", "kept", "{group}.txt"),
+    params:
+        kept=lambda wildcards: kept_group_file(wildcards.study, int(wildcards.group)),
     priority: 10  # kept as soon as computed: a stopped run loses no finished group
     log:
         log_file("keep_study_group", "{study}-{group}"),

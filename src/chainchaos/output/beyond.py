@@ -13,7 +13,7 @@ import xarray as xr
 
 #: How a law's series reads in the table.
 SYMBOLS = {"second_moment": r"$\langle\log_{10} m_2\rangle$", "participation": r"$\langle\log_{10} P\rangle$",
-           "mlce": r"$\langle\log_{10}\Lambda\rangle$"}
+           "mlce": r"$\langle\log_{10}\Lambda\rangle$", "abs_mlce": r"$\langle\log_{10}|\Lambda|\rangle$"}
 
 
 _TEX_SPECIAL = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "#": r"\#", "_": r"\_", "$": r"\$",

@@ -35,6 +35,16 @@ from chainchaos.studies.study.statistics import (
 )
 
 
+#: The series a law may fit: a study's observable, or |Lambda| (a linear chain's finite-time mLCE
+#: ln|v(t)| / t may be negative: its deviation vector does not grow, and |Lambda| t stays bounded).
+LAW_SERIES = {"participation": "P", "second_moment": "m2", "mlce": "Lambda", "abs_mlce": "|Lambda|"}
+
+
+def law_series(merged: xr.Dataset, name: str) -> xr.DataArray:
+    """The series ``name`` of :data:`LAW_SERIES` from a merged study."""
+    return abs(merged["mlce"]) if name == "abs_mlce" else merged[name]
+
+
 def log_grid(t: np.ndarray, settings) -> np.ndarray:
     """Which samples ``t`` lie on the log-spaced grid of ``settings`` (``sample_steps``)."""
     steps = np.rint(np.asarray(t) / settings.dt).astype(np.int64)
@@ -116,7 +126,8 @@ def laws(merged: xr.Dataset, spec: dict, settings) -> xr.Dataset:
     for m in range(M):
         for e in range(E):
             for k, fit in enumerate(fits):
-                series = merged[fit["series"]].isel(model=m, energy=e, lane=0).where(valid.isel(model=m, energy=e))
+                series = law_series(merged, fit["series"]).isel(model=m, energy=e, lane=0).where(
+                    valid.isel(model=m, energy=e))
                 found = fit_law(t, series.values[:, grid], **keys)
                 for key in FIELDS:
                     out[key][m, e, k] = found[key]
@@ -129,7 +140,7 @@ def laws(merged: xr.Dataset, spec: dict, settings) -> xr.Dataset:
     data["series"] = ("law", np.array([f["series"] for f in fits], dtype=object),
                       {"long_name": "the series whose realization mean of log10 the law is about"})
     ds = xr.Dataset(data, coords={"model": merged["model"], "energy": merged["energy"],
-                                  "law": ("law", np.array([f"{LOG_SERIES[f['series']]}" for f in fits], dtype=object),
+                                  "law": ("law", np.array([LAW_SERIES[f["series"]] for f in fits], dtype=object),
                                           {"long_name": "the law, by the series it fits"})})
     ds.attrs.update(fit_rule=__doc__.split("\n\n", 2)[2].split("\n\nSums")[0].replace("\n", " "),
                     **{f"fit_{k}": v for k, v in keys.items()})

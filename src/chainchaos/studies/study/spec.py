@@ -290,6 +290,12 @@ class Study:
                     raise ParameterError("observable", name, f"one of {allowed}")
 
 
+        def laws():
+            for fit in self.spec["laws"]["fits"]:
+                needed = "mlce" if fit["series"] == "abs_mlce" else fit["series"]
+                if needed not in self.observables:
+                    raise ParameterError("series", fit["series"], f"a series of the observables {self.observables}")
+
         def lattice():
             if chain_file and known_chain:
                 self.file_chain  # noqa: B018 (reads and checks the file)
@@ -298,6 +304,7 @@ class Study:
 
         check("lattice.model", models)
         check("observables", observables)
+        check("laws.fits", laws)
         check("lattice.N", lattice)
         check("integration", lambda: self.settings)
         if not errors and known_chain:

@@ -39,13 +39,19 @@ def study_group(inputs, outputs, params, wildcards) -> None:
 
 
 def keep_study_group(inputs, outputs, params, wildcards) -> None:
-    """Copy a finished group into the repository's kept files, byte for byte (its key is in it)."""
+    """Copy a finished group to the study's kept files, byte for byte (its key is in it), then
+    write the marker that says so."""
     import shutil
 
-    from chainchaos.output.io import atomic_output
+    from chainchaos.output.io import atomic_output, write_text
+    from chainchaos.output.kept import DIGEST_ATTR
 
-    with atomic_output(outputs["group"]) as tmp:
+    with atomic_output(params["kept"]) as tmp:
         shutil.copyfile(inputs["group"], tmp)
+    with xr.open_dataset(params["kept"]) as ds:
+        digest = ds.attrs[DIGEST_ATTR]
+    write_text(f"{params['kept']} {digest}\n", outputs["done"])
+    print(f"kept {params['kept']} (settings digest {digest[:12]})", file=sys.stderr)
 
 
 def study_scene(inputs, outputs, params, wildcards) -> None:
