@@ -28,12 +28,10 @@ import xarray as xr
 from chainchaos.engine import exactmath
 from chainchaos.errors import require
 from chainchaos.studies.study.statistics import (
-    LOG_SERIES,
     log10,
     ordered_mean,
     running_slope,
 )
-
 
 #: The series a law may fit: a study's observable, or |Lambda| (a linear chain's finite-time mLCE
 #: ln|v(t)| / t may be negative: its deviation vector does not grow, and |Lambda| t stays bounded).
