@@ -112,7 +112,55 @@ def pipeline(argv: list[str]) -> dict:
             "rows": rows}
 
 
-BENCHMARKS = {"batch_throughput": batch_throughput, "pipeline": pipeline}
+def kept_study(argv: list[str]) -> dict:
+    """What a kept study cost (``snakemake keep_study``): per group its wall and CPU seconds (the
+    CPU from the group's Snakemake benchmark file when it is still in results/, else from the
+    group file) and the CPU time per orbit, lattice site and step. Read from the files: nothing
+    is run."""
+    import csv
+
+    import xarray as xr
+
+    from chainchaos.studies.study.spec import kept_group_path, load_study
+
+    ap = argparse.ArgumentParser(prog="record.py kept_study")
+    ap.add_argument("study")
+    ap.add_argument("--benchmarks", default=str(ROOT / "results" / "benchmarks" / "study_group"))
+    a = ap.parse_args(argv)
+    study = load_study(a.study)
+    steps = study.settings.t_final / study.settings.dt
+    rows, machines = [], set()
+    for g in range(study.n_groups):
+        path = kept_group_path(study.name, g)
+        with xr.open_dataset(path) as ds:
+            attrs, orbits = dict(ds.attrs), ds.sizes["orbit"]
+        machines.add(f"{attrs.get('cpu_model', '?')} ({attrs.get('numba_target_cpu', '?')}), {attrs.get('git_commit', '?')[:7]}")
+        tsv = Path(a.benchmarks, f"{study.name}-{g:04d}.tsv")
+        cpu = float(attrs["cpu_time_s"]) if "cpu_time_s" in attrs else None
+        if tsv.exists():
+            with open(tsv, newline="") as fh:
+                cpu = float(list(csv.DictReader(fh, delimiter="\t"))[-1]["cpu_time"])
+        rows.append({"group": g, "orbits": orbits, "wall_seconds": round(float(attrs["wall_time_s"]), 1),
+                     "cpu_seconds": None if cpu is None else round(cpu, 1),
+                     "ns_per_orbit_site_step": None if cpu is None else round(cpu / (orbits * study.N * steps) * 1e9, 3)})
+    known = [r for r in rows if r["cpu_seconds"] is not None]
+    rows.append({"group": "total", "orbits": sum(r["orbits"] for r in rows),
+                 "wall_seconds": round(sum(r["wall_seconds"] for r in rows), 1),
+                 "cpu_seconds": round(sum(r["cpu_seconds"] for r in known), 1) if known else None,
+                 "ns_per_orbit_site_step": None})
+    spec = study.spec
+    return {"label": study.name, "title": f"Kept study {study.name}: {study.title}",
+            "parameters": {"models": study.models, "N": study.N, "realizations": study.realizations,
+                           "integrator": spec["integration"]["integrator"], "dt": spec["integration"]["dt"],
+                           "t_final": spec["integration"]["t_final"], "observables": study.observables,
+                           "machines_and_commits": sorted(machines)},
+            "columns": [{"key": "group", "label": "group"}, {"key": "orbits", "label": "orbits"},
+                        {"key": "wall_seconds", "label": "wall s"}, {"key": "cpu_seconds", "label": "CPU s"},
+                        {"key": "ns_per_orbit_site_step", "label": "CPU ns per orbit, site and step (with the tangent map)"}],
+            "rows": rows}
+
+
+BENCHMARKS = {"batch_throughput": batch_throughput, "pipeline": pipeline, "kept_study": kept_study}
 
 
 def record(name: str, argv: list[str], note: str = "") -> Path:

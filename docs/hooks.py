@@ -141,14 +141,16 @@ def render_record(record: dict, level: str = "###") -> str:
 
 
 def performance(folder: Path = RESULTS) -> str:
-    """The newest record of each benchmark, then the earlier records, each as a table."""
+    """The newest record of each measurement (a benchmark and its title: the quick and the paper
+    scale are two), then the earlier records, each as a table."""
     found = records(folder)
     if not found:
         return "No benchmark record yet: run `python benchmarks/record.py --help`.\n"
     current, earlier, seen = [], [], set()
     for record in found:
-        (earlier if record["benchmark"] in seen else current).append(record)
-        seen.add(record["benchmark"])
+        key = (record["benchmark"], record.get("title"))
+        (earlier if key in seen else current).append(record)
+        seen.add(key)
     out = ["## Current measurements", ""] + [render_record(r) for r in current]
     if earlier:
         out += ["## Earlier records", ""] + [render_record(r) for r in earlier]
