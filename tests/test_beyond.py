@@ -31,6 +31,7 @@ def test_a_published_exponent_inside_or_outside_the_interval_is_said_so():
 
 def test_tex_text_escapes_in_one_pass():
     assert tex_text(r"a_b & {c} 5% ^ \ ") == r"a\_b \& \{c\} 5\% \^{} \textbackslash{} "
+    assert tex_text("|Lambda| t") == r"\textbar{}Lambda\textbar{} t"
 
 
 def test_an_optional_part_without_files_switches_its_section_off(tmp_path):

@@ -17,12 +17,13 @@ SYMBOLS = {"second_moment": r"$\langle\log_{10} m_2\rangle$", "participation": r
 
 
 _TEX_SPECIAL = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "#": r"\#", "_": r"\_", "$": r"\$",
-                "^": r"\^{}", "~": r"\~{}", "{": r"\{", "}": r"\}"}
+                "^": r"\^{}", "~": r"\~{}", "{": r"\{", "}": r"\}", "|": r"\textbar{}", "<": r"\textless{}",
+                ">": r"\textgreater{}"}
 
 
 def tex_text(text: str) -> str:
     """Plain text set in LaTeX: its special characters escaped (in one pass)."""
-    return re.sub(r"[\\&%#_$^~{}]", lambda m: _TEX_SPECIAL[m.group(0)], text)
+    return re.sub(r"[\\&%#_$^~{}|<>]", lambda m: _TEX_SPECIAL[m.group(0)], text)
 
 
 def _number(x: float) -> str:
@@ -80,11 +81,15 @@ def body(named: dict[str, xr.Dataset], figures: dict[str, list[str]], missing: t
     ``figures`` (study -> figure names, files ``beyond/<study>_<figure>.pdf``), and the studies
     of the configuration left out because they are not kept (``missing``)."""
     sources = dict.fromkeys(r["reference"] for name, ds in named.items() for r in law_rows(name, ds))
-    rules = "; ".join(
-        f"\\texttt{{{tex_text(name)}}}: from $t = {ds.attrs['fit_t_min']:g}$, band "
-        f"${ds.attrs['fit_band']:g}$ around the median running slope (over {ds.attrs['fit_window_decades']:g} "
-        f"decade) of the last {ds.attrs['fit_min_decades']:g} decade, {ds.attrs['fit_bootstrap']} resamples"
-        for name, ds in named.items())
+    by_rule: dict[str, list[str]] = {}
+    for name, ds in named.items():
+        rule = (f"from $t = {ds.attrs['fit_t_min']:g}$, band ${ds.attrs['fit_band']:g}$ around the median running "
+                f"slope (over {ds.attrs['fit_window_decades']:g} decade) of the last {ds.attrs['fit_min_decades']:g} "
+                f"decade, {ds.attrs['fit_bootstrap']} resamples")
+        by_rule.setdefault(rule, []).append(name)
+    rules = "; ".join(rule if len(by_rule) == 1 else
+                      ", ".join(f"\\texttt{{{tex_text(n)}}}" for n in names) + ": " + rule
+                      for rule, names in by_rule.items())
     out = [r"\begin{table}[htbp]",
            r"\caption{\label{tab:laws}Exponents of the ensemble means against $\log_{10} t$ (valid realizations, "
            r"$R$ the fewest in the window), with 95\,\% bootstrap intervals over realizations and the window "
