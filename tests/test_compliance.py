@@ -27,6 +27,8 @@ PRODUCT_KINDS = {
     "FPUT scene": "scenes/fput_*.nc",
     "energy-scan group": "studies/energy_scan/groups/*.nc",
     "disorder group": "studies/disorder/groups/*.nc",
+    "kept study statistics": "studies/*/statistics.nc",  # the studies of the manuscript's Beyond the paper
+    "kept study laws": "studies/*/laws.nc",
     "energy scan": "scan/energy_scan.nc",
     "disorder statistics": "scan/disorder_statistics.nc",
     "search seed job": "search/seeds/*.nc",

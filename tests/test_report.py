@@ -89,8 +89,13 @@ def test_report_of_the_quick_run_holds_every_figure_with_caption_and_labels(quic
     assert "Unknown command" not in done.stderr  # LaTeX that docutils' math cannot render
     html = out.read_text()
     assert "system-message" not in html  # a docutils warning printed into a caption
-    results = {Path(path).name: entry for path, entry in _embedded(html, "results").items()}
+    embedded = _embedded(html, "results")
+    # the figures of the studies shown in the manuscript's Beyond the paper (kept studies), apart
+    studies = {path: entry for path, entry in embedded.items() if "/studies/" in path}
+    results = {Path(path).name: entry for path, entry in embedded.items() if path not in studies}
     categories = _embedded(html, "categories")
+    for path, entry in studies.items():
+        assert entry["caption"].strip() and entry["labels"].get("study") in path, path
 
     for p in panels.PANELS:
         entry = results[f"fig{p}.png"]
