@@ -141,11 +141,12 @@ rule search_full:
 # --config rejudge='[id, ...]'): only those statements' scenes are integrated again
 # (chainchaos.studies.search.rejudge), in resumable jobs whose files are kept beside the archive
 # (data/search/rejudge/, committed as they finish); the result replaces search.archive, after
-# which that directory can go.
+# which that directory can go. In a fresh checkout run it with --rerun-triggers mtime: a kept
+# stage file is not older than its script in any sense that matters, whatever the checkout order.
 rule search_rejudge_filter:
-    """Stage 1 again on the re-judged statements' scenes, for a group of the kept candidates."""
-    input:
-        kernels=result("kernels_compiled.txt"),
+    """Stage 1 again on the re-judged statements' scenes, for a group of the kept candidates.
+    No kernels input (unlike the search's stages): in a fresh clone compile_kernels runs, and a
+    job downstream of it would be redone although its kept file exists."""
     output:
         result=rejudge_file("filter", "{group}.nc"),
     params:
@@ -163,8 +164,7 @@ rule search_rejudge_filter:
 rule search_rejudge_score:
     """Stage 2 again for the survivor of a given rank of the re-judged filter."""
     input:
-        filters=rejudge_filter_files(),
-        kernels=result("kernels_compiled.txt"),
+        filters=[ancient(f) for f in rejudge_filter_files()],  # kept files: their checkout time says nothing
     output:
         result=rejudge_file("score", "{rank}.nc"),
     params:
