@@ -9,7 +9,14 @@ import pytest
 
 from chainchaos import random_chain
 from chainchaos.errors import ParameterError
-from chainchaos.observe.reductions import final_average, is_chaotic, loglog_slope, sustained_onset, time_average
+from chainchaos.observe.reductions import (
+    final_average,
+    is_chaotic,
+    log_time_median,
+    loglog_slope,
+    sustained_onset,
+    time_average,
+)
 from chainchaos.paper import statements, verdicts
 from chainchaos.paper.criteria import Criteria
 from chainchaos.run.orbits import Orbit, OrbitSettings, integrate, lane_factor, sample_schedule
@@ -168,6 +175,33 @@ def test_statements_are_decided_per_orbit_and_an_early_break_counts():
     cut_ok = {k: (v[: short.size] if isinstance(v, np.ndarray) else v) for k, v in localized.items()}
     assert np.isnan(verdicts.outcome(loc, short, cut_ok, c)[1])  # not yet decided
     assert np.isnan(verdicts.outcome(loc, t, localized, c, valid=False)[1])
+
+
+def test_the_log_time_median_counts_a_densely_sampled_decade_once():
+    # four decades, 10 samples each, and 30 more packed into the last one (a run's final_samples)
+    t = np.concatenate([np.logspace(1, 5, 41), np.linspace(1.1e4, 9.9e4, 30)])
+    t.sort()
+    late = (t > 1e4).astype(float)
+    assert np.median(late[t >= 10]) == 1.0  # by sample count the last decade wins
+    assert log_time_median(t, late, 10.0) == 0.0  # over log time it is one decade of four
+    assert log_time_median(t, np.log10(t), 10.0) == pytest.approx(3.0, abs=0.1)  # the middle of [1, 5]
+    assert np.isnan(log_time_median(t, late, 2e5))
+
+
+def test_p_below_until_reads_every_smoothed_sample_not_the_mean():
+    c = Criteria()
+    level = next(s for s in statements.STATEMENTS if s.id == "spread-level-H1.8-hertz")
+    t = np.concatenate([[0.0], np.logspace(0, 5, 201)])
+    low = synthetic_run(t, np.full(t.size, 2.0), np.log1p(t))
+    # below 3 on average over [10, 2e2], yet above 3 (smoothed) just before 2e2
+    bump = synthetic_run(t, np.where((t > 150) & (t <= 2e2), 6.0, 1.8), np.log1p(t))
+    assert time_average(t, bump["participation"], 10.0, 2e2) < 3.0
+    assert verdicts.outcome(level, t, low, c)[1] == 1.0
+    value, out = verdicts.outcome(level, t, bump, c)
+    assert out == 0.0 and value > 3.0
+    # a rise after 2e2 (the paper's onset of spreading) does not count
+    late = synthetic_run(t, np.where(t > 2e2, 20.0, 2.0), np.log1p(t))
+    assert verdicts.outcome(level, t, late, c)[1] == 1.0
 
 
 def test_search_filters_scores_and_chooses_the_best(tmp_path):

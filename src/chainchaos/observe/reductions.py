@@ -42,6 +42,26 @@ def time_average(t, y, t0: float, t1: float | None = None) -> float:
     return float(np.sum(0.5 * (yy[1:] + yy[:-1]) * np.diff(tt)) / (t1 - t0))
 
 
+def log_time_median(t, y, t0: float, t1: float | None = None) -> float:
+    """Median of y over log time on [t0, t1] (t1 defaults to the last sample): each sample
+    weighs the stretch of log10 t it stands for (from the midpoints to its neighbours, clipped to
+    the window), so a stretch sampled densely (a run's last decade) counts no more than it lasts
+    on a logarithmic time axis. The lower weighted median; NaN if no sample lies in the window."""
+    t = np.asarray(t, dtype=float)
+    y = np.asarray(y, dtype=float)
+    t1 = float(t[-1]) if t1 is None else float(t1)
+    inside = (t >= t0) & (t <= t1) & np.isfinite(y)
+    if not inside.any():
+        return float("nan")
+    x = exactmath.log10(t[inside])
+    edges = np.concatenate(([exactmath.log10(np.array([float(t0)]))[0]], 0.5 * (x[1:] + x[:-1]),
+                            [exactmath.log10(np.array([t1]))[0]]))
+    weight = np.diff(edges)
+    order = np.argsort(y[inside], kind="stable")
+    cumulative = np.cumsum(weight[order])
+    return float(y[inside][order][np.searchsorted(cumulative, 0.5 * cumulative[-1])])
+
+
 def final_average(t, y, decades: float = 1.0) -> float:
     """Time average over the last ``decades`` decades of the run, t_end 10^-decades <= t <= t_end."""
     t = np.asarray(t, dtype=float)

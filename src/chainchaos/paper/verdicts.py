@@ -31,9 +31,10 @@ from chainchaos.observe.reductions import (
     final_average,
     gali_crossing,
     is_chaotic,
+    log_time_median,
+    log_time_smooth,
     saturation_time,
     spreading_onset,
-    time_average,
     within_factor,
 )
 from chainchaos.paper import statements
@@ -78,7 +79,13 @@ def _gali_onset(t, s, st, c):
 
 
 def _p_until(t, s, st, c):
-    return time_average(t, s["participation"], c.plateau_start, min(float(st.until), float(t[-1])))
+    """The largest smoothed P from ``plateau_start`` to the statement's end time ("P < 3 up to
+    t ~ 2e2"): P smoothed as the paper plots it, from the samples up to that time only."""
+    end = min(float(st.until), float(t[-1]))
+    upto = t <= end
+    smooth = log_time_smooth(t[upto], s["participation"][upto], c.smoothing_decades)
+    window = t[upto] >= c.plateau_start
+    return float(np.max(smooth[window])) if window.any() else float("nan")
 
 
 def _saturation(t, s, st, c):
@@ -100,8 +107,10 @@ def _chaos_onset(t, s, st, c):
 
 
 def _eta_median(t, s, st, c):
-    sel = t >= c.plateau_start
-    return float(np.median(s["eta"][sel])) if sel.any() else float("nan")
+    """The median of eta over log time from ``plateau_start`` to the end ("for most of the
+    evolution", on the paper's logarithmic time axis): the run's densely sampled last decade
+    weighs one decade."""
+    return log_time_median(t, s["eta"], c.plateau_start)
 
 
 #: kind -> (measure(t, series, statement, criteria), passed(value, statement, criteria),
@@ -118,7 +127,7 @@ STATEMENT_KINDS = {
     "regular_until": (_chaotic, lambda v, st, c: v == 0.0, lambda st: st.until, "1",
                       "not chaotic over the decade before the statement's end time"),
     "participation_below_until": (_p_until, lambda v, st, c: v < st.value, lambda st: st.until, "1",
-                                  "time-averaged $P$ from $t = \\cc{crit.plateaustart}$ to the statement's end time below the paper's level"),
+                                  "smoothed $P$ below the paper's level at every sample from $t = \\cc{crit.plateaustart}$ to the statement's end time"),
     "saturation_near": (_saturation, lambda v, st, c: within_factor(v, st.value, c.tolerance.time_factor),
                         lambda st: T_PAPER, "time",
                         "smoothed $P$ stays above \\cc{crit.saturationfraction} of its final average from a "
@@ -136,7 +145,7 @@ STATEMENT_KINDS = {
                          "onset of chaos (the criterion holding to the end) within a factor "
                          "\\cc{tol.timefactor} of the paper's time"),
     "eta_near": (_eta_median, lambda v, st, c: abs(v - st.value) <= c.tolerance.eta_plateau, lambda st: T_PAPER,
-                 "1", "median $\\eta$ from $t = \\cc{crit.plateaustart}$ to the end within \\cc{tol.etaplateau} of "
+                 "1", "median over $\\log t$ of $\\eta$ from $t = \\cc{crit.plateaustart}$ to the end within \\cc{tol.etaplateau} of "
                  "the paper's level"),
 }
 
