@@ -9,12 +9,16 @@ was not re-judged must be caught."""
 import numpy as np
 import pytest
 
+from chainchaos.errors import ParameterError
+from chainchaos.output import kept as kept_files
+from chainchaos.output.io import write_netcdf
 from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
 from chainchaos.run.orbits import OrbitSettings
 from chainchaos.studies.search import rejudge
 from chainchaos.studies.search import stages as search
 from chainchaos.studies.search.selection import SelectionCriteria
+from chainchaos.workflow.tasks.search import _stage_files
 
 IDS = ["spread-level-H1.8-hertz", "eta-H4-fput"]
 SITE = 21
@@ -41,6 +45,7 @@ def _column(name):
 
 def _spoiled(ds, unscored: int, also=()):
     kept = ds.copy(deep=True)
+    kept.attrs.update(kept_files.kept_attrs({"search": "made by older judging code"}, 1))
     for name in [*IDS, *also]:
         k = _column(name)
         kept["filter_outcome"].values[:, k] = np.where(np.isfinite(kept["filter_outcome"].values[:, k]),
@@ -93,3 +98,17 @@ def test_a_kept_column_the_recomputed_orbits_contradict_stops_the_merge(full):
     kept["fraction"].values[scored[1], _column("spread-onset-H1.8-hertz")] = 0.123  # not re-judged, same scene
     with pytest.raises(rejudge.RejudgeMismatch, match="spread-onset-H1.8-hertz"):
         _rejudge(kept, selection, plan, settings, c)
+
+
+def test_a_stage_file_of_another_rejudging_is_not_read(full, tmp_path):
+    selection, plan, settings, c, ds = full
+    kept = _spoiled(ds, int(np.flatnonzero(ds["scored"].values)[0]))
+    path = tmp_path / "000.nc"
+    write_netcdf(rejudge.filter_group(kept, selection, plan, settings, c, IDS, 0, SITE), path)
+    assert _stage_files([path], kept, list(reversed(IDS)))[0]["outcome"].shape[1] == len(statements.STATEMENTS)
+    with pytest.raises(ParameterError, match=r"rejudge is \[\"eta-H4-fput\",\"spread-level-H1.8-hertz\"\] in the file"):
+        _stage_files([path], kept, IDS[:1])
+    other = kept.copy()
+    other.attrs.update(kept_files.kept_attrs({"search": "another kept search"}, 1))
+    with pytest.raises(ParameterError, match="kept_search_digest"):
+        _stage_files([path], other, IDS)

@@ -19,16 +19,25 @@ Every recomputed orbit also decides its scene's unchanged statements, which must
 file's (filter outcomes; score fractions, verdicts and median measured values): a difference
 stops the merge (:class:`RejudgeMismatch`), since then the kept file is not what this code
 computes and only a full remake (``snakemake search_full``) is sound.
+
+The stage files are kept too (the re-judging may take more than a session), so each records its
+key (``output.kept``, :func:`stage_settings`): the kept search it re-judges and the statements
+re-judged, with the search's result version. A stage file whose key is not the run's is not read.
 """
 
 import numpy as np
 import xarray as xr
 
 from chainchaos.errors import require
+from chainchaos.output import kept as kept_files
 from chainchaos.paper import statements
 from chainchaos.paper.verdicts import STATEMENT_KINDS, scene_verdicts
 from chainchaos.studies.search import stages
-from chainchaos.studies.search.stages import _outcomes, candidate_rows
+from chainchaos.studies.search.stages import (
+    SEARCH_RESULT_VERSION,
+    _outcomes,
+    candidate_rows,
+)
 from chainchaos.system.chain import random_chain
 
 #: The per-statement stage-2 columns of a score file that the merge reads.
@@ -76,6 +85,20 @@ def filter_plan(plan, ids):
     return replace(plan, candidates_per_job=plan.candidates_per_job * max(1, len(statements.statement_scenes()) // scenes))
 
 
+def stage_settings(kept: xr.Dataset, ids) -> dict:
+    """What a stage file's numbers depend on besides the code (whose result version is the
+    search's): the kept search re-judged, by its settings digest and result version, and the
+    statements re-judged."""
+    return {"kept_search_digest": str(kept.attrs[kept_files.DIGEST_ATTR]),
+            "kept_search_result_version": int(kept.attrs[kept_files.VERSION_ATTR]),
+            "rejudge": sorted(ids)}
+
+
+def stage_key(kept: xr.Dataset, ids) -> dict:
+    """The global attributes that key a stage file (``output.kept.kept_attrs``)."""
+    return kept_files.kept_attrs(stage_settings(kept, ids), SEARCH_RESULT_VERSION)
+
+
 def kept_rows(kept: xr.Dataset) -> list[dict]:
     """The candidates of the kept search, as ``stages.candidate_rows``."""
     return candidate_rows(kept)
@@ -101,7 +124,7 @@ def filter_group(kept: xr.Dataset, selection, plan, settings, criteria, ids, gro
         "units": "1", "long_name": "1 satisfied, 0 already violated, NaN not decided by the short run (or not rerun)"})},
         coords={"candidate": ("candidate", np.arange(first, first + len(rows))), "statement": _ids()})
     ds.attrs.update(title="Re-judged search, stage 1: the changed statements' scenes of a job's candidates",
-                    stage="rejudge_filter", scenes=" ".join(scenes), group=int(group))
+                    stage="rejudge_filter", scenes=" ".join(scenes), group=int(group), **stage_key(kept, ids))
     return ds
 
 
@@ -147,7 +170,7 @@ def score_candidate(kept: xr.Dataset, selection, plan, settings, criteria, ids, 
     rows = kept_rows(kept)
     if not int(kept["scored"].values[candidate]):
         ds = stages.score_candidate(selection, plan, settings, criteria, rows, candidate, site, progress)
-        ds.attrs["rejudge"] = "scored in full (not a survivor of the kept search)"
+        ds.attrs.update(rejudge="scored in full (not a survivor of the kept search)", **stage_key(kept, ids))
         return ds
     scenes = scenes_of(ids)
     chain = random_chain(rows[candidate]["seed"], selection.alpha, selection.N)
@@ -178,7 +201,7 @@ def score_candidate(kept: xr.Dataset, selection, plan, settings, criteria, ids, 
     data["energy_error_max"] = ((), float(kept["energy_error_max"].values[candidate]))
     ds = xr.Dataset(data, coords={"statement": _ids(), "lane": lanes})
     ds.attrs.update(title=f"Re-judged search, stage 2: candidate {candidate}", stage="rejudge_score",
-                    candidate=int(candidate), rejudge=f"scenes {' '.join(scenes)} recomputed")
+                    candidate=int(candidate), rejudge=f"scenes {' '.join(scenes)} recomputed", **stage_key(kept, ids))
     return ds
 
 

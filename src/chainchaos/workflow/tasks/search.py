@@ -95,7 +95,7 @@ def search_score(inputs, outputs, params, wildcards) -> None:
 
 def search_merge(inputs, outputs, params, wildcards) -> None:
     """The search's candidates, scores and choice as one file."""
-    selection, plan, settings, criteria, site = _search_parts(params)
+    selection, plan, settings, criteria, _ = _search_parts(params)
     found = xr.load_dataset(inputs["candidates"])
     filters = [xr.load_dataset(p) for p in _as_list(inputs.get("filters"))]
     scores = [xr.load_dataset(p) for p in _as_list(inputs["scores"])]
@@ -136,6 +136,19 @@ def _kept_search(params: dict) -> xr.Dataset:
     return xr.load_dataset(path)
 
 
+def _stage_files(paths, kept_search: xr.Dataset, ids) -> list[xr.Dataset]:
+    """The re-judging's kept stage files, each made from ``kept_search`` for the statements ``ids``
+    by code of this result version (``rejudge.stage_settings``)."""
+    from chainchaos.studies.search import rejudge
+
+    remake = "delete it and run search_rejudge again"
+    settings = rejudge.stage_settings(kept_search, ids)
+    for path in _as_list(paths):
+        why = kept.why_not_usable(path, settings, SEARCH_RESULT_VERSION, remake)
+        require(why is None, "re-judging stage file", why, f"one made for this re-judging ({remake})")
+    return [xr.load_dataset(p) for p in _as_list(paths)]
+
+
 def search_rejudge_filter(inputs, outputs, params, wildcards) -> None:
     """Stage 1 again, on the scenes of the re-judged statements, for one group of candidates."""
     from chainchaos.studies.search import rejudge
@@ -154,7 +167,7 @@ def search_rejudge_score(inputs, outputs, params, wildcards) -> None:
     selection, plan, settings, criteria, site = _search_parts(params)
     ids = rejudge.check_ids(params["rejudge"])
     kept_search = _kept_search(params)
-    filtered = rejudge.rejudged_filter(kept_search, [xr.load_dataset(p) for p in _as_list(inputs["filters"])], ids, plan)
+    filtered = rejudge.rejudged_filter(kept_search, _stage_files(inputs["filters"], kept_search, ids), ids, plan)
     rank = int(wildcards["rank"])
     candidate = rejudge.survivor(kept_search, filtered, plan, rank)
     print(f"survivor {rank}: candidate {candidate}", file=sys.stderr)
@@ -171,9 +184,9 @@ def search_rejudge(inputs, outputs, params, wildcards) -> None:
     selection, plan, settings, criteria, _ = _search_parts(params)
     ids = rejudge.check_ids(params["rejudge"])
     old = _kept_search(params)
-    filtered = rejudge.rejudged_filter(old, [xr.load_dataset(p) for p in _as_list(inputs["filters"])], ids, plan)
+    filtered = rejudge.rejudged_filter(old, _stage_files(inputs["filters"], old, ids), ids, plan)
     merged = rejudge.rejudged_search(old, selection, plan, settings, criteria, filtered,
-                                     [xr.load_dataset(p) for p in _as_list(inputs["scores"])])
+                                     _stage_files(inputs["scores"], old, ids))
     stage_files = _as_list(inputs["filters"]) + _as_list(inputs["scores"])
     machines = archive.stage_machines(stage_files)
     costs = archive.job_costs(Path(params["benchmarks"]), stages=archive.REJUDGE_STAGES)
