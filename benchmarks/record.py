@@ -160,7 +160,25 @@ def kept_study(argv: list[str]) -> dict:
             "rows": rows}
 
 
-BENCHMARKS = {"batch_throughput": batch_throughput, "pipeline": pipeline, "kept_study": kept_study}
+def kg_kernel(argv: list[str]) -> dict:
+    """benchmarks/kg_kernel.py, one of its parts (``--parts``, one per record): ns per site and
+    step against the C loop, peak memory at N = 4096, or the spreading run's cost against N."""
+    sys.path.insert(0, str(HERE))
+    import kg_kernel as bench
+
+    measured = bench.main(argv)
+    if len(measured) != 1:
+        raise SystemExit("record.py kg_kernel: name one part, e.g. -- --parts per_site")
+    (part, rows), = measured.items()
+    titles = {"per_site": "Klein-Gordon kernels: ns per site and step against a C loop",
+              "memory": "Klein-Gordon: peak memory of 64 realizations",
+              "spreading": "Klein-Gordon spreading run: cost against N, whole chain and growing window"}
+    return {"label": part, "title": titles[part], "parameters": {"argv": argv},
+            "columns": [{"key": k, "label": k} for k in rows[0]], "rows": rows}
+
+
+BENCHMARKS = {"batch_throughput": batch_throughput, "pipeline": pipeline, "kept_study": kept_study,
+              "kg_kernel": kg_kernel}
 
 
 def record(name: str, argv: list[str], note: str = "") -> Path:

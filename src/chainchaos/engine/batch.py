@@ -490,6 +490,11 @@ class Batch:
         self.bad[newly] = self.steps + bad[newly]
         self.steps += int(n_steps)
 
+    def new_interval(self) -> None:
+        """Start counting gaps afresh (``gap_steps``, ``max_gaps``), as at every sample."""
+        self.gap_steps[:] = 0
+        self.max_gaps[:] = 0
+
     def stop_vectors(self, lanes) -> None:
         """Stop evolving the extra deviation vectors of ``lanes`` (they stay as they are): the work
         is saved in every SIMD block all of whose lanes are stopped. Only GALI's vectors may stop;

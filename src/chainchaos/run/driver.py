@@ -96,7 +96,7 @@ def _alignment(engine, samples: Samples, i: int, lanes) -> None:
 
 
 def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq0=None, xp0=None,
-           gali_stop: float | None = None) -> Samples:
+           gali_stop: float | None = None, window=None) -> Samples:
     """Integrate the lanes of ``problem`` from q0, p0, dq0, dp0 ((N, B) each) on the engine of
     ``kind`` (``Problem.engine``) and record them at the step indices ``steps`` (increasing, from
     0); call every monitor after every sample. ``xq0, xp0`` (K, N, B) are the problem's extra
@@ -105,8 +105,16 @@ def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq
     ``gali_stop``: a lane whose ln GALI_k falls below this value at a sample is decided (chaotic by
     GALI_k): its GALI vectors stop there (``Batch.stop_vectors``; the work is saved once a whole
     SIMD block has stopped) and its later ln GALI_k and SALI are NaN. The orbit, its mLCE vector
-    and every lane's record up to its crossing are the same as without the stop."""
-    engine = problem.engine(q0, p0, dq0, dp0, kind, xq0, xp0)
+    and every lane's record up to its crossing are the same as without the stop.
+
+    ``window``: a ``run.window.Window``, to integrate only the sites the packets have reached
+    (``run.window.WindowedEngine``; the deviation vectors start inside the first window)."""
+    if window is None:
+        engine = problem.engine(q0, p0, dq0, dp0, kind, xq0, xp0)
+    else:
+        from chainchaos.run.window import WindowedEngine
+
+        engine = WindowedEngine(problem, window, q0, p0, dq0, dp0, kind)
     N, B, S = problem.N, problem.lanes, len(steps)
     Q, P, DQ, DP = (np.empty((B, S, N)) for _ in range(4))
     samples = Samples(problem, np.asarray(steps), Q, P, DQ, DP, np.zeros((B, S)),
@@ -134,8 +142,7 @@ def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq
     for monitor in monitors:
         monitor(samples, 0)
     for i in range(1, S):
-        engine.gap_steps[:] = 0
-        engine.max_gaps[:] = 0
+        engine.new_interval()
         engine.advance(int(steps[i] - steps[i - 1]))
         Q[:, i], P[:, i], DQ[:, i], DP[:, i] = engine.q.T, engine.p.T, engine.dq.T, engine.dp.T
         samples.log_growth[:, i] = engine.log_growth

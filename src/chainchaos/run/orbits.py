@@ -118,8 +118,8 @@ def lane_factor(lane: int, settings: OrbitSettings) -> float:
     return 1.0 + settings.perturbation * xi
 
 
-def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None,
-              gali_stop: float | None = None, series: dict | None = None) -> tuple[np.ndarray, list[dict]]:
+def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None, gali_stop: float | None = None,
+              series: dict | None = None, window=None) -> tuple[np.ndarray, list[dict]]:
     """Integrate every orbit with its tangent map (and gap counting where bonds open) and sample it.
 
     Returns the sample times and, per orbit in input order, a dict with the :data:`SERIES` arrays
@@ -128,7 +128,10 @@ def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None,
     energy error stayed <= ``max_energy_error``). ``gali_stop``: an orbit's GALI vectors stop once
     its ln GALI_k is below it (``driver.sample``); results do not depend on which orbits share a
     batch. ``series``: the per-orbit series to record instead of :data:`SERIES` (name -> fill, as
-    there; ``energy_error`` is always recorded, since validity reads it)."""
+    there; ``energy_error`` is always recorded, since validity reads it). ``window``: integrate
+    only where the packets are (``run.window.Window``; None: the whole chain)."""
+    require(window is None or not (settings.alignment or settings.spectrum), "window", window,
+            "None with GALI or Lyapunov spectrum vectors (only the mLCE vector runs on a window)")
     wanted = SERIES if series is None else {**series, "energy_error": SERIES["energy_error"]}
     results = [None] * len(orbits)
     times = sample_schedule(settings) * settings.dt
@@ -136,7 +139,8 @@ def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None,
         index = [i for i, o in enumerate(orbits) if o.model == name]
         for start in range(0, len(index), int(settings.batch_size)):
             chunk = index[start:start + int(settings.batch_size)]
-            for i, r in zip(chunk, _integrate_model(name, [orbits[i] for i in chunk], settings, gali_stop, wanted)):
+            for i, r in zip(chunk, _integrate_model(name, [orbits[i] for i in chunk], settings, gali_stop, wanted,
+                                                        window)):
                 results[i] = r
             if progress is not None:
                 progress(sum(r is not None for r in results), len(orbits))
@@ -145,7 +149,8 @@ def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None,
     return times, results
 
 
-def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, gali_stop, wanted) -> list[dict]:
+def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, gali_stop, wanted,
+                     window) -> list[dict]:
     model = get_model(name)
     problem = settings.problem(model, [o.chain for o in orbits], tangent=True, track_gaps=model.has_gaps,
                                spectrum=settings.spectrum, alignment=settings.alignment)
@@ -165,7 +170,7 @@ def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, ga
         XQ0[:, :, j], XP0[:, :, j] = settings.extra_deviations(problem, o.lane)
     samples = driver.sample(problem, Q0, P0, DQ0, DP0, sample_schedule(settings), kind=settings.engine,
                             xq0=XQ0 if K else None, xp0=XP0 if K else None,
-                            gali_stop=gali_stop if settings.alignment else None)
+                            gali_stop=gali_stop if settings.alignment else None, window=window)
 
     out = []
     for j in range(B):

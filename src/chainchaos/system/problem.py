@@ -45,6 +45,7 @@ class Problem:
     check_every: int = 1000
     spectrum: int = 1  # Lyapunov exponents: the mLCE vector and spectrum - 1 vectors kept orthonormal to it
     gali: int = 1  # k of GALI_k: the mLCE vector and gali - 1 more vectors, each only normalised
+    sites: tuple | None = None  # (lo, hi): only beads lo..hi-1 move, the others held at rest (restricted)
 
     def __post_init__(self):
         object.__setattr__(self, "model", get_model(self.model))
@@ -56,6 +57,10 @@ class Problem:
                 f"{self.model.lattice!r} lattices for model {self.model.name!r}")
         Ns = sorted({c.N for c in self.chains})
         require(len(Ns) == 1, "N", Ns, "one N per problem")
+        if self.sites is not None:
+            lo, hi = (int(i) for i in self.sites)
+            require(0 <= lo < hi <= Ns[0], "sites", self.sites, f"(lo, hi) with 0 <= lo < hi <= N = {Ns[0]}")
+            object.__setattr__(self, "sites", (lo, hi))
         check_step(self.dt)
         require(int(self.check_every) >= 1, "check_every", self.check_every, "an integer >= 1")
         require(not self.track_gaps or self.model.has_gaps, "track_gaps", self.track_gaps,
@@ -73,7 +78,17 @@ class Problem:
 
     @property
     def N(self) -> int:
-        return self.chains[0].N
+        """Beads that move: the chains' N, or the width of ``sites``."""
+        return self.chains[0].N if self.sites is None else self.sites[1] - self.sites[0]
+
+    def restricted(self, lo: int, hi: int) -> "Problem":
+        """This problem on beads lo..hi-1 of its chains, the others held at rest: its first and
+        last bonds join a moving bead to one at zero displacement (the window of
+        ``chainchaos.run.window``)."""
+        from dataclasses import replace
+
+        require(self.sites is None, "sites", self.sites, "None: a restricted problem is not restricted again")
+        return replace(self, sites=(lo, hi))
 
     @property
     def lanes(self) -> int:
@@ -88,11 +103,17 @@ class Problem:
     def scheme(self):
         return get_scheme(self.integrator)
 
+    @property
+    def _span(self) -> slice:
+        return slice(None) if self.sites is None else slice(*self.sites)
+
     @cached_property
     def lane_parameters(self) -> tuple[np.ndarray, np.ndarray]:
         """inv_mass (N, B) and the model's bond parameters (MAX_BOND_PARAMETERS, N+1, B), C-contiguous."""
-        inv_mass = np.ascontiguousarray(np.stack([1.0 / c.mass for c in self.chains], axis=1))
-        bonds = np.ascontiguousarray(np.stack([self.model.bond_parameters(c) for c in self.chains], axis=2))
+        lo, hi = self.sites or (0, self.chains[0].N)
+        inv_mass = np.ascontiguousarray(np.stack([1.0 / c.mass[lo:hi] for c in self.chains], axis=1))
+        bonds = np.ascontiguousarray(np.stack([self.model.bond_parameters(c)[:, lo:hi + 1] for c in self.chains],
+                                              axis=2))
         return inv_mass, bonds
 
     @cached_property
@@ -101,7 +122,8 @@ class Problem:
         ``lane_parameters``; None for a model without a site law."""
         if not self.model.has_site_law:
             return None
-        return np.ascontiguousarray(np.stack([self.model.site_parameters(c) for c in self.chains], axis=2))
+        return np.ascontiguousarray(np.stack([self.model.site_parameters(c)[:, self._span] for c in self.chains],
+                                             axis=2))
 
     def lane_sites(self, j: int) -> np.ndarray | None:
         """Lane j's site parameters (MAX_SITE_PARAMETERS, N), contiguous (None without a site law):
@@ -117,6 +139,8 @@ class Problem:
 
     def energies(self, Q: np.ndarray, P: np.ndarray) -> np.ndarray:
         """H of every lane's state, Q and P lane-first (B, N) (docs/conventions.md#hamiltonian)."""
+        require(self.sites is None, "sites", self.sites, "None (the energy of a restricted problem's chain "
+                "is that of its full states)")
         return np.array([float(total_energy(self.model, c, Q[j], P[j])) for j, c in enumerate(self.chains)])
 
     def engine(self, q, p, dq=None, dp=None, kind: str = "auto", xq=None, xp=None):

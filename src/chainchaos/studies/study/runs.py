@@ -81,7 +81,7 @@ def run_group(study, group: int, progress=None) -> xr.Dataset:
     orbits = study.orbits(items)
     settings = study.settings
     gali_stop = math.log(settings.gali_threshold) if settings.alignment else None
-    times, runs = integrate(orbits, settings, progress, gali_stop=gali_stop, series=study.series)
+    times, runs = integrate(orbits, settings, progress, gali_stop=gali_stop, series=study.series, window=study.window)
     index = {"model": [o.model for o in orbits],
              "energy_index": [e for _, e, _ in items for _ in range(study.lanes)],
              "realization": [r for _, _, r in items for _ in range(study.lanes)],
@@ -121,7 +121,7 @@ def study_attrs(study) -> dict:
                                                 f"beads {exc.beads()[0]}..{exc.beads()[1]}")),
                  integrator=settings.integrator, dt=float(settings.dt), t_final=float(settings.t_final),
                  lanes=int(study.lanes), perturbation=float(settings.perturbation),
-                 time_units="1/omega_max of the homogeneous linear chain")
+                 time_units=time_comment(study))
     return attrs
 
 

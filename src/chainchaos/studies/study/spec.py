@@ -22,6 +22,7 @@ import numpy as np
 from chainchaos.errors import ParameterError, StudyError
 from chainchaos.observe.registry import study_observables
 from chainchaos.run.orbits import ALIGNMENT_SERIES, Orbit
+from chainchaos.run.window import Window
 from chainchaos.studies.scan.runs import ScanSettings, energy_grid, select_excitation
 from chainchaos.system.chain import kg_chain, random_chain
 from chainchaos.system.initial import Excitation
@@ -53,13 +54,17 @@ JUDGED = ("participation", "log_growth")
 
 
 def _defaults(schema: dict, block: dict) -> dict:
-    """``block`` with the schema's defaults filled in, object by object (a copy)."""
+    """``block`` with the schema's defaults filled in, object by object (a copy). An optional
+    block (type object or null, no default: ``integration.window``) is filled only where given,
+    so that an absent one stays absent from the study's settings."""
     out = dict(block)
     for key, sub in schema.get("properties", {}).items():
         if key not in out and "default" in sub:
             out[key] = copy.deepcopy(sub["default"])
         if sub.get("type") == "object":
             out[key] = _defaults(sub, out.get(key) or {})
+        elif "object" in sub.get("type", ()) and isinstance(out.get(key), dict):
+            out[key] = _defaults(sub, out[key])
     return out
 
 
@@ -194,6 +199,11 @@ class Study:
         return any(name in ALIGNMENT_SERIES for name in self.observables)
 
     @cached_property
+    def window(self) -> Window | None:
+        """The growing window of ``integration.window`` (None: the whole chain)."""
+        return Window.from_config(self.spec["integration"].get("window"))
+
+    @cached_property
     def settings(self) -> ScanSettings:
         """Integration, lanes and criteria of every orbit."""
         spec = self.spec
@@ -296,6 +306,12 @@ class Study:
                 if needed not in self.observables:
                     raise ParameterError("series", fit["series"], f"a series of the observables {self.observables}")
 
+        def window():
+            if self.window is not None and self.alignment:
+                raise ParameterError("window", self.spec["integration"]["window"],
+                                     "absent with log_gali or sali among the observables (GALI's vectors do not "
+                                     "restrict to a window)")
+
         def lattice():
             if chain_file and known_chain:
                 self.file_chain  # noqa: B018 (reads and checks the file)
@@ -307,6 +323,7 @@ class Study:
         check("laws.fits", laws)
         check("lattice.N", lattice)
         check("integration", lambda: self.settings)
+        check("integration.window", window)
         if not errors and known_chain:
             kind = self.spec["excitation"]["kind"]
             check("excitation.mode" if kind == "mode" else "excitation.site", lambda: self.excitation().check(self.N))

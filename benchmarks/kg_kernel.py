@@ -1,0 +1,211 @@
+"""The Klein-Gordon kernels: ns per site and step against a C loop, memory, and the window's cost.
+
+    python benchmarks/kg_kernel.py [--N 64 256 1024 4096] [--integrator ABA864] [--sites-steps 4e7]
+                                   [--repeats 3] [--memory-N 4096] [--spreading-t 1e4]
+
+Three tables, after a line naming the machine:
+
+1. **Per site and step.** The KG lattice (W = 4, seed 0) from a random state of amplitude 0.1 on
+   every site, integrated by ``--integrator`` at dt = 0.4: the single-trajectory engine
+   (``integrators.advance``: one trajectory), the batch engine (``batch.Batch``: one SIMD block of
+   ``LANES`` trajectories, per trajectory) and a hand-written C loop of the same scheme
+   (``benchmarks/c_reference/kg_chain.c``, gcc -O3 -march=native, no -ffast-math), with and
+   without the tangent map; best of ``--repeats`` timings of about ``--sites-steps`` site-steps
+   each, and the ratios to C. The C run's final state is checked against the single engine's
+   (relative difference printed; the operations are the same up to their order).
+2. **Memory.** Peak resident memory (``ru_maxrss`` of a fresh process) of 64 realizations at
+   N = ``--memory-N`` through ``orbits.integrate`` (the study's path: 20 samples per decade to
+   t = 1e3, batches of 32 orbits), with and without the growing window.
+3. **Cost against N.** One single-site momentum excitation (E = 0.4) per realization, 8
+   realizations (one AVX-512 block), to t = ``--spreading-t``: CPU seconds for N = 512 .. 4096 on
+   the whole chain and on the growing window (``chainchaos.run.window``), with the window's final
+   width: the windowed cost follows the packet's width, the whole chain's N.
+"""
+
+import argparse
+import os
+import resource
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+os.environ["NUMBA_NUM_THREADS"] = "1"  # single thread, before numba is imported
+
+import numpy as np
+
+from chainchaos.engine.integrators import get_scheme
+from chainchaos.engine.simd import LANES
+from chainchaos.output.provenance import machine_line
+from chainchaos.system.chain import kg_chain
+from chainchaos.system.problem import Problem
+
+HERE = Path(__file__).resolve().parent
+SOURCE = HERE / "c_reference" / "kg_chain.c"
+BUILD = HERE / "build"
+MARCH = os.environ.get("NUMBA_CPU_NAME") or "native"
+CFLAGS = ["-O3", f"-march={MARCH}", "-std=c99", "-fno-math-errno"]
+DT, W, CHECK_EVERY = 0.4, 4.0, 1000
+
+
+def compile_c() -> Path:
+    BUILD.mkdir(exist_ok=True)
+    exe = BUILD / "kg_chain"
+    subprocess.run(["gcc", *CFLAGS, "-o", str(exe), str(SOURCE), "-lm"], check=True)
+    return exe
+
+
+def start(N: int, B: int):
+    """Random state of amplitude 0.1 and a deviation vector, the same on every lane."""
+    rng = np.random.default_rng(1)
+    q, p, dq, dp = (np.tile(rng.uniform(-0.1, 0.1, N)[:, None], (1, B)) for _ in range(4))
+    return q, p, dq, dp
+
+
+def time_engine(N: int, kind: str, integrator: str, steps: int, tangent: bool, repeats: int):
+    """(best CPU ns per site and step per trajectory, final state of lane 0) of one engine."""
+    B = LANES if kind == "batch" else 1
+    problem = Problem("kg", [kg_chain(0, W, N)] * B, integrator, DT, tangent=tangent, check_every=CHECK_EVERY)
+    state = start(N, B)
+    problem.engine(*state, kind=kind).advance(2)  # compilation or cache load, not timed
+    best, engine = np.inf, None
+    for _ in range(repeats):
+        engine = problem.engine(*state, kind=kind)
+        t0 = time.process_time()
+        engine.advance(steps)
+        best = min(best, time.process_time() - t0)
+    final = {key: getattr(engine, key)[:, 0] for key in ("q", "p", "dq", "dp")}
+    return 1e9 * best / (steps * N * B), final
+
+
+def time_c(exe: Path, N: int, integrator: str, steps: int, tangent: bool, repeats: int):
+    lattice, scheme = kg_chain(0, W, N), get_scheme(integrator)
+    q, p, dq, dp = (a[:, 0] for a in start(N, 1))
+    values = {"K2": np.full(N + 1, lattice.K2), "eps": lattice.eps, "q": q, "p": p, "dq": dq, "dp": dp}
+    lines = [f"N {N}", f"steps {steps}", f"tangent {int(tangent)}", f"check_every {CHECK_EVERY}",
+             f"repeats {repeats}", f"dt {DT!r}", f"stages {len(scheme.drifts)}",
+             "kicks " + " ".join(repr(float(c)) for c in scheme.kicks),
+             "drifts " + " ".join(repr(float(d)) for d in scheme.drifts)]
+    lines += [key + " " + " ".join(repr(float(v)) for v in np.broadcast_to(a, a.shape)) for key, a in values.items()]
+    path = BUILD / f"kg_input_{N}_{int(tangent)}.txt"
+    path.write_text("\n".join(lines) + "\n")
+    out = subprocess.run([str(exe), str(path)], check=True, capture_output=True, text=True).stdout
+    fields = {line.split()[0]: line.split()[1:] for line in out.splitlines()}
+    final = {key: np.array(fields[key], dtype=float) for key in ("q", "p", "dq", "dp")}
+    return float(fields["ns_per_step"][0]) / N, final
+
+
+def difference(a: dict, b: dict, tangent: bool) -> float:
+    keys = ("q", "p", "dq", "dp") if tangent else ("q", "p")
+    return max(float(np.max(np.abs(a[k] - b[k])) / np.max(np.abs(b[k]))) for k in keys)
+
+
+def per_site(args, exe) -> list[dict]:
+    rows = []
+    print("| N | tangent | single ns/site/step | batch ns/site/step per lane | C ns/site/step | "
+          "batch / C | single / C | C vs single: rel. diff. |")
+    print("|---:|---|---:|---:|---:|---:|---:|---:|")
+    for N in args.N:
+        steps = max(20, int(args.sites_steps / N))
+        for tangent in (True, False):
+            single, s_final = time_engine(N, "single", args.integrator, steps, tangent, args.repeats)
+            batch, _ = time_engine(N, "batch", args.integrator, max(4, steps // LANES), tangent, args.repeats)
+            c, c_final = time_c(exe, N, args.integrator, steps, tangent, args.repeats)
+            diff = difference(s_final, c_final, tangent)
+            rows.append({"N": N, "tangent": tangent, "single_ns": round(single, 3), "batch_ns": round(batch, 3),
+                         "c_ns": round(c, 3), "batch_over_c": round(batch / c, 2), "single_over_c": round(single / c, 2),
+                         "difference": float(f"{diff:.1e}")})
+            print(f"| {N} | {'on' if tangent else 'off'} | {single:.2f} | {batch:.2f} | {c:.2f} | {batch / c:.2f} | "
+                  f"{single / c:.2f} | {diff:.1e} |", flush=True)
+    return rows
+
+
+MEMORY_RUN = """
+import resource, sys, numpy as np
+from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
+from chainchaos.run.window import Window
+from chainchaos.system.chain import kg_chain
+from chainchaos.system.initial import Excitation
+N, windowed = int(sys.argv[1]), sys.argv[2] == "1"
+orbits = [Orbit("kg", 0.4, kg_chain(s, 4.0, N), N // 2, 0, Excitation(site=N // 2, variable="momentum"))
+          for s in range(64)]
+settings = OrbitSettings(t_final=1e3, dt=0.4, integrator="ABA864", samples_per_decade=20, batch_size=32)
+integrate(orbits, settings, series={"participation": np.nan, "second_moment": np.nan, "mlce": np.nan},
+          window=Window() if windowed else None)
+print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)
+"""
+
+
+def memory(args, exe=None) -> list[dict]:
+    rows = []
+    print(f"\nPeak resident memory, 64 realizations at N = {args.memory_N} (t = 1e3, batches of 32):\n")
+    print("| run | peak MiB |")
+    print("|---|---:|")
+    for windowed in (False, True):
+        out = subprocess.run([sys.executable, "-c", MEMORY_RUN, str(args.memory_N), str(int(windowed))],
+                             check=True, capture_output=True, text=True).stdout
+        mib = int(out.split()[-1]) / 1024  # ru_maxrss: KiB on Linux
+        label = "growing window" if windowed else "whole chain"
+        rows.append({"run": label, "N": args.memory_N, "peak_mib": round(mib, 1)})
+        print(f"| {label} | {mib:.0f} |", flush=True)
+    return rows
+
+
+def spreading(args, exe=None) -> list[dict]:
+    from chainchaos.run.window import Window, WindowedEngine, restricted_deviation
+    from chainchaos.system.initial import Excitation, initial_deviation
+
+    rows = []
+    steps = round(args.spreading_t / DT)
+    print(f"\nSpreading run to t = {args.spreading_t:g} ({steps} steps, {args.integrator}, dt = {DT}), "
+          f"{LANES} realizations, E = 0.4 on the centre site, tangent map on: CPU seconds\n")
+    print("| N | whole chain s | window s | window width at the end | whole / window |")
+    print("|---:|---:|---:|---:|---:|")
+    for N in (512, 1024, 2048, 4096):
+        chains = [kg_chain(s, W, N) for s in range(LANES)]
+        problem = Problem("kg", chains, args.integrator, DT, check_every=CHECK_EVERY)
+        q, p, dq, dp = (np.zeros((N, LANES)) for _ in range(4))
+        for j, c in enumerate(chains):
+            q[:, j], p[:, j], _ = Excitation(site=N // 2, variable="momentum").state(problem.model, c, 0.4)
+            dq[:, j], dp[:, j] = initial_deviation(N, j)
+        dq, dp = restricted_deviation(dq, dp, *Window.excited(q, p))
+        whole = problem.engine(q, p, dq, dp, kind="batch")
+        whole.advance(2)
+        whole = problem.engine(q, p, dq, dp, kind="batch")
+        t0 = time.process_time()
+        whole.advance(steps)
+        t_whole = time.process_time() - t0
+        t0 = time.process_time()
+        windowed = WindowedEngine(problem, Window(), q, p, dq, dp, kind="batch")
+        windowed.advance(steps)
+        t_window = time.process_time() - t0
+        width = windowed.hi - windowed.lo
+        rows.append({"N": N, "whole_s": round(t_whole, 2), "window_s": round(t_window, 2), "width": width,
+                     "ratio": round(t_whole / t_window, 1)})
+        print(f"| {N} | {t_whole:.2f} | {t_window:.2f} | {width} | {t_whole / t_window:.1f} |", flush=True)
+    return rows
+
+
+PARTS = {"per_site": per_site, "memory": memory, "spreading": spreading}
+
+
+def main(argv=None) -> dict:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--N", type=int, nargs="+", default=[64, 256, 1024, 4096])
+    parser.add_argument("--integrator", default="ABA864")
+    parser.add_argument("--sites-steps", type=float, default=4e7, help="site-steps per timed run")
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--memory-N", type=int, default=4096)
+    parser.add_argument("--spreading-t", type=float, default=1e4)
+    parser.add_argument("--parts", nargs="+", choices=PARTS, default=list(PARTS))
+    args = parser.parse_args(argv)
+    exe = compile_c()
+    print(machine_line())
+    print(f"KG lattice W = {W}, {args.integrator} at dt = {DT}, CPU time (time.process_time), best of "
+          f"{args.repeats}; batch: one block of {LANES} trajectories; C: gcc {' '.join(CFLAGS)}\n")
+    return {part: PARTS[part](args, exe) for part in args.parts}
+
+
+if __name__ == "__main__":
+    main()
+    print(f"peak memory of this process: {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024:.0f} MiB")
