@@ -62,7 +62,7 @@ def test_a_study_resumes_from_its_finished_jobs_and_plans_nothing_of_the_paper(s
     base, out = small
     copy = tmp_path / "results" / "studies" / "small"
     shutil.copytree(out / "groups", copy / "groups")
-    shutil.copy2(out.parents[1] / "kernels_compiled.txt", tmp_path / "results")
+    shutil.copytree(out.parents[1] / "kernels", tmp_path / "results" / "kernels")
     (copy / "groups" / "0001.nc").unlink()
     code, plan = snakemake("-n", "study", "--config", f"study={base / 'small.yaml'}", f"results={tmp_path / 'results'}")
     assert code == 0, plan

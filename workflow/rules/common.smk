@@ -541,8 +541,14 @@ def keep_study_targets(name):
     ]
 
 
+def kernel_flags(models=None):
+    """The flags of compile_kernels for ``models`` (default: the paper's): a job that integrates
+    waits for its models' kernels only."""
+    return [result("kernels", f"{model}.txt") for model in (models or panels.models())]
+
+
 def study_group_inputs(wildcards):
-    files = {"kernels": result("kernels_compiled.txt")}
+    files = {"kernels": kernel_flags(study_of(wildcards.study).models)}
     chain_file = study_of(wildcards.study).spec["lattice"]["chain_file"]
     if chain_file:
         files["chain"] = chain_file

@@ -7,7 +7,7 @@ rule lyapunov_spectrum:
     """The Lyapunov spectrum of one scene over its perturbed orbits (all 2N exponents)."""
     input:
         chain=result("chain", "chain.nc"),
-        kernels=result("kernels_compiled.txt"),
+        kernels=kernel_flags(),
     output:
         result=result("indicators", "spectrum_{scene}.nc"),
     params:

@@ -38,7 +38,7 @@ rule numerics_work_precision_case:
     """Error against run time of every scheme and solve_ivp method for one case."""
     input:
         chain=result("chain", "chain.nc"),
-        kernels=result("kernels_compiled.txt"),
+        kernels=kernel_flags(),
     output:
         data=result("numerics", "work_precision", "{wp_case}.nc"),
     params:
@@ -103,7 +103,7 @@ rule numerics_stability:
     """Largest stable step of every scheme over alpha and H, and near the sonic vacuum."""
     input:
         chain=result("chain", "chain.nc"),
-        kernels=result("kernels_compiled.txt"),
+        kernels=kernel_flags(),
     output:
         data=result("numerics", "stability.nc"),
     params:
@@ -120,7 +120,7 @@ rule numerics_energy_drift:
     """The long run: energy error of the production scheme and step up to t_final (progress in the log)."""
     input:
         chain=result("chain", "chain.nc"),
-        kernels=result("kernels_compiled.txt"),
+        kernels=kernel_flags(),
     output:
         data=result("numerics", "energy_drift.nc"),
     # The longest single job of `all` at paper scale (one trajectory of 2e9 steps): started first,
@@ -144,7 +144,7 @@ rule numerics_taylor_sign:
     """FPUT with K4 < 0: bounded, escape stopped by the guard, or unreachable energy."""
     input:
         chain=result("chain", "chain.nc"),
-        kernels=result("kernels_compiled.txt"),
+        kernels=kernel_flags(),
     output:
         data=result("numerics", "taylor_sign.nc"),
     params:
@@ -162,7 +162,7 @@ rule numerics_step_advice:
     """Energy error per scene at the production step and at larger ones."""
     input:
         chain=result("chain", "chain.nc"),
-        kernels=result("kernels_compiled.txt"),
+        kernels=kernel_flags(),
     output:
         data=result("numerics", "step_advice.nc"),
         csv=report(

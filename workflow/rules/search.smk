@@ -58,7 +58,7 @@ rule search_filter:
     """Stage 1: one short orbit per scene for a group of candidates."""
     input:
         candidates=result("{search}", "candidates.nc"),
-        kernels=result("kernels_compiled.txt"),
+        kernels=kernel_flags(),
     output:
         result=result("{search}", "filter", "{group}.nc"),
     params:
@@ -82,7 +82,7 @@ rule search_score:
     input:
         candidates=result("{search}", "candidates.nc"),
         filters=search_filter_files,
-        kernels=result("kernels_compiled.txt"),
+        kernels=kernel_flags(),
     output:
         result=result("{search}", "score", "{rank}.nc"),
     priority: 4
@@ -244,7 +244,7 @@ rule ensemble_verdicts:
     """A scene's ensemble of perturbed orbits on the chosen chain, and its statements' verdicts."""
     input:
         chain=result("chain", "chain.nc"),
-        kernels=result("kernels_compiled.txt"),
+        kernels=kernel_flags(),
     output:
         result=result("verdicts", "{scene}.nc"),
     priority: 3

@@ -5,24 +5,27 @@
 import os
 
 from chainchaos.engine.cache import kernel_sources
+from chainchaos.system.models import MODELS
 
 
 wildcard_constraints:
     scene="|".join(re.escape(name) for name in SCENES),
     batch="|".join(re.escape(name) for name in SCENE_BATCHES),
+    model="|".join(re.escape(name) for name in MODELS),
 
 
 rule compile_kernels:
-    """Compile the Numba kernels once into the on-disk cache before the simulations, scans and
-    the search fan out. An edit to a kernel's source reruns it, and every integration after it."""
+    """Compile one model's Numba kernels once into the on-disk cache before the simulations,
+    scans and the search fan out (one job per model: they compile side by side). An edit to a
+    kernel's source reruns it, and every integration after it."""
     input:
         sources=[os.path.relpath(path) for path in kernel_sources()],
     output:
-        flag=result("kernels_compiled.txt"),
+        flag=result("kernels", "{model}.txt"),
     log:
-        log_file("compile_kernels"),
+        log_file("compile_kernels", "{model}"),
     benchmark:
-        benchmark_file("compile_kernels")
+        benchmark_file("compile_kernels", "{model}")
     priority: 20  # every integration waits for it: before the plots that need no kernels
     resources:
         mem_mb=2000,
@@ -36,7 +39,7 @@ rule simulate_scenes:
     batch engine) integrated together; every lane's numbers are those of its scene alone."""
     input:
         chain=result("chain", "chain.nc"),
-        kernels=result("kernels_compiled.txt"),
+        kernels=kernel_flags(),
     output:
         batch=temp(result("scenes", "batches", "{batch}.nc")),
     priority: 5  # the longest jobs: before the many short scan and plot jobs, so the figures do not wait

@@ -6,16 +6,15 @@ import time
 import xarray as xr
 
 from chainchaos.output.io import atomic_output, read_chain, write_netcdf, write_text
-from chainchaos.paper import panels
 from chainchaos.run.progress import ProgressReporter
 from chainchaos.run.scenes import simulate_scenes as integrate_scenes
 from chainchaos.run.warmup import warm_up
 
 
 def compile_kernels(inputs, outputs, params, wildcards) -> None:
-    """Compile the Numba kernels into the project's on-disk cache (one tiny run of each model)."""
+    """Compile one model's Numba kernels into the project's on-disk cache (tiny runs of it)."""
     start = time.perf_counter()
-    cache = warm_up(panels.models())
+    cache = warm_up([wildcards["model"]])
     message = f"kernels compiled or loaded from {cache} in {time.perf_counter() - start:.1f} s"
     print(message, file=sys.stderr)
     write_text(message + "\n", outputs["flag"])
