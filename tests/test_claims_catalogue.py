@@ -19,6 +19,7 @@ import xarray as xr
 from chainchaos.paper import panels, statements
 from chainchaos.paper.claims import framework as fw
 from chainchaos.paper.claims import measures as ms
+from chainchaos.paper.claims import quantities as q
 from chainchaos.paper.claims.catalogue import CATALOGUE, STATEMENT_ROWS, statement_rows
 from chainchaos.paper.claims.evidence import REASONS
 from chainchaos.paper.criteria import Criteria
@@ -142,9 +143,20 @@ def test_plateau_measures_read_the_scene_plateau_end():
                  Criteria(plateau_start=10.0, plateau_end={"fput_H4": 300.0}))
     median = ms.plateau_median(inp, "fput_H4", "eta")
     assert median.value == pytest.approx(0.7) and (median["start"], median["end"]) == (10.0, 300.0)
-    assert ms.plateau_average(inp, "fput_H4", "participation").value == pytest.approx(0.7)
+    assert ms.plateau_largest(inp, "fput_H4", "participation").value == pytest.approx(0.7)
     late = inputs(inp.scenes, Criteria(plateau_start=10.0, plateau_end={"fput_H4": 4e4}))
     assert ms.plateau_median(late, "fput_H4", "eta").value == pytest.approx(0.1)
+
+
+def test_the_largest_plateau_value_sees_one_sample_above_a_low_mean():
+    """"P < 3 up to t ~ 2e2" holds at every sample: a short excursion above 3 breaks it, although
+    the window's mean stays below 3."""
+    t = times(1e5)
+    p = np.where((t > 50) & (t < 70), 6.0, 2.0)
+    inp = inputs({"hertz_H1.8": series(t, participation=p)},
+                 Criteria(plateau_start=10.0, plateau_end={"hertz_H1.8": 200.0}, smoothing_decades=0.05))
+    assert ms.plateau_largest(inp, "hertz_H1.8", "participation").value > 3.0
+    assert q.window_mean(inp.scenes["hertz_H1.8"], "participation", 10.0, 200.0) < 3.0
 
 
 def test_two_scene_measures():

@@ -113,16 +113,18 @@ def _plateau(inputs: Inputs, scene: str) -> tuple[float, float]:
     return c.plateau_start, float(c.plateau_end.get(scene, float("nan")))
 
 
-def plateau_average(inputs: Inputs, scene: str, variable: str) -> Measurement:
-    """Time average of ``variable`` over the scene's plateau, plateau_start <= t <= plateau_end[scene]."""
-    start, end = _plateau(inputs, scene)
-    return Measurement(q.window_mean(inputs.scenes[scene], variable, start, end), {"start": start, "end": end})
-
-
 def plateau_median(inputs: Inputs, scene: str, variable: str) -> Measurement:
     """Median of ``variable`` over the scene's plateau, plateau_start <= t <= plateau_end[scene]."""
     start, end = _plateau(inputs, scene)
     return Measurement(q.window_median(inputs.scenes[scene], variable, start, end), {"start": start, "end": end})
+
+
+def plateau_largest(inputs: Inputs, scene: str, variable: str) -> Measurement:
+    """Largest smoothed ``variable`` over the scene's plateau, plateau_start <= t <= plateau_end[scene]
+    ("P < 3 up to t ~ 2e2": below at every sample, as the search's statement judges it)."""
+    start, end = _plateau(inputs, scene)
+    value = q.window_largest(inputs.scenes[scene], variable, start, end, inputs.criteria.smoothing_decades)
+    return Measurement(value, {"start": start, "end": end})
 
 
 def _spreading_onset(inputs: Inputs, scene: str) -> float | None:
@@ -333,7 +335,7 @@ def ensemble_statement(inputs: Inputs, scene: str, statement: str) -> Measuremen
 
 MEASURES = {f.__name__: f for f in (
     localized_mode_counts, localized_levels, limiting_curve, most_extended_mode, mode_participation, mode_peak,
-    excited_overlaps, initial_displacement, final_value, window_average, plateau_average, plateau_median,
+    excited_overlaps, initial_displacement, final_value, window_average, plateau_largest, plateau_median,
     spreading_onset, saturation_time, final_mlce, chaos, participation_and_chaos, localized_and_regular,
     chaos_onset, early_and_late, relative_difference, eta_final, dvd_at_site, max_gaps, gaps_beside_site,
     gap_spread, bond_coverage, scan_always, scan_onset, scan_alternation, ensemble_statement)}

@@ -60,6 +60,17 @@ def window_median(ds: xr.Dataset, var: str, t0: float, t1: float) -> float:
     return float(np.median(y[sel])) if sel.any() else float("nan")
 
 
+def window_largest(ds: xr.Dataset, var: str, t0: float, t1: float, smoothing_decades: float) -> float:
+    """Largest value of ``var(time)`` smoothed over ``smoothing_decades`` of log t (as the paper
+    plots P), over the samples with t0 <= t <= t1, smoothed from the samples up to t1 only (NaN
+    when there is none)."""
+    t, y = _positive_times(ds, var)
+    upto = t <= t1
+    smooth = reductions.log_time_smooth(t[upto], y[upto], smoothing_decades)
+    sel = t[upto] >= t0
+    return float(np.max(smooth[sel])) if sel.any() else float("nan")
+
+
 def spreading_onset(ds: xr.Dataset, factor: float = 2.0, smoothing_decades: float = 0.5,
                     t_ref: float = 10.0, hold_decades: float = 0.5) -> float | None:
     """Onset of spreading: the first time t >= t_ref from which the log-time running mean of P
