@@ -6,7 +6,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq, minimize_scalar
 
 from chainchaos.engine.exactmath import norm
 from chainchaos.engine.integrators import gram_schmidt
@@ -39,6 +38,7 @@ def _amplitude(energy_at, energy: float) -> float:
     """The smallest a > 0 with energy_at(a) = energy (energy_at(0) = 0, growing from 0), bracketed
     by doubling from 1e-3 and found by Brent's method; ParameterError where the energy along the
     path peaks below ``energy`` or no a < U0_LIMIT reaches it."""
+    from scipy.optimize import brentq, minimize_scalar  # here: a job that starts no orbit does not import it
 
     def residual(a):
         return energy_at(a) - energy
