@@ -38,7 +38,10 @@ def _amplitude(energy_at, energy: float) -> float:
     """The smallest a > 0 with energy_at(a) = energy (energy_at(0) = 0, growing from 0), bracketed
     by doubling from 1e-3 and found by Brent's method; ParameterError where the energy along the
     path peaks below ``energy`` or no a < U0_LIMIT reaches it."""
-    from scipy.optimize import brentq, minimize_scalar  # here: a job that starts no orbit does not import it
+    from scipy.optimize import (  # here: a job that starts no orbit does not import it
+        brentq,
+        minimize_scalar,
+    )
 
     def residual(a):
         return energy_at(a) - energy
@@ -122,7 +125,9 @@ class Excitation:
         """The unscaled pattern s (N,) on the excited variable."""
         self.check(chain.N)
         if self.kind == "mode":
-            from chainchaos.system.linear import normal_modes  # the eigensolver: only for mode excitations
+            from chainchaos.system.linear import (
+                normal_modes,  # the eigensolver: only for mode excitations
+            )
 
             shape = normal_modes(chain)[1][:, self.mode - 1]
             shape = shape / np.max(np.abs(shape))
