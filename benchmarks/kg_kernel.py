@@ -23,16 +23,14 @@ Three tables, after a line naming the machine:
 """
 
 import argparse
-import os
 import resource
 import subprocess
 import sys
 import time
 from pathlib import Path
 
-os.environ["NUMBA_NUM_THREADS"] = "1"  # single thread, before numba is imported
-
 import numpy as np
+from kernel_vs_c import BUILD, CFLAGS, HERE  # the same gcc flags and build folder
 
 from chainchaos.engine.integrators import get_scheme
 from chainchaos.engine.simd import LANES
@@ -40,11 +38,7 @@ from chainchaos.output.provenance import machine_line
 from chainchaos.system.chain import kg_chain
 from chainchaos.system.problem import Problem
 
-HERE = Path(__file__).resolve().parent
 SOURCE = HERE / "c_reference" / "kg_chain.c"
-BUILD = HERE / "build"
-MARCH = os.environ.get("NUMBA_CPU_NAME") or "native"
-CFLAGS = ["-O3", f"-march={MARCH}", "-std=c99", "-fno-math-errno"]
 DT, W, CHECK_EVERY = 0.4, 4.0, 1000
 
 
