@@ -85,19 +85,24 @@ def pipeline(argv: list[str]) -> dict:
     ap.add_argument("--config", nargs="*", default=[], help="KEY=VALUE overrides (results is set here)")
     ap.add_argument("--cores", type=int, default=2)
     ap.add_argument("--warm", action="store_true", help="keep the Numba cache (default: compile from scratch)")
+    ap.add_argument("--keep", default=None, help="write the results to this new directory and keep them "
+                    "(default: a scratch directory, deleted)")
     ap.add_argument("targets", nargs="*")
     a = ap.parse_args(argv)
     scratch = Path(tempfile.mkdtemp(prefix="chainchaos-pipeline-"))
+    results = Path(a.keep).resolve() if a.keep else scratch / "results"
+    if results.exists():
+        raise SystemExit(f"record.py pipeline: --keep {a.keep} exists; a timed run starts from no results")
     env = dict(os.environ) if a.warm else {**os.environ, "NUMBA_CACHE_DIR": str(scratch / "numba_cache")}
     cmd = [sys.executable, "-m", "snakemake", "--cores", str(a.cores), "--nolock",
            *(["--configfile", a.configfile] if a.configfile else []),
-           "--config", f"results={scratch / 'results'}", *a.config, "--", *a.targets]
+           "--config", f"results={results}", *a.config, "--", *a.targets]
     start = time.perf_counter()
     done = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True, check=False)
     wall = time.perf_counter() - start
     if done.returncode != 0:
         raise SystemExit((done.stdout + done.stderr)[-4000:])
-    cost = pipeline_cost.main([str(scratch / "results")])
+    cost = pipeline_cost.main([str(results)])
     shutil.rmtree(scratch, ignore_errors=True)
     shown = [x for x in cmd[2:] if not x.startswith("results=")]
     parameters = {"snakemake": " ".join(shown), "numba_cache": "warm" if a.warm else "cold (compiled in the run)",
