@@ -60,13 +60,13 @@ assert len(QUANTITIES) == 7 + MAX_BOND_PARAMETERS + MAX_SITE_PARAMETERS and MAX_
 ROW = len(QUANTITIES) * LANES
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _bond_parameters(Z, bond):
     """The bond parameters (B0, B1, B2) of the bond whose row starts at ``bond``, as vectors."""
     return vload(Z, bond + _B0), vload(Z, bond + _B1), vload(Z, bond + _B2)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _site_parameters(Z, row):
     """The site parameters (S0, S1) of the bead whose momenta are in row ``row``, as vectors."""
     return vload(Z, row + _S0), vload(Z, row + _S1)
@@ -120,7 +120,7 @@ def _sweep(model, tangent, drift, kick, keep_forces, N, Z, a, c):
         _kick_bead(model, tangent, Z, (N - 1) * ROW, c, f2, f1, g2, g1)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _drift_bead(drift, tangent, Z, bond, a):
     """(u, dq) of the bead whose momenta are in row ``bond`` (its displacement in row bond + ROW),
     drifted by a if ``drift``: u += a M^-1 p, dq += a M^-1 dp (``integrators.drift_vector``)."""
@@ -128,7 +128,7 @@ def _drift_bead(drift, tangent, Z, bond, a):
     return drift_vector(drift, tangent, Z, bead + _U, bead + _DQ, bond + _P, bond + _DP, bond + _IM, 0, a)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _kick_bead(model, tangent, Z, row, c, f_left, f_right, g_left, g_right):
     """kick(c) of the bead of ``row`` between bonds whose forces are f_left and f_right (tangent
     forces g_left, g_right): p += c (f_left - f_right), dp += c (g_left - g_right); with a site law
@@ -171,7 +171,7 @@ _VQ, _VP = 0, LANES
 VROW = 2 * LANES
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _vector_base(N, j):
     """Where extra deviation vector j starts in the buffer of a block's extra vectors."""
     return j * (N + 2) * VROW
@@ -182,7 +182,7 @@ def _vector_base(N, j):
 VECTOR_GROUP = 3
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _vector_bond(model, V, vector, b, N, drift, kick, a_im, stiffness, site, u_left, c, wall, dq_left, g_left,
                  dp_left):
     """Iteration b of a pass over the bonds for one extra deviation vector starting at ``vector``:

@@ -167,7 +167,7 @@ ROWS = ("U", "DQ", "P", "DP", "IM", "F", "K", "B0", "B1", "B2", "S0", "S1")
 assert len(ROWS) == 7 + MAX_BOND_PARAMETERS + MAX_SITE_PARAMETERS and MAX_SITE_PARAMETERS == 2
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _row_offsets(L):
     """Where each of ``ROWS`` starts in the work buffer: rows of L + LANES doubles, so that every
     row starts on a vector boundary and a sweep may read one vector past L."""
@@ -175,20 +175,20 @@ def _row_offsets(L):
     return 0, R, 2 * R, 3 * R, 4 * R, 5 * R, 6 * R, 7 * R, 8 * R, 9 * R
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _site_rows(L):
     """Where the site parameter rows S0 and S1 of ``ROWS`` start in the work buffer."""
     R = L + LANES
     return 10 * R, 11 * R
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _site_vector(Z, S0, S1, n):
     """The site parameters (S0, S1) of the beads of vector n, as vectors."""
     return vload(Z, S0 + n), vload(Z, S1 + n)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, n, a):
     """(u, dq) of the vector of beads at n of rows U and DQ, drifted by a if ``drift``:
     u += a M^-1 p, dq += a M^-1 dp, with p, dp and M^-1 at n of rows P, DP and IM (stored back)."""
@@ -204,7 +204,7 @@ def drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, n, a):
     return u, dq
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _kick_vector(model, tangent, Z, P, DP, site, n, c, f_before, f, g_before, k, u, dq, dq_after):
     """kick(c) of the beads of vector n: p_i += c (F_{i-1} - F_i) and, with the tangent map,
     dp_i += c (G_{i-1} - G_i), G_b = K_b (dq_b - dq_{b+1}); f, k are the forces and stiffnesses of

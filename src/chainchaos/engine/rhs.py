@@ -15,7 +15,7 @@ from chainchaos.system.models import bond_forces, energy_kernel, get_model
 from chainchaos.system.models.base import check_sites, site_kick, site_kick_deviation
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _site(sites, n):
     """Site n's parameters, or a placeholder (never read) without a site law."""
     if sites is None:

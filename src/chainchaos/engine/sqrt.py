@@ -115,7 +115,7 @@ def fma_sqrt(typingctx, x):
     return None
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def hardware_sqrt(x):
     """The CPU's square root (``np.sqrt``; for vectors, ``llvm.sqrt``)."""
     return np.sqrt(x)

@@ -43,7 +43,7 @@ def model_label(name: str) -> str:
     return get_model(name).label
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _bond(u, P, b):
     """(parameters, u_{b-1}, u_b) of bond b, the walls at zero displacement."""
     N = u.shape[0]

@@ -150,7 +150,7 @@ def _kernels(model_type) -> Model:
     return _BY_NAME[model_type.model_name]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def never_open(P, left, right):
     """The opening of a bond that cannot open: positive (1) for every finite displacement."""
     return left * 0.0 + 1.0
@@ -173,7 +173,7 @@ def bond_opening(model, P, left, right):
 
 
 def _dispatch(stub, kernel_of):
-    @overload(stub, inline="always")
+    @overload(stub)
     def _select(model, P, left, right):
         if isinstance(model, ModelType):
             kernel = kernel_of(_kernels(model))
@@ -214,7 +214,7 @@ def _site_law(model_type) -> SiteLaw | None:
     return _kernels(model_type).site if isinstance(model_type, ModelType) else None
 
 
-@overload(site_kick, inline="always")
+@overload(site_kick)
 def _site_kick(model, S, u, f):
     if isinstance(model, ModelType):
         law = _site_law(model)
@@ -224,7 +224,7 @@ def _site_kick(model, S, u, f):
         return lambda model, S, u, f: f - kernel(S, u)
 
 
-@overload(site_kick_deviation, inline="always")
+@overload(site_kick_deviation)
 def _site_kick_deviation(model, S, u, dq, g):
     if isinstance(model, ModelType):
         law = _site_law(model)
@@ -238,14 +238,14 @@ def _site_kick_deviation(model, S, u, dq, g):
         return with_site
 
 
-@overload(site_potential, inline="always")
+@overload(site_potential)
 def _site_potential(model, S, u):
     if isinstance(model, ModelType) and _site_law(model) is not None:
         kernel = _site_law(model).potential
         return lambda model, S, u: kernel(S, u)
 
 
-@overload(add_site_energy, inline="always")
+@overload(add_site_energy)
 def _add_site_energy(model, u, sites, H):
     if isinstance(model, ModelType):
         law = _site_law(model)
@@ -261,7 +261,7 @@ def _add_site_energy(model, u, sites, H):
         return with_site
 
 
-@overload(check_sites, inline="always")
+@overload(check_sites)
 def _check_sites(model, sites):
     if isinstance(model, ModelType):
         if _site_law(model) is not None and isinstance(sites, (types.NoneType, types.Omitted)):

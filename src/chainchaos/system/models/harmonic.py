@@ -9,18 +9,18 @@ from numba import njit
 from chainchaos.system.models.base import Model
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def force(P, left, right):
     """P = (K2,)."""
     return (left - right) * P[0]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def force_stiffness(P, left, right):
     return (left - right) * P[0], P[0]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def potential(P, left, right):
     y = -(left - right)
     return y * y * (0.5 * P[0])

@@ -14,14 +14,14 @@ from chainchaos.engine.sqrt import root
 from chainchaos.system.models.base import Model
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def hertz_force(A, overlap):
     """Hertz bond force A [overlap]_+^(3/2), overlap = delta + D."""
     x = max(overlap, 0.0)
     return A * x * root(x)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def hertz_force_stiffness(A, overlap):
     """(force, stiffness df/dD) of a Hertz bond: (A x^(3/2), (3/2) A x^(1/2)), x = [overlap]_+."""
     x = max(overlap, 0.0)
@@ -29,18 +29,18 @@ def hertz_force_stiffness(A, overlap):
     return A * x * s, 1.5 * A * s
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def force(P, left, right):
     """P = (A, delta)."""
     return hertz_force(P[0], P[1] + left - right)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def force_stiffness(P, left, right):
     return hertz_force_stiffness(P[0], P[1] + left - right)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def potential(P, left, right):
     A, d = P[0], P[1]
     D = left - right
@@ -48,7 +48,7 @@ def potential(P, left, right):
     return A * (0.4 * x * x * np.sqrt(x) - 0.4 * d * d * np.sqrt(d) - d * np.sqrt(d) * D)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def opening(P, left, right):
     """delta + D: the bond is open where it is negative."""
     return P[1] + left - right

@@ -20,38 +20,38 @@ from chainchaos.system.models import harmonic
 from chainchaos.system.models.base import Model, SiteLaw
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def quartic_force(S, u):
     """w'(u) = u (eps + u^2), S = (eps,)."""
     return u * (S[0] + u * u)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def quartic_force_stiffness(S, u):
     """(w', w'') = (u (eps + u^2), eps + 3 u^2)."""
     uu = u * u
     return u * (S[0] + uu), S[0] + 3.0 * uu
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def quartic_potential(S, u):
     """w(u) = eps u^2/2 + u^4/4."""
     uu = u * u
     return uu * (0.5 * S[0] + 0.25 * uu)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def linear_force(S, u):
     """w'(u) = eps u, S = (eps,)."""
     return S[0] * u
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def linear_force_stiffness(S, u):
     return S[0] * u, S[0]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def linear_potential(S, u):
     """w(u) = eps u^2/2."""
     return u * u * (0.5 * S[0])

@@ -22,13 +22,13 @@ from numba import njit
 from chainchaos.system.models.base import Model
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def force(P, left, right):
     """P = (K2, beta, K2 / beta)."""
     return P[2] * np.expm1(P[1] * (left - right))
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def force_stiffness(P, left, right):
     grown = np.expm1(P[1] * (left - right))
     return P[2] * grown, P[0] + P[0] * grown
@@ -50,7 +50,7 @@ def exp_remainder(x):
     return total
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def potential(P, left, right):
     return P[2] / P[1] * exp_remainder(P[1] * (left - right))
 
