@@ -111,10 +111,11 @@ class WindowedEngine:
         self.bad = np.full(B, -1, dtype=np.int64)
         self.steps = 0
         self.spans = [(0, lo, hi)]  # (step, lo, hi) of every window, for the record
-        self._start(lo, hi, q, p, dq, dp, None)
+        self._start(lo, hi, q, p, dq, dp)
 
-    def _start(self, lo, hi, q, p, dq, dp, old) -> None:
-        """A fresh engine on sites lo..hi-1 from full-chain states, carrying ``old``'s sums."""
+    def _start(self, lo, hi, q, p, dq, dp, old=None, old_span=None) -> None:
+        """A fresh engine on sites lo..hi-1 from full-chain states, carrying the sums of ``old``
+        (the engine of the window ``old_span``)."""
         self.lo, self.hi = lo, hi
         self.sub = self.problem.restricted(lo, hi)
         self.engine = self.sub.engine(q[lo:hi], p[lo:hi], dq[lo:hi], dp[lo:hi], self.kind)
@@ -123,7 +124,7 @@ class WindowedEngine:
             self.engine.log_growth[:] = old.log_growth
             self.engine.max_gaps[:] = old.max_gaps
             self.engine.bad[:] = old.bad
-            self.engine.gap_steps[:] = self._full(old.gap_steps, self._old_span, extra=1)[lo:hi + 1]
+            self.engine.gap_steps[:] = self._full(old.gap_steps, old_span, extra=1)[lo:hi + 1]
 
     def _full(self, part, span, extra: int = 0) -> np.ndarray:
         lo, hi = span
@@ -174,6 +175,5 @@ class WindowedEngine:
         new_hi = min(N, hi + 2 * m) if hi < N and any(np.any(s[1] > t) for s in shares) else hi
         if (new_lo, new_hi) == (lo, hi):
             return
-        self._old_span = (lo, hi)
-        self._start(new_lo, new_hi, self.q, self.p, self.dq, self.dp, e)
+        self._start(new_lo, new_hi, self.q, self.p, self.dq, self.dp, e, (lo, hi))
         self.spans.append((self.steps, new_lo, new_hi))
