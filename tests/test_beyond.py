@@ -7,16 +7,18 @@ from chainchaos.output import manuscript
 from chainchaos.output.beyond import body, law_rows, tex_text
 
 
-def _laws(lower, upper, expected=1 / 3):
+def _laws(lower, upper, expected=1 / 3, exponent=0.3, t_walls=np.inf):
     ds = xr.Dataset(coords={"model": ["kg"], "energy": [0.4], "law": ["m2"]})
-    for key, value, dtype in (("exponent", 0.3, float), ("lower", lower, float), ("upper", upper, float),
+    for key, value, dtype in (("exponent", exponent, float), ("lower", lower, float), ("upper", upper, float),
                               ("t_start", 1e4, float), ("t_end", 1e7, float), ("settled", 1, np.int8),
-                              ("realizations", 64, np.int32)):
+                              ("realizations", 64, np.int32), ("t_walls", t_walls, float)):
         ds[key] = (("model", "energy", "law"), np.full((1, 1, 1), value, dtype=dtype))
+    ds["energy_error_max"] = (("model", "energy"), [[2.5e-6]])
     ds["expected"] = ("law", [expected])
     ds["reference"] = ("law", np.array(["Flach, Krimer & Skokos_2009"], dtype=object))
     ds["series"] = ("law", np.array(["second_moment"], dtype=object))
-    ds.attrs.update(fit_t_min=100.0, fit_band=0.1, fit_window_decades=1.0, fit_min_decades=1.0, fit_bootstrap=1000)
+    ds.attrs.update(fit_t_min=100.0, fit_band=0.1, fit_window_decades=1.0, fit_min_decades=1.0, fit_bootstrap=1000,
+                    cost_s=7260.0, cost_kind="CPU")
     return ds
 
 
@@ -26,7 +28,17 @@ def test_a_published_exponent_inside_or_outside_the_interval_is_said_so():
     text = body({"kg_weak_chaos": _laws(0.25, 0.35)}, {"kg_weak_chaos": ["chaos"]})
     assert r"\texttt{kg\_weak\_chaos}" in text and "& yes" in text and r"Krimer \& Skokos\_2009" in text
     assert r"{beyond/kg_weak_chaos_chaos}" in text
+    assert r"\texttt{kg\_weak\_chaos} 121 CPU-min, largest relative energy error $2.5\times10^{-6}$" in text
     assert "(no interval)" in body({"s": _laws(np.nan, np.nan)}, {})
+
+
+def test_a_law_cut_by_the_walls_says_so():
+    cut = _laws(0.25, 0.35, t_walls=1e6)
+    cut.attrs.update(walls_edge_energy=1e-3, walls_participation_fraction="none")
+    text = body({"s": cut}, {})
+    assert r"$10^{4.0}$--$10^{7.0}$$^\ddagger$" in text and r"exceeds $\log_{10} 0.001$" in text
+    short = body({"s": _laws(np.nan, np.nan, exponent=np.nan, t_walls=10 ** 2.5)}, {})
+    assert "(chain too short)" in short and r"ends felt at $10^{2.5}$$^\ddagger$" in short
 
 
 def test_tex_text_escapes_in_one_pass():

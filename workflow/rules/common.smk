@@ -395,11 +395,27 @@ def claims_inputs(wildcards=None):
     return files
 
 
+def beyond_entries():
+    """config manuscript.beyond as {study: figures shown}: a name shows every figure of its study,
+    a mapping {name: [figures]} only those."""
+    entries = {}
+    for item in config.get("manuscript", {}).get("beyond", []):
+        for name, figures in (item.items() if isinstance(item, dict) else [(item, None)]):
+            known = study_figure_names(name)
+            unknown = sorted(set(figures or ()) - set(known))
+            if unknown:
+                raise ValueError(
+                    f"config manuscript.beyond: study {name} has no figure {', '.join(unknown)}; its figures: {known}"
+                )
+            entries[name] = known if figures is None else list(figures)
+    return entries
+
+
 def beyond_studies():
     """The studies of config manuscript.beyond that are kept in full (every group under
     data/studies/ with the study's settings); one line on stderr for each that is not."""
     shown = []
-    for name in config.get("manuscript", {}).get("beyond", []):
+    for name in BEYOND_ENTRIES:
         groups = range(study_of(name).n_groups)
         missing = [g for g in groups if study_group_file(name, g) != kept_group_file(name, g)]
         if missing:
@@ -424,7 +440,7 @@ def manuscript_beyond():
         return {}
     files = {"beyond_body": result("tables", "beyond_the_paper.tex")}
     for name in BEYOND_STUDIES:
-        for figure in study_figure_names(name):
+        for figure in BEYOND_ENTRIES[name]:
             files[f"beyond_{beyond.figure_key(name, figure)}"] = result(
                 "studies", name, "figures", f"{figure}.pdf"
             )
@@ -594,6 +610,7 @@ def study_targets(name):
     return files
 
 
+BEYOND_ENTRIES = beyond_entries()
 BEYOND_STUDIES = beyond_studies()
 
 

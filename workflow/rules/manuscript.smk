@@ -72,10 +72,8 @@ rule beyond_the_paper:
         body=result("tables", "beyond_the_paper.tex"),
     params:
         studies=BEYOND_STUDIES,
-        figures={name: study_figure_names(name) for name in BEYOND_STUDIES},
-        missing=[
-            name for name in config["manuscript"].get("beyond", []) if name not in BEYOND_STUDIES
-        ],
+        figures={name: BEYOND_ENTRIES[name] for name in BEYOND_STUDIES},
+        missing=[name for name in BEYOND_ENTRIES if name not in BEYOND_STUDIES],
     log:
         log_file("beyond_the_paper"),
     benchmark:

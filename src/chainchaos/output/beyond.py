@@ -11,6 +11,8 @@ import re
 
 import xarray as xr
 
+from chainchaos.output.formatting import tex_scientific
+
 #: How a law's series reads in the table.
 SYMBOLS = {"second_moment": r"$\langle\log_{10} m_2\rangle$", "participation": r"$\langle\log_{10} P\rangle$",
            "mlce": r"$\langle\log_{10}\Lambda\rangle$", "abs_mlce": r"$\langle\log_{10}|\Lambda|\rangle$"}
@@ -47,6 +49,7 @@ def law_rows(name: str, ds: xr.Dataset) -> list[dict]:
                     "series": str(fit["series"].values), "exponent": float(fit["exponent"]),
                     "lower": lower, "upper": upper, "t_start": float(fit["t_start"]), "t_end": float(fit["t_end"]),
                     "settled": bool(int(fit["settled"])), "realizations": int(fit["realizations"]),
+                    "t_walls": float(fit["t_walls"]),
                     "expected": expected, "reference": str(fit["reference"].values),
                     "inside": lower <= expected <= upper,
                 })
@@ -63,12 +66,27 @@ def beyond_table(named: dict[str, xr.Dataset]) -> str:
             bounded = math.isfinite(r["lower"]) and math.isfinite(r["upper"])
             interval = f"[{_number(r['lower'])}, {_number(r['upper'])}]" if bounded else "(no interval)"
             inside = ("yes" if r["inside"] else "no") if bounded else "---"
-            window = f"{_decade(r['t_start'])}--{_decade(r['t_end'])}" + ("" if r["settled"] else r"$^\dagger$")
+            walls = r"$^\ddagger$" if math.isfinite(r["t_walls"]) else ""
+            if math.isfinite(r["exponent"]):
+                window = f"{_decade(r['t_start'])}--{_decade(r['t_end'])}" + ("" if r["settled"] else r"$^\dagger$")
+            else:
+                interval, window = "(chain too short)", f"ends felt at {_decade(r['t_walls'])}"
+            window += walls
             lines.append(f"\\texttt{{{study}}} & {model}, {r['energy']:g} & {SYMBOLS[r['series']]} & "
                          f"{_number(r['exponent'])} {interval} & {window} & "
                          f"{r['realizations']} & ${r['expected']:.3g}$ & {inside} \\\\")
     lines += [r"\hline", r"\end{tabular}"]
     return "\n".join(lines) + "\n"
+
+
+def _walls_rule(attrs) -> str:
+    """How a laws file's runs were cut at the chain's ends (its ``walls_*`` attributes)."""
+    edge, fraction = attrs.get("walls_edge_energy", "none"), attrs.get("walls_participation_fraction", "none")
+    cuts = ([f"$m_2$ cut where $\\langle\\log_{{10}} E_{{\\rm edge}}/H\\rangle$ exceeds $\\log_{{10}} {edge:g}$"]
+            if edge != "none" else []) + \
+           ([f"every law cut where $\\langle\\log_{{10}} P\\rangle$ exceeds $\\log_{{10}}({fraction:g} N)$"]
+            if fraction != "none" else [])
+    return "".join(", " + c for c in cuts)
 
 
 def figure_key(study: str, figure: str) -> str:
@@ -85,7 +103,7 @@ def body(named: dict[str, xr.Dataset], figures: dict[str, list[str]], missing: t
     for name, ds in named.items():
         rule = (f"from $t = {ds.attrs['fit_t_min']:g}$, band ${ds.attrs['fit_band']:g}$ around the median running "
                 f"slope (over {ds.attrs['fit_window_decades']:g} decade) of the last {ds.attrs['fit_min_decades']:g} "
-                f"decade, {ds.attrs['fit_bootstrap']} resamples")
+                f"decade, {ds.attrs['fit_bootstrap']} resamples" + _walls_rule(ds.attrs))
         by_rule.setdefault(rule, []).append(name)
     rules = "; ".join(rule if len(by_rule) == 1 else
                       ", ".join(f"\\texttt{{{tex_text(n)}}}" for n in names) + ": " + rule
@@ -94,8 +112,12 @@ def body(named: dict[str, xr.Dataset], figures: dict[str, list[str]], missing: t
            r"\caption{\label{tab:laws}Exponents of the ensemble means against $\log_{10} t$ (valid realizations, "
            r"$R$ the fewest in the window), with 95\,\% bootstrap intervals over realizations and the window "
            r"chosen by the running slope (Sec.~\ref{sec:beyond}; $^\dagger$: the slope has not settled, the window "
-           r"is the minimum), beside the published exponents. Rules: " + rules + ". Sources: " + "; ".join(tex_text(s) for s in sources) + ".}",
+           r"is the minimum; $^\ddagger$: the run is cut where the chain's ends are felt, and a law left with less "
+           r"than the minimum window is not fitted), beside the published exponents. Rules: " + rules + ". Sources: " + "; ".join(tex_text(s) for s in sources) + ".}",
            r"\centering\small", r"\fitwidth{" + beyond_table(named).rstrip() + "}", r"\end{table}"]
+    out.append("Runs (the kept groups' job time, CPU or else wall): " + "; ".join(
+        f"\\texttt{{{tex_text(name)}}} {ds.attrs['cost_s'] / 60:.0f} {ds.attrs['cost_kind']}-min, largest relative energy error "
+        f"${tex_scientific(float(ds['energy_error_max'].max()))}$" for name, ds in named.items()) + ".\n")
     if missing:
         out.append("Not kept yet, so not shown: " + ", ".join(f"\\texttt{{{tex_text(m)}}}" for m in missing)
                    + " (\\texttt{snakemake --cores 2 keep\\_study --config study=<name>}).\n")

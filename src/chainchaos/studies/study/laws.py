@@ -18,6 +18,12 @@ log10 t (Flach, Krimer & Skokos, PRL 102, 024101 (2009); Skokos, Gkolias & Flach
 4. **Its interval**: the 2.5 and 97.5 % quantiles of the exponent over ``bootstrap`` resamples
    of the realizations that enter (valid ones) with replacement (``numpy.random.default_rng(seed)``),
    the window kept; none with fewer than two realizations.
+5. **The walls** (key ``laws.walls``, :func:`walls_time`): on a finite chain the run is cut, before
+   steps 2-4, at the first sample where the ends are felt: for m2, where the realization mean of
+   log10 of the edge energy exceeds log10 ``edge_energy`` (the packet's tail, which m2 weighs by
+   its distance squared, reached them); for every law, where the mean of log10 P exceeds
+   log10(``participation_fraction`` N) (its core fills that much of the chain). A law whose run so
+   cut is shorter than ``min_decades`` after ``t_min`` is not fitted (NaN): the chain is too short.
 
 Sums in index order and fdlibm's logarithms (``engine.exactmath``): the same bits on every CPU.
 """
@@ -68,16 +74,32 @@ def fit_window(log_t: np.ndarray, slope: np.ndarray, *, min_decades: float, band
     return min(first, minimal), last, first < minimal
 
 
+def walls_time(t: np.ndarray, mean_log10: np.ndarray, bound: float | None) -> float:
+    """The first time ``t`` at which a realization mean of log10 exceeds log10 ``bound``
+    (module docstring, step 5); infinity when it never does or there is no bound."""
+    if bound is None:
+        return float("inf")
+    over = np.flatnonzero(np.nan_to_num(mean_log10, nan=-np.inf) > log10(np.array([bound]))[0])
+    return float(t[over[0]]) if over.size else float("inf")
+
+
 def _slope(log_t, y) -> float:
     use = np.isfinite(y)
     return exactmath.line_slope(log_t[use], y[use]) if use.sum() >= 3 else float("nan")
 
 
 def fit_law(t: np.ndarray, x: np.ndarray, *, window_decades: float, min_decades: float, band: float, t_min: float,
-            bootstrap: int, seed: int) -> dict:
+            bootstrap: int, seed: int, t_walls: float = float("inf")) -> dict:
     """The exponent of <log10 x> against log10 t over the realizations ``x`` (realization, time;
-    NaN where a realization is left out), its window and bootstrap interval (module docstring)."""
-    log_t = log10(t)
+    NaN where a realization is left out), its window and bootstrap interval (module docstring),
+    on the samples before ``t_walls`` (step 5)."""
+    before = np.asarray(t) < t_walls
+    t, x = np.asarray(t)[before], np.asarray(x)[:, before]
+    log_t = log10(t)  # NaN at t = 0
+    start = max(np.nanmin(log_t, initial=np.inf), log10(np.array([t_min]))[0])
+    if not t.size or np.nanmax(log_t, initial=-np.inf) - start < min_decades - 1e-9:
+        return {"exponent": np.nan, "lower": np.nan, "upper": np.nan, "t_start": np.nan,
+                "t_end": float(t[-1]) if t.size else np.nan, "settled": False, "realizations": 0, "t_walls": t_walls}
     logs = log10(x)
     logs = logs[np.isfinite(logs).any(axis=1)]  # resample the realizations that enter, not those left out
     mean, count = ordered_mean(logs, axis=0)
@@ -93,7 +115,8 @@ def fit_law(t: np.ndarray, x: np.ndarray, *, window_decades: float, min_decades:
         draws[b] = _slope(log_t[window], ordered_mean(logs[pick, window], axis=0)[0])
     lower, upper = np.quantile(draws, [0.025, 0.975]) if R >= 2 else (np.nan, np.nan)
     return {"exponent": exponent, "lower": float(lower), "upper": float(upper), "t_start": float(t[first]),
-            "t_end": float(t[last]), "settled": bool(settled), "realizations": int(count[window].min())}
+            "t_end": float(t[last]), "settled": bool(settled), "realizations": int(count[window].min()),
+            "t_walls": t_walls}
 
 
 FIELDS = {
@@ -104,29 +127,48 @@ FIELDS = {
     "t_end": ("f8", "end of the fit window"),
     "settled": ("i1", "1 if the running slope stays within the band longer than the minimum window"),
     "realizations": ("i4", "valid realizations that enter every sample of the window"),
+    "t_walls": ("f8", "first sample at which the chain's ends are felt (laws.walls); the run is cut there; inf: never"),
 }
 
 
-def laws(merged: xr.Dataset, spec: dict, settings) -> xr.Dataset:
+def laws(merged: xr.Dataset, spec: dict, settings, N: int) -> xr.Dataset:
     """Every law of ``spec['laws']`` fitted on every (model, energy) of a merged study (its
-    ``study.runs.merge_groups``): dims model, energy, law; ``expected`` the published exponent."""
+    ``study.runs.merge_groups``) of chains of ``N`` sites: dims model, energy, law; ``expected``
+    the published exponent."""
     block = spec["laws"]
     fits = block["fits"]
     require(len(fits) > 0, "laws.fits", fits, "at least one {series, expected, reference}")
     keys = {"window_decades": float(spec["criteria"]["slope_window_decades"]),
             "min_decades": float(block["min_decades"]), "band": float(block["band"]), "t_min": float(block["t_min"]),
             "bootstrap": int(block["bootstrap"]), "seed": int(block["seed"])}
+    walls = block["walls"]
+    if walls["participation_fraction"] is not None:
+        require("participation" in merged, "laws.walls.participation_fraction", walls["participation_fraction"],
+                "a bound only for a study with participation among its observables")
+    if walls["edge_energy"] is not None:
+        require("edge_energy" in merged, "laws.walls.edge_energy", walls["edge_energy"],
+                "a bound only for a study with edge_energy among its observables")
     grid = log_grid(merged["time"].values, settings)
     t = merged["time"].values[grid]
     M, E, L = merged.sizes["model"], merged.sizes["energy"], len(fits)
     out = {key: np.zeros((M, E, L), dtype=dtype) for key, (dtype, _) in FIELDS.items()}
     valid = merged["valid"].isel(lane=0) == 1
+
+    def mean_log10(name, m, e):
+        series = merged[name].isel(model=m, energy=e, lane=0).where(valid.isel(model=m, energy=e))
+        return ordered_mean(log10(series.values[:, grid]), axis=0)[0]
+
+    fraction = walls["participation_fraction"]
     for m in range(M):
         for e in range(E):
+            filled = walls_time(t, mean_log10("participation", m, e), None if fraction is None else fraction * N)
+            tail = walls_time(t, mean_log10("edge_energy", m, e), walls["edge_energy"]) if "edge_energy" in merged \
+                else float("inf")
             for k, fit in enumerate(fits):
                 series = law_series(merged, fit["series"]).isel(model=m, energy=e, lane=0).where(
                     valid.isel(model=m, energy=e))
-                found = fit_law(t, series.values[:, grid], **keys)
+                cut = min(filled, tail) if fit["series"] == "second_moment" else filled
+                found = fit_law(t, series.values[:, grid], **keys, t_walls=cut)
                 for key in FIELDS:
                     out[key][m, e, k] = found[key]
     data = {key: (("model", "energy", "law"), out[key], {"units": "1", "long_name": text.format(x="x")})
@@ -137,9 +179,12 @@ def laws(merged: xr.Dataset, spec: dict, settings) -> xr.Dataset:
                          {"long_name": "where the published exponent is from"})
     data["series"] = ("law", np.array([f["series"] for f in fits], dtype=object),
                       {"long_name": "the series whose realization mean of log10 the law is about"})
+    data["energy_error_max"] = (("model", "energy"), merged["energy_error_max"].max(dim=("realization", "lane")).values,
+                                {"units": "1", "long_name": "largest relative energy error of any orbit"})
     ds = xr.Dataset(data, coords={"model": merged["model"], "energy": merged["energy"],
                                   "law": ("law", np.array([LAW_SERIES[f["series"]] for f in fits], dtype=object),
                                           {"long_name": "the law, by the series it fits"})})
-    ds.attrs.update(fit_rule=__doc__.split("\n\n", 2)[2].split("\n\nSums")[0].replace("\n", " "),
-                    **{f"fit_{k}": v for k, v in keys.items()})
+    ds.attrs.update(fit_rule=" ".join(__doc__.split("\n\n", 2)[2].split("\n\nSums")[0].split()),
+                    **{f"fit_{k}": v for k, v in keys.items()},
+                    **{f"walls_{k}": "none" if v is None else v for k, v in walls.items()})
     return ds

@@ -6,8 +6,8 @@
   running slope (-1 regular; the weak-chaos literature reports about -0.25);
 - ``fractions``: the fractions of realizations chaotic (by Lambda, and by GALI_k where kept) and
   delocalized against H, with Wilson 95% bands;
-- the comparison of several studies: <log10 m2> and <log10 Lambda> of each (study, model,
-  energy) on common axes.
+- the comparison of several studies: <log10 m2>, <log10 P> and <log10 Lambda> of each (study,
+  model, energy) on common axes.
 One column of panels per model.
 """
 
@@ -136,11 +136,13 @@ def fractions_figure(stats, title: str = ""):
 
 
 def comparison_figure(named_stats: dict, title: str = ""):
-    """<log10 m2> and <log10 Lambda> of several studies ({name: statistics}) on common axes:
-    colour by model, line style by study, the lightest line the lowest energy."""
+    """<log10 m2>, <log10 P> and <log10 Lambda> of several studies ({name: statistics}) on common
+    axes: colour by model, line style by study, the lightest line the lowest energy."""
+    series = (("second_moment", r"$\langle \log_{10} m_2 \rangle$"), ("participation", r"$\langle \log_{10} P \rangle$"),
+              ("mlce", r"$\langle \log_{10} \Lambda \rangle$"))
     with context():
-        fig = Figure(figsize=(PAGE_WIDTH, 2.7), layout="constrained")
-        a_m, a_l = fig.subplots(1, 2, sharex=True)
+        fig = Figure(figsize=(PAGE_WIDTH, 3.3), layout="constrained")
+        axes = fig.subplots(1, len(series), sharex=True)
         for s, (name, stats) in enumerate(named_stats.items()):
             x = _log_t(stats)
             for model in (str(m) for m in stats.model.values):
@@ -148,15 +150,14 @@ def comparison_figure(named_stats: dict, title: str = ""):
                 for k, energy in enumerate(stats.energy.values):
                     kw = {"color": model_colour(model), "ls": STUDY_STYLES[s % len(STUDY_STYLES)], "lw": 0.9,
                           "alpha": 0.45 + 0.55 * (k + 1) / n}
-                    label = f"{name}: {model_label(model)}, $H = {energy:g}$"
-                    a_m.plot(x, stats["mean_log10_second_moment"].sel(model=model).isel(energy=k).values,
-                             label=label, **kw)
-                    a_l.plot(x, stats["mean_log10_mlce"].sel(model=model).isel(energy=k).values, **kw)
-        a_m.set_ylabel(r"$\langle \log_{10} m_2 \rangle$")
-        a_l.set_ylabel(r"$\langle \log_{10} \Lambda \rangle$")
-        for ax in (a_m, a_l):
+                    for i, (ax, (variable, _)) in enumerate(zip(axes, series)):
+                        label = f"{name}: {model_label(model)}, $H = {energy:g}$" if i == 0 else None
+                        ax.plot(x, stats[f"mean_log10_{variable}"].sel(model=model).isel(energy=k).values,
+                                label=label, **kw)
+        for ax, (_, ylabel) in zip(axes, series):
             ax.set_xlabel(LOG_T)
-        a_m.legend(fontsize="x-small", ncol=1)
+            ax.set_ylabel(ylabel)
+        fig.legend(loc="outside lower center", ncol=3, fontsize="x-small")  # below: it hides no curve
         _title(fig, title, 2)
     return fig
 

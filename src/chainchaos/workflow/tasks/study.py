@@ -90,8 +90,13 @@ def study_laws(inputs, outputs, params, wildcards) -> None:
     from chainchaos.studies.study.runs import merge_groups
 
     study = _study(params)
-    merged = merge_groups(study, [xr.load_dataset(f) for f in inputs["groups"]])
-    ds = laws(merged, study.spec, study.settings)
+    groups = [xr.load_dataset(f) for f in inputs["groups"]]
+    merged = merge_groups(study, groups)
+    ds = laws(merged, study.spec, study.settings, study.N)
+    # what the study's orbits cost: CPU time, or wall time for groups made before CPU time was kept
+    measured = [g.attrs.get("cpu_time_s", g.attrs["wall_time_s"]) for g in groups]
+    ds.attrs.update(cost_s=float(sum(measured)),
+                    cost_kind="CPU" if all("cpu_time_s" in g.attrs for g in groups) else "wall")
     ds.attrs.update(provenance_attrs({"study": study.name, **study.spec}), study=study.name,
                     study_title=study.title, title=f"{study.title}: power laws of the ensemble means")
     for m in ds["model"].values:
@@ -119,7 +124,7 @@ def plot_study_comparison(inputs, outputs, params, wildcards) -> None:
     from chainchaos.studies.study.plots import comparison_figure
 
     named = {name: xr.load_dataset(path) for name, path in inputs.items()}
-    fig = comparison_figure(named, f"study {wildcards['study']} and {', '.join(list(named)[1:])}")
+    fig = comparison_figure(named, f"study {wildcards['study']} beside {', '.join(list(named)[1:])}")
     save_figure(fig, Path(outputs["pdf"]).with_suffix(""), dpi=params["dpi"])
 
 
