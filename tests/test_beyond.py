@@ -34,9 +34,9 @@ def test_a_published_exponent_inside_or_outside_the_interval_is_said_so():
 
 def test_a_law_cut_by_the_walls_says_so():
     cut = _laws(0.25, 0.35, t_walls=1e6)
-    cut.attrs.update(walls_edge_energy=1e-3, walls_participation_fraction="none")
+    cut.attrs.update(walls_edge_energy=1e-6, walls_participation_fraction="none")
     text = body({"s": cut}, {})
-    assert r"$10^{4.0}$--$10^{7.0}$$^\ddagger$" in text and r"exceeds $\log_{10} 0.001$" in text
+    assert r"$10^{4.0}$--$10^{7.0}$$^\ddagger$" in text and r"exceeds $\log_{10} 10^{-6}$" in text
     short = body({"s": _laws(np.nan, np.nan, exponent=np.nan, t_walls=10 ** 2.5)}, {})
     assert "(chain too short)" in short and r"ends felt at $10^{2.5}$$^\ddagger$" in short
 

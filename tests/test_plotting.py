@@ -312,3 +312,12 @@ def test_a_figure_s_job_draws_each_panel_and_the_composite_as_drawn_alone(data, 
     alone.append(save_figure(plot_figure(number, loaded), tmp_path / "alone" / f"fig{number}", dpi=50))
     for path in (path for pair in alone for path in pair):
         assert (tmp_path / "job" / path.name).read_bytes() == path.read_bytes(), path.name
+
+
+def test_mathtext_keeps_every_parse_of_a_figure_job():
+    """A figure job parses hundreds of mathtext strings (log tick labels, for the PDF and the PNG);
+    matplotlib's own cache keeps 50 (style, imported above, enlarges it). If a release renames it, this
+    fails instead of the jobs silently slowing down."""
+    from matplotlib.mathtext import MathTextParser
+
+    assert MathTextParser._parse_cached.cache_info().maxsize >= 4096

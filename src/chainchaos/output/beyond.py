@@ -11,7 +11,7 @@ import re
 
 import xarray as xr
 
-from chainchaos.output.formatting import tex_scientific
+from chainchaos.output.formatting import tex_parameter, tex_scientific
 
 #: How a law's series reads in the table.
 SYMBOLS = {"second_moment": r"$\langle\log_{10} m_2\rangle$", "participation": r"$\langle\log_{10} P\rangle$",
@@ -82,9 +82,9 @@ def beyond_table(named: dict[str, xr.Dataset]) -> str:
 def _walls_rule(attrs) -> str:
     """How a laws file's runs were cut at the chain's ends (its ``walls_*`` attributes)."""
     edge, fraction = attrs.get("walls_edge_energy", "none"), attrs.get("walls_participation_fraction", "none")
-    cuts = ([f"$m_2$ cut where $\\langle\\log_{{10}} E_{{\\rm edge}}/H\\rangle$ exceeds $\\log_{{10}} {edge:g}$"]
+    cuts = ([f"$m_2$ cut where $\\langle\\log_{{10}} E_{{\\rm edge}}/H\\rangle$ exceeds $\\log_{{10}} {tex_parameter(edge)}$"]
             if edge != "none" else []) + \
-           ([f"every law cut where $\\langle\\log_{{10}} P\\rangle$ exceeds $\\log_{{10}}({fraction:g} N)$"]
+           ([f"every law cut where $\\langle\\log_{{10}} P\\rangle$ exceeds $\\log_{{10}}({tex_parameter(fraction)} N)$"]
             if fraction != "none" else [])
     return "".join(", " + c for c in cuts)
 

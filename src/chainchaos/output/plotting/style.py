@@ -5,6 +5,7 @@ several panels per row spans both columns (7.0 in). The model is nondimensional 
 so the labels give times in units of 1/omega_max and frequencies in units of omega_max.
 """
 
+import functools
 from pathlib import Path
 
 import matplotlib
@@ -16,6 +17,19 @@ from chainchaos.system.models import MODELS, get_model, model_label
 # Figures are drawn on matplotlib.figure.Figure, never through pyplot, and only ever written to
 # files (PNG by Agg, PDF by matplotlib's PDF backend); a caller's pyplot gets Agg too.
 matplotlib.use("Agg")
+
+
+def _larger_mathtext_cache(size: int = 4096) -> None:
+    """matplotlib keeps the last 50 parsed mathtext strings; a figure job draws hundreds (every log
+    tick label is mathtext, once for the PDF and once for the PNG), so most were parsed again."""
+    from matplotlib.mathtext import MathTextParser
+
+    cached = getattr(MathTextParser, "_parse_cached", None)
+    if cached is not None and hasattr(cached, "__wrapped__") and cached.cache_info().maxsize < size:
+        MathTextParser._parse_cached = functools.lru_cache(size)(cached.__wrapped__)
+
+
+_larger_mathtext_cache()
 
 COLUMN_WIDTH = 3.4  # in, one column: a single panel
 PAGE_WIDTH = 7.0  # in, both columns: composites
