@@ -70,7 +70,7 @@ def _bad_values(schema: dict) -> list[tuple[str, object]]:
     types = schema.get("type", [])
     types = [types] if isinstance(types, str) else list(types)
     if "object" in types:
-        return [("wrong type", "text")]
+        return [("wrong type", 12345 if "string" in types else "text")]  # a name or a mapping: a number is neither
     if "array" in types:
         out = [("wrong type", 3)]
         if schema.get("minItems", 0) >= 1:
@@ -227,6 +227,8 @@ def _snakemake(*args, results):
     (("simulation={dt: .nan}",), "config key simulation.dt = nan: allowed is a finite number"),
     ((f"scenes={{{SCENE}: {{excited_site: 50}}}}",), f"config key scenes.{SCENE}.excited_site = 50"),
     (("--configfile", "BAD"), "config key simulation.integrator = 'rk4': allowed is string: 'verlet'"),
+    (("manuscript={beyond: [{hertz500: [nosuch]}]}",),
+     "config manuscript.beyond: study hertz500 has no figure nosuch; its figures: ['spreading', 'comparison']"),
 ])
 def test_snakemake_refuses_a_bad_config_before_any_job(tmp_path, extra, expected):
     bad = tmp_path / "bad.yaml"
