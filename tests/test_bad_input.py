@@ -229,6 +229,7 @@ def _snakemake(*args, results):
     (("--configfile", "BAD"), "config key simulation.integrator = 'rk4': allowed is string: 'verlet'"),
     (("manuscript={beyond: [{hertz500: [nosuch]}]}",),
      "config manuscript.beyond: study hertz500 has no figure nosuch; its figures: ['spreading', 'comparison']"),
+    (("manuscript={beyond: [hertz500, {hertz500: []}]}",), "config manuscript.beyond: study hertz500 is named twice"),
 ])
 def test_snakemake_refuses_a_bad_config_before_any_job(tmp_path, extra, expected):
     bad = tmp_path / "bad.yaml"

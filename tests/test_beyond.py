@@ -39,6 +39,8 @@ def test_a_law_cut_by_the_walls_says_so():
     assert r"$10^{4.0}$--$10^{7.0}$$^\ddagger$" in text and r"exceeds $\log_{10} 10^{-6}$" in text
     short = body({"s": _laws(np.nan, np.nan, exponent=np.nan, t_walls=10 ** 2.5)}, {})
     assert "(chain too short)" in short and r"ends felt at $10^{2.5}$$^\ddagger$" in short
+    unfitted = body({"s": _laws(np.nan, np.nan, exponent=np.nan)}, {})  # no walls: the run itself is short
+    assert "(run too short) & ---" in unfitted and "chain too short" not in unfitted
 
 
 def test_tex_text_escapes_in_one_pass():

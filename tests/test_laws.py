@@ -76,3 +76,56 @@ def test_a_chain_too_short_for_the_law_gives_no_exponent():
     t = np.concatenate([[0.0], _times()])  # a run's grid starts at t = 0
     fit = fit_law(t, np.vstack([t ** 0.3, 2 * t ** 0.3]), **RULE, t_walls=10 ** 2.9)  # 0.9 decade after t_min
     assert np.isnan(fit["exponent"]) and np.isnan(fit["lower"]) and not fit["settled"]
+
+
+class _Grid:
+    """The settings a laws file reads: the step and the log-spaced sample steps."""
+
+    dt = 1e-3
+
+    def __init__(self, t):
+        self._steps = np.rint(t / self.dt).astype(np.int64)
+
+    def sample_steps(self):
+        return self._steps
+
+
+def test_laws_cut_m2_at_the_tail_and_every_law_at_the_filled_chain():
+    """laws() on a merged study whose laws are exact: P = c t^0.5 fills a tenth of N = 1000 near
+    t = 1e4, the edge energy appears at 10^3.5 (one realization only at 10^3.6), m2 = c t^1.5 and
+    Lambda = t^-0.25; an invalid realization with a huge energy error is left out."""
+    import xarray as xr
+
+    from chainchaos.studies.study.laws import laws
+
+    t = np.concatenate([[0.0], _times()[:101]])  # 0, then 1 .. 1e5
+    R = 8
+    c = 10.0 ** np.linspace(-0.1, 0.12, R)[:, None]
+    edge = np.where(t >= 10 ** 3.5, 1e-3, 0.0) * np.ones((R, 1))
+    edge[0, t < 10 ** 3.6] = 0.0
+    series = {"participation": c * t ** 0.5, "second_moment": c * t ** 1.5, "edge_energy": edge,
+              "mlce": np.where(t > 0, t, 1.0) ** -0.25 * np.ones((R, 1))}
+    dims = ("model", "energy", "realization", "lane")
+    merged = xr.Dataset({name: (dims + ("time",), x[None, None, :, None, :]) for name, x in series.items()},
+                        coords={"model": ["hertz"], "energy": [1.8], "time": t})
+    valid = np.ones((1, 1, R, 1), dtype=np.int8)
+    valid[0, 0, -1, 0] = 0
+    error = np.full((1, 1, R, 1), 1e-6)
+    error[0, 0, -1, 0] = 1.0
+    merged["valid"], merged["energy_error_max"] = (dims, valid), (dims, error)
+    spec = {"criteria": {"slope_window_decades": 1.0},
+            "laws": {"fits": [{"series": s, "expected": 0.0, "reference": "-"}
+                              for s in ("second_moment", "participation", "mlce")],
+                     "min_decades": 1.0, "band": 0.1, "t_min": 100.0, "bootstrap": 100, "seed": 0,
+                     "walls": {"edge_energy": 1e-6, "participation_fraction": 0.1}}}
+    ds = laws(merged, spec, _Grid(t), N=1000)
+    fit = ds.isel(model=0, energy=0)
+    mean_p = np.mean(np.log10(c[:-1]) + 0.5 * np.log10(np.where(t > 0, t, 1.0)), axis=0)
+    filled = t[np.flatnonzero((t > 0) & (mean_p > 2.0))[0]]
+    assert 10 ** 3.9 < filled < 10 ** 4.1
+    assert fit["t_walls"].sel(law="m2") == pytest.approx(10 ** 3.6)  # every realization has energy at the ends
+    assert fit["t_walls"].sel(law="P") == fit["t_walls"].sel(law="Lambda") == pytest.approx(filled)
+    for law, exponent in (("m2", 1.5), ("P", 0.5), ("Lambda", -0.25)):
+        assert fit["exponent"].sel(law=law) == pytest.approx(exponent, abs=1e-12)
+        assert fit["t_end"].sel(law=law) < fit["t_walls"].sel(law=law)
+    assert float(fit["energy_error_max"]) == 1e-6 and ds.attrs["walls_participation_fraction"] == 0.1

@@ -115,6 +115,8 @@ def test_the_worked_studies_are_valid_and_fput_extends_hertz():
     ({"ensemble": {"lanes": 0}}, "study key ensemble.lanes = 0"),
     ({"extends": "no_such_study"}, "study 'no_such_study': no file"),
     ({"typo": 1}, "unknown key(s) ['typo']"),
+    ({"laws": {"walls": {"edge_energy": 1e-6}}},
+     "study key laws.walls.edge_energy = 1e-06: allowed is a bound only with edge_energy among the observables"),
 ])
 def test_a_wrong_key_is_named_with_what_is_allowed(change, message):
     with pytest.raises(StudyError) as err:

@@ -407,6 +407,8 @@ def beyond_entries():
                 raise ValueError(
                     f"config manuscript.beyond: study {name} has no figure {', '.join(unknown)}; its figures: {known}"
                 )
+            if name in entries:
+                raise ValueError(f"config manuscript.beyond: study {name} is named twice")
             entries[name] = known if figures is None else list(figures)
     return entries
 

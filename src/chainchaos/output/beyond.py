@@ -69,8 +69,10 @@ def beyond_table(named: dict[str, xr.Dataset]) -> str:
             walls = r"$^\ddagger$" if math.isfinite(r["t_walls"]) else ""
             if math.isfinite(r["exponent"]):
                 window = f"{_decade(r['t_start'])}--{_decade(r['t_end'])}" + ("" if r["settled"] else r"$^\dagger$")
-            else:
+            elif math.isfinite(r["t_walls"]):
                 interval, window = "(chain too short)", f"ends felt at {_decade(r['t_walls'])}"
+            else:
+                interval, window = "(run too short)", "---"
             window += walls
             lines.append(f"\\texttt{{{study}}} & {model}, {r['energy']:g} & {SYMBOLS[r['series']]} & "
                          f"{_number(r['exponent'])} {interval} & {window} & "

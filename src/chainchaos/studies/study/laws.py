@@ -20,8 +20,8 @@ log10 t (Flach, Krimer & Skokos, PRL 102, 024101 (2009); Skokos, Gkolias & Flach
    the window kept; none with fewer than two realizations.
 5. **The walls** (key ``laws.walls``, :func:`walls_time`): on a finite chain the run is cut, before
    steps 2-4, at the first sample where the ends are felt: for m2, where the realization mean of
-   log10 of the edge energy exceeds log10 ``edge_energy`` (the packet's tail, which m2 weighs by
-   its distance squared, reached them); for every law, where the mean of log10 P exceeds
+   log10 of the edge energy (-inf while one of them has none) exceeds log10 ``edge_energy`` (the
+   packet's tail, which m2 weighs by its distance squared, reached them); for every law, where the mean of log10 P exceeds
    log10(``participation_fraction`` N) (its core fills that much of the chain). A law whose run so
    cut is shorter than ``min_decades`` after ``t_min`` is not fitted (NaN): the chain is too short.
 
@@ -79,7 +79,8 @@ def walls_time(t: np.ndarray, mean_log10: np.ndarray, bound: float | None) -> fl
     (module docstring, step 5); infinity when it never does or there is no bound."""
     if bound is None:
         return float("inf")
-    over = np.flatnonzero(np.nan_to_num(mean_log10, nan=-np.inf) > log10(np.array([bound]))[0])
+    above = np.nan_to_num(mean_log10, nan=-np.inf) > log10(np.array([bound]))[0]
+    over = np.flatnonzero(above & (np.asarray(t) > 0))  # the initial state is not a wall
     return float(t[over[0]]) if over.size else float("inf")
 
 
@@ -141,13 +142,7 @@ def laws(merged: xr.Dataset, spec: dict, settings, N: int) -> xr.Dataset:
     keys = {"window_decades": float(spec["criteria"]["slope_window_decades"]),
             "min_decades": float(block["min_decades"]), "band": float(block["band"]), "t_min": float(block["t_min"]),
             "bootstrap": int(block["bootstrap"]), "seed": int(block["seed"])}
-    walls = block["walls"]
-    if walls["participation_fraction"] is not None:
-        require("participation" in merged, "laws.walls.participation_fraction", walls["participation_fraction"],
-                "a bound only for a study with participation among its observables")
-    if walls["edge_energy"] is not None:
-        require("edge_energy" in merged, "laws.walls.edge_energy", walls["edge_energy"],
-                "a bound only for a study with edge_energy among its observables")
+    walls = block["walls"]  # Study.check: an edge_energy bound only with edge_energy observed
     grid = log_grid(merged["time"].values, settings)
     t = merged["time"].values[grid]
     M, E, L = merged.sizes["model"], merged.sizes["energy"], len(fits)
@@ -155,8 +150,9 @@ def laws(merged: xr.Dataset, spec: dict, settings, N: int) -> xr.Dataset:
     valid = merged["valid"].isel(lane=0) == 1
 
     def mean_log10(name, m, e):
-        series = merged[name].isel(model=m, energy=e, lane=0).where(valid.isel(model=m, energy=e))
-        return ordered_mean(log10(series.values[:, grid]), axis=0)[0]
+        values = merged[name].isel(model=m, energy=e, lane=0).where(valid.isel(model=m, energy=e)).values[:, grid]
+        mean = ordered_mean(log10(values), axis=0)[0]
+        return np.where((values == 0).any(axis=0), -np.inf, mean)  # log10 0 = -inf: nothing at the ends yet
 
     fraction = walls["participation_fraction"]
     for m in range(M):
@@ -179,8 +175,9 @@ def laws(merged: xr.Dataset, spec: dict, settings, N: int) -> xr.Dataset:
                          {"long_name": "where the published exponent is from"})
     data["series"] = ("law", np.array([f["series"] for f in fits], dtype=object),
                       {"long_name": "the series whose realization mean of log10 the law is about"})
-    data["energy_error_max"] = (("model", "energy"), merged["energy_error_max"].max(dim=("realization", "lane")).values,
-                                {"units": "1", "long_name": "largest relative energy error of any orbit"})
+    error = merged["energy_error_max"].where(merged["valid"] == 1).max(dim=("realization", "lane"))
+    data["energy_error_max"] = (("model", "energy"), error.values,
+                                {"units": "1", "long_name": "largest relative energy error of the valid orbits"})
     ds = xr.Dataset(data, coords={"model": merged["model"], "energy": merged["energy"],
                                   "law": ("law", np.array([LAW_SERIES[f["series"]] for f in fits], dtype=object),
                                           {"long_name": "the law, by the series it fits"})})

@@ -306,6 +306,11 @@ class Study:
                 if needed not in self.observables:
                     raise ParameterError("series", fit["series"], f"a series of the observables {self.observables}")
 
+        def walls():
+            bound = self.spec["laws"]["walls"]["edge_energy"]
+            if bound is not None and "edge_energy" not in self.observables:
+                raise ParameterError("edge_energy", bound, "a bound only with edge_energy among the observables")
+
         def window():
             if self.window is not None and self.alignment:
                 raise ParameterError("window", self.spec["integration"]["window"],
@@ -321,6 +326,7 @@ class Study:
         check("lattice.model", models)
         check("observables", observables)
         check("laws.fits", laws)
+        check("laws.walls.edge_energy", walls)
         check("lattice.N", lattice)
         check("integration", lambda: self.settings)
         check("integration.window", window)

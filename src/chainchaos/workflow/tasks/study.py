@@ -93,10 +93,10 @@ def study_laws(inputs, outputs, params, wildcards) -> None:
     groups = [xr.load_dataset(f) for f in inputs["groups"]]
     merged = merge_groups(study, groups)
     ds = laws(merged, study.spec, study.settings, study.N)
-    # what the study's orbits cost: CPU time, or wall time for groups made before CPU time was kept
-    measured = [g.attrs.get("cpu_time_s", g.attrs["wall_time_s"]) for g in groups]
-    ds.attrs.update(cost_s=float(sum(measured)),
-                    cost_kind="CPU" if all("cpu_time_s" in g.attrs for g in groups) else "wall")
+    # what the study's orbits cost: CPU time, or wall time where a group made before CPU time was kept
+    cpu = all("cpu_time_s" in g.attrs for g in groups)
+    ds.attrs.update(cost_s=float(sum(g.attrs["cpu_time_s" if cpu else "wall_time_s"] for g in groups)),
+                    cost_kind="CPU" if cpu else "wall")
     ds.attrs.update(provenance_attrs({"study": study.name, **study.spec}), study=study.name,
                     study_title=study.title, title=f"{study.title}: power laws of the ensemble means")
     for m in ds["model"].values:
