@@ -84,11 +84,12 @@ def beyond_table(named: dict[str, xr.Dataset]) -> str:
 def _walls_rule(attrs) -> str:
     """How a laws file's runs were cut at the chain's ends (its ``walls_*`` attributes)."""
     edge, fraction = attrs.get("walls_edge_energy", "none"), attrs.get("walls_participation_fraction", "none")
-    cuts = ([f"$m_2$ cut where $\\langle\\log_{{10}} E_{{\\rm edge}}/H\\rangle$ exceeds $\\log_{{10}} {tex_parameter(edge)}$"]
-            if edge != "none" else []) + \
-           ([f"every law cut where $\\langle\\log_{{10}} P\\rangle$ exceeds $\\log_{{10}}({tex_parameter(fraction)} N)$"]
-            if fraction != "none" else [])
-    return "".join(", " + c for c in cuts)
+    cuts = ""
+    if edge != "none":
+        cuts += f", $m_2$ cut where $\\langle\\log_{{10}} E_{{\\rm edge}}/H\\rangle$ exceeds $\\log_{{10}} {tex_parameter(edge)}$"
+    if fraction != "none":
+        cuts += f", every law cut where $\\langle\\log_{{10}} P\\rangle$ exceeds $\\log_{{10}}({tex_parameter(fraction)} N)$"
+    return cuts
 
 
 def figure_key(study: str, figure: str) -> str:

@@ -149,22 +149,25 @@ def laws(merged: xr.Dataset, spec: dict, settings, N: int) -> xr.Dataset:
     out = {key: np.zeros((M, E, L), dtype=dtype) for key, (dtype, _) in FIELDS.items()}
     valid = merged["valid"].isel(lane=0) == 1
 
-    def mean_log10(name, m, e):
-        values = merged[name].isel(model=m, energy=e, lane=0).where(valid.isel(model=m, energy=e)).values[:, grid]
+    def realizations(series, m, e):
+        """(realization, sample) of a series at (model m, energy e), NaN where not valid."""
+        return series.isel(model=m, energy=e, lane=0).where(valid.isel(model=m, energy=e)).values[:, grid]
+
+    def wall(name, bound, m, e):
+        if bound is None:  # no bound: its series need not be among the observables
+            return float("inf")
+        values = realizations(merged[name], m, e)
         mean = ordered_mean(log10(values), axis=0)[0]
-        return np.where((values == 0).any(axis=0), -np.inf, mean)  # log10 0 = -inf: nothing at the ends yet
+        return walls_time(t, np.where((values == 0).any(axis=0), -np.inf, mean), bound)  # log10 0 = -inf
 
     fraction = walls["participation_fraction"]
     for m in range(M):
         for e in range(E):
-            filled = walls_time(t, mean_log10("participation", m, e), None if fraction is None else fraction * N)
-            tail = walls_time(t, mean_log10("edge_energy", m, e), walls["edge_energy"]) if "edge_energy" in merged \
-                else float("inf")
+            filled = wall("participation", None if fraction is None else fraction * N, m, e)
+            tail = wall("edge_energy", walls["edge_energy"], m, e)
             for k, fit in enumerate(fits):
-                series = law_series(merged, fit["series"]).isel(model=m, energy=e, lane=0).where(
-                    valid.isel(model=m, energy=e))
                 cut = min(filled, tail) if fit["series"] == "second_moment" else filled
-                found = fit_law(t, series.values[:, grid], **keys, t_walls=cut)
+                found = fit_law(t, realizations(law_series(merged, fit["series"]), m, e), **keys, t_walls=cut)
                 for key in FIELDS:
                     out[key][m, e, k] = found[key]
     data = {key: (("model", "energy", "law"), out[key], {"units": "1", "long_name": text.format(x="x")})
