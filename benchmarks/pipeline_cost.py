@@ -30,7 +30,7 @@ PARTS = (
     ("kernel compilation", r"compile_kernels"),
     ("realization search: linear rule and filter", r"search_(candidates|filter)"),
     ("realization search: scores", r"search_score|search_merge|select_chain"),
-    ("scenes", r"simulate_scenes?"),
+    ("scenes", r"simulate_scenes"),
     ("ensemble verdicts", r"ensemble_verdicts"),
     ("energy scan", r"study_group/energy_scan-|merge_energy_scan"),
     ("disorder statistics", r"study_group/disorder(_full)?-|merge_disorder"),

@@ -84,9 +84,10 @@ def test_changed_scene_parameter_reruns_only_its_batch(quick, tmp_path):
     code, out = snakemake(*QUICK, str(override), "--config", f"results={quick}", "-n")
     assert code == 0, out
     jobs = planned_jobs(out)
-    rerun = set(re.findall(r"(?:local)?rule simulate_scene:\n(?:[ \t]+\w+:.*\n)*?[ \t]+output: \S*/scenes/(\w+_H[\d.]+)\.nc", out))
+    batches = re.findall(r"(?:local)?rule simulate_scenes_\w+:\n(?:[ \t]+\w+:.*\n)*?[ \t]+output: (.*)\n", out)
+    rerun = {name for outputs in batches for name in re.findall(r"/scenes/(\w+_H[\d.]+)\.nc", outputs)}
     assert "hertz_H1.8" in rerun and all(name.startswith("hertz_") for name in rerun)
-    assert jobs["simulate_scene"] == len(rerun) and jobs["simulate_scenes"] == 2
+    assert sum(n for rule, n in jobs.items() if rule.startswith("simulate_scenes_")) == len(batches) == 2
     affected = {p for p, panel in panels.PANELS.items() if rerun & {s.name for s in panel.scenes}}
     drawn = {rule for rule in jobs if rule.startswith("plot_figure_")}
     assert drawn == {f"plot_figure_{p[:-1]}" for p in affected} and all(jobs[rule] == 1 for rule in drawn)
@@ -97,17 +98,20 @@ def test_paper_scale_dry_run_plans_every_scene(tmp_path):
     code, out = snakemake("-n", "--config", f"results={tmp_path}")
     assert code == 0, out[-4000:]
     jobs = planned_jobs(out)
-    assert jobs["simulate_scene"] == len(panels.scenes())
+    # every scene's file is written by the job of its batch
+    batches = {rule: n for rule, n in jobs.items() if rule.startswith("simulate_scenes_")}
+    assert set(re.findall(r"/scenes/(\w+_H[\d.]+)\.nc", out)) == set(panels.scenes())
     # one drawing job per figure: its panels and its composite
     assert {rule: n for rule, n in jobs.items() if rule.startswith(("plot_figure", "plot_panel"))} == {
         f"plot_figure_{n}": 1 for n in panels.LAYOUTS}
     # scenes that share their settings run together, one SIMD block per job, and the few left over
     # (at most batch.SERIAL_REMAINDER) one per job, on the single engine
     per_model = [divmod(sum(s.model == model for s in panels.scenes().values()), LANES) for model in ("hertz", "fput")]
-    assert jobs["simulate_scenes"] == sum(whole + (rest if rest <= SERIAL_REMAINDER else 1) for whole, rest in per_model)
-    # the realization search: stage 0 (its size decides stage 1: a checkpoint), one verdict per scene
+    assert sum(batches.values()) == len(batches) == sum(whole + (rest if rest <= SERIAL_REMAINDER else 1) for whole, rest in per_model)
+    # the realization search: stage 0 (its size decides stage 1: a checkpoint), the verdicts one job per model
     assert jobs["search_seeds"] == 1 and jobs["search_candidates"] == 1 and jobs["search_merge"] == 1
-    assert jobs["ensemble_verdicts"] == len(statements.statement_scenes())
+    assert {rule: n for rule, n in jobs.items() if rule.startswith("ensemble_verdicts")} == {
+        f"ensemble_verdicts_{model}": 1 for model in statements.statement_scenes_by_model()}
 
 
 def test_an_archived_full_search_pins_its_chain_and_none_searches(tmp_path):

@@ -77,16 +77,16 @@ def test_scene_batches_fill_blocks_and_leave_a_few_scenes_to_the_single_engine()
     scenes = {**_scenes("hertz", [0.25, 0.5, 1.8, 3.0, 4.0, 6.0]), **_scenes("fput", [0.5, 1.0, 2.0])}
     hertz, fput = list(scenes)[:6], list(scenes)[6:]
     # two scenes beyond a block of four: one batch each (the single engine, jobs side by side)
-    assert scene_batches(scenes, 4, 2) == {"hertz-1": hertz[:4], "hertz-2": [hertz[4]], "hertz-3": [hertz[5]],
-                                           "fput-1": fput}
+    assert scene_batches(scenes, 4, 2) == {"hertz_1": hertz[:4], "hertz_2": [hertz[4]], "hertz_3": [hertz[5]],
+                                           "fput_1": fput}
     # more left over than the single engine takes: a padded block
-    assert scene_batches(scenes, 4, 1) == {"hertz-1": hertz[:4], "hertz-2": hertz[4:], "fput-1": fput}
-    assert scene_batches(scenes, 8, 0) == {"hertz-1": hertz, "fput-1": fput}
-    assert scene_batches(scenes, 8, 3) == {"hertz-1": hertz, "fput-1": [fput[0]], "fput-2": [fput[1]],
-                                           "fput-3": [fput[2]]}
+    assert scene_batches(scenes, 4, 1) == {"hertz_1": hertz[:4], "hertz_2": hertz[4:], "fput_1": fput}
+    assert scene_batches(scenes, 8, 0) == {"hertz_1": hertz, "fput_1": fput}
+    assert scene_batches(scenes, 8, 3) == {"hertz_1": hertz, "fput_1": [fput[0]], "fput_2": [fput[1]],
+                                           "fput_3": [fput[2]]}
     # several deviation vectors per orbit run on the batch engine only: a block, never singles
     gali = _scenes("hertz", [0.25, 0.5], observables=("mlce", "sali"))
-    assert scene_batches(gali, 8, 4) == {"hertz-1": list(gali)}
+    assert scene_batches(gali, 8, 4) == {"hertz_1": list(gali)}
 
 
 def test_scene_batches_name_a_bad_remainder():

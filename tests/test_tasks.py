@@ -144,16 +144,23 @@ def test_compute_ensemble_honours_every_key_of_the_ensemble_block(tmp_path):
                               ensemble_dataset([2.0, 5.0], 4, 12)["mean_participation"].values)
 
 
-def test_simulate_scene_takes_its_group_out_of_the_batch_file(tmp_path):
-    batch = tmp_path / "batch.nc"
-    scenes = {name: xr.Dataset({"u": ("time", np.arange(5.0) * k)}, coords={"time": np.arange(5.0)},
-                               attrs={"model": name.split("_")[0]})
-              for k, name in enumerate(("hertz_H1", "fput_H2"), start=1)}
-    for i, (name, ds) in enumerate(scenes.items()):
-        ds.to_netcdf(batch, mode="w" if i == 0 else "a", group=name, engine="netcdf4")
-    out = tmp_path / "scenes" / "fput_H2.nc"
-    run_rule(fake_rule("simulate_scene", tmp_path / "log", input={"batch": str(batch)}, output={"scene": str(out)},
-                       wildcards={"scene": "fput_H2"}))
-    written = xr.load_dataset(out)
-    xr.testing.assert_equal(written, scenes["fput_H2"])
-    assert written.attrs["model"] == "fput"
+def test_simulate_scenes_writes_each_scene_of_its_batch_to_its_own_file(tmp_path):
+    """A batch job's scenes, integrated together, each in the file of its name: the scene file
+    of the scene run alone (chainchaos.run.scenes.simulate), to the bit."""
+    from chainchaos.output.io import chain_dataset, write_netcdf
+    from chainchaos.run.scenes import SceneParameters, simulate
+    from chainchaos.system.chain import random_chain
+
+    chain = random_chain(879, 5.0, 12)
+    chain_file = write_netcdf(chain_dataset(chain), tmp_path / "chain.nc")
+    common = {"model": "fput", "t_final": 5.0, "dt": 0.01, "samples_per_decade": 4, "check_every": 100}
+    scenes = [SceneParameters(energy=1.8, excited_site=6, observables=("participation", "mlce"), name="fput_H1.8", **common),
+              SceneParameters(energy=0.5, excited_site=6, observables=("energy_density",), name="fput_H0.5", **common)]
+    outputs = {s.name: str(tmp_path / "scenes" / f"{s.name}.nc") for s in scenes}
+    run_rule(fake_rule("simulate_scenes", tmp_path / "log", input={"chain": str(chain_file), "kernels": []},
+                       output=outputs, params={"scenes": scenes, "batch": "fput_1"}))
+    for params in scenes:
+        written, alone = xr.load_dataset(outputs[params.name]), simulate(chain, params)
+        assert set(written.data_vars) == set(alone.data_vars), params.name
+        for name in alone.data_vars:
+            np.testing.assert_array_equal(written[name].values, alone[name].values, err_msg=f"{params.name}: {name}")

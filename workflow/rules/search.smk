@@ -240,32 +240,39 @@ rule plot_search_joint:
         "../scripts/plot_search_joint.py"
 
 
-rule ensemble_verdicts:
-    """A scene's ensemble of perturbed orbits on the chosen chain, and its statements' verdicts."""
-    input:
-        chain=result("chain", "chain.nc"),
-        kernels=kernel_flags(),
-    output:
-        result=result("verdicts", "{scene}.nc"),
-    priority: 3
-    params:
-        verdicts=config["verdicts"],
-        claims=config.get("claims", {}),
-        site=config["simulation"]["excited_site"],
-    log:
-        log_file("ensemble_verdicts", "{scene}"),
-    benchmark:
-        benchmark_file("ensemble_verdicts", "{scene}")
-    resources:
-        mem_mb=1000,
-        runtime=orbit_runtime(
-            config["verdicts"]["lanes"], config["verdicts"]["settings"]["t_final"]
-        ),
-    script:
-        "../scripts/ensemble_verdicts.py"
-
-
 VERDICT_FILES = {name: result("verdicts", f"{name}.nc") for name in statements.statement_scenes()}
+# The scenes of one model in one job (rule ensemble_verdicts_<model>): their orbits share SIMD
+# blocks of the batch engine, and every scene's verdicts are those of its own ensemble.
+for model, verdict_scenes in statements.statement_scenes_by_model().items():
+
+    rule:
+        name:
+            f"ensemble_verdicts_{model}"
+        input:
+            chain=result("chain", "chain.nc"),
+            kernels=kernel_flags(),
+        output:
+            **{name: VERDICT_FILES[name] for name in verdict_scenes},
+        priority: 3
+        params:
+            scenes=verdict_scenes,
+            verdicts=config["verdicts"],
+            claims=config.get("claims", {}),
+            site=config["simulation"]["excited_site"],
+        log:
+            log_file("ensemble_verdicts", model),
+        benchmark:
+            benchmark_file("ensemble_verdicts", model)
+        resources:
+            mem_mb=1000,
+            runtime=orbit_runtime(
+                len(verdict_scenes) * config["verdicts"]["lanes"],
+                config["verdicts"]["settings"]["t_final"],
+            ),
+        script:
+            "../scripts/ensemble_verdicts.py"
+
+
 SEARCH_TARGETS = [
     result("search", "search.nc"),
     result("figures", "search.pdf"),

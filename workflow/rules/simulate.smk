@@ -1,5 +1,5 @@
 # The scenes, integrated in batches of those that share their settings (one SIMD block each), each
-# computing only the observables its panels use, then one file per scene.
+# computing only the observables its panels use and written one file per scene.
 
 
 import os
@@ -10,7 +10,6 @@ from chainchaos.system.models import MODELS
 
 wildcard_constraints:
     scene="|".join(re.escape(name) for name in SCENES),
-    batch="|".join(re.escape(name) for name in SCENE_BATCHES),
     model="|".join(re.escape(name) for name in MODELS),
 
 
@@ -34,38 +33,28 @@ rule compile_kernels:
         "../scripts/compile_kernels.py"
 
 
-rule simulate_scenes:
-    """The scenes of one batch (those sharing their integration settings, one SIMD block of the
-    batch engine) integrated together; every lane's numbers are those of its scene alone."""
-    input:
-        chain=result("chain", "chain.nc"),
-        kernels=kernel_flags(),
-    output:
-        batch=temp(result("scenes", "batches", "{batch}.nc")),
-    priority: 5  # the longest jobs: before the many short scan and plot jobs, so the figures do not wait
-    params:
-        scenes=lambda wildcards: [SCENE_PARAMETERS[name] for name in SCENE_BATCHES[wildcards.batch]],
-    log:
-        log_file("simulate_scenes", "{batch}"),
-    benchmark:
-        benchmark_file("simulate_scenes", "{batch}")
-    resources:
-        mem_mb=1000,
-        runtime=60,  # paper scale: 2e8 steps of one SIMD block
-    script:
-        "../scripts/simulate_scenes.py"
+# One job per batch (rule simulate_scenes_<batch>): the batches follow from the scenes and this
+# machine's SIMD width, and each job writes its scenes' files, one target per scene.
+for batch, batch_scenes in SCENE_BATCHES.items():
 
-
-rule simulate_scene:
-    """One scene's file, from its batch."""
-    input:
-        batch=lambda wildcards: result("scenes", "batches", f"{SCENE_BATCH[wildcards.scene]}.nc"),
-    output:
-        scene=result("scenes", "{scene}.nc"),
-    priority: 5
-    log:
-        log_file("simulate_scene", "{scene}"),
-    benchmark:
-        benchmark_file("simulate_scene", "{scene}")
-    script:
-        "../scripts/simulate_scene.py"
+    rule:
+        name:
+            f"simulate_scenes_{batch}"
+        input:
+            chain=result("chain", "chain.nc"),
+            kernels=kernel_flags(),
+        output:
+            **{name: scene_file(name) for name in batch_scenes},
+        priority: 5  # the longest jobs: before the many short scan and plot jobs, so the figures do not wait
+        params:
+            scenes=[SCENE_PARAMETERS[name] for name in batch_scenes],
+            batch=batch,
+        log:
+            log_file("simulate_scenes", batch),
+        benchmark:
+            benchmark_file("simulate_scenes", batch)
+        resources:
+            mem_mb=1000,
+            runtime=60,  # paper scale: 2e8 steps of one SIMD block
+        script:
+            "../scripts/simulate_scenes.py"

@@ -345,6 +345,22 @@ def _aligned_zeros(n):
     return buf[(8 - misalignment) % 8:][:n]
 
 
+@njit(cache=True)
+def put(Z, start, x):
+    """Z[start:start + x.size] = x, one element at a time. A slice assignment between arrays
+    compiles Numba's formatted shape-mismatch error (seconds of compilation per kernel that has
+    one) for a check these copies, sized by construction, never need."""
+    for i in range(x.shape[0]):
+        Z[start + i] = x[i]
+
+
+@njit(cache=True)
+def take(Z, start, x, n):
+    """x[:n] = Z[start:start + n], one element at a time (see :func:`put`)."""
+    for i in range(n):
+        x[i] = Z[start + i]
+
+
 @njit(cache=True, error_model="numpy")
 def advance(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, tangent, check_every, track_gaps,
             gap_steps, diagnostics, f, k, sites=None):
@@ -371,17 +387,17 @@ def advance(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, ta
     L = (N + 1 + LANES) // LANES * LANES
     Z = _aligned_zeros(len(ROWS) * (L + LANES))
     U, DQ, P, DP, IM, F, K, B0, B1, B2 = _row_offsets(L)
-    Z[U + 1:U + N + 1] = q
-    Z[DQ + 1:DQ + N + 1] = dq
-    Z[P + 1:P + N + 1] = p
-    Z[DP + 1:DP + N + 1] = dp
-    Z[IM + 1:IM + N + 1] = inv_mass
+    put(Z, U + 1, q)
+    put(Z, DQ + 1, dq)
+    put(Z, P + 1, p)
+    put(Z, DP + 1, dp)
+    put(Z, IM + 1, inv_mass)
     for r, start in enumerate((B0, B1, B2)):
-        Z[start:start + N + 1] = bonds[r]
+        put(Z, start, bonds[r])
     if sites is not None:
         S0, S1 = _site_rows(L)
-        Z[S0 + 1:S0 + N + 1] = sites[0]
-        Z[S1 + 1:S1 + N + 1] = sites[1]
+        put(Z, S0 + 1, sites[0])
+        put(Z, S1 + 1, sites[1])
     # the tangent flag literal: each case compiles to its own code without these branches
     if tangent:
         bad = _step_loop(model, True, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
@@ -389,10 +405,10 @@ def advance(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, ta
     else:
         bad = _step_loop(model, False, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
                          gap_steps, diagnostics)
-    q[:] = Z[U + 1:U + N + 1]
-    dq[:] = Z[DQ + 1:DQ + N + 1]
-    p[:] = Z[P + 1:P + N + 1]
-    dp[:] = Z[DP + 1:DP + N + 1]
-    f[:N + 1] = Z[F:F + N + 1]
-    k[:N + 1] = Z[K:K + N + 1]
+    take(Z, U + 1, q, N)
+    take(Z, DQ + 1, dq, N)
+    take(Z, P + 1, p, N)
+    take(Z, DP + 1, dp, N)
+    take(Z, F, f, N + 1)
+    take(Z, K, k, N + 1)
     return bad

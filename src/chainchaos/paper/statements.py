@@ -80,6 +80,15 @@ def statement_scenes() -> dict[str, Scene]:
     return {s.scene.name: s.scene for s in STATEMENTS}
 
 
+def statement_scenes_by_model() -> dict[str, list[str]]:
+    """The names of :func:`statement_scenes` by model, in table order: the scenes whose ensembles
+    one verdict job integrates together (any mix of a model's orbits shares a batch)."""
+    groups: dict[str, list[str]] = {}
+    for name, scene in statement_scenes().items():
+        groups.setdefault(scene.model, []).append(name)
+    return groups
+
+
 # Which kinds of panel show what a statement of each kind is about.
 STATEMENT_PANEL_KINDS = {
     "localized": ("energy_map", "participation", "participation_with_dvd"),

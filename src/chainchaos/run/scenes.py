@@ -77,7 +77,7 @@ def batch_key(params: SceneParameters) -> tuple:
 
 def scene_batches(scenes: dict[str, SceneParameters], lanes: int, serial_remainder: int = 0) -> dict[str, list[str]]:
     """The scenes (by name, in order) that run together: those sharing ``BATCH_KEYS``, at most
-    ``lanes`` at a time (one SIMD block of the batch engine), named ``<model>-<n>``. A group's
+    ``lanes`` at a time (one SIMD block of the batch engine), named ``<model>_<n>``. A group's
     last scenes beyond whole blocks, if at most ``serial_remainder`` and none needs several
     deviation vectors (which only the batch engine carries), go one per batch: each then runs on
     the single-trajectory engine, which costs less than a block that is mostly padding
@@ -102,7 +102,7 @@ def scene_batches(scenes: dict[str, SceneParameters], lanes: int, serial_remaind
         model = key[0]
         for chunk in chunks:
             count[model] = count.get(model, 0) + 1
-            batches[f"{model}-{count[model]}"] = chunk
+            batches[f"{model}_{count[model]}"] = chunk
     return batches
 
 

@@ -98,7 +98,8 @@ def _eigh_sorted(diag, off, w, V):
     n = diag.shape[0]
     d = diag.copy()
     e = np.zeros(n)
-    e[:n - 1] = off
+    for i in range(n - 1):  # a loop, not e[:n - 1] = off: see engine.integrators.put
+        e[i] = off[i]
     Z = np.eye(n)
     status = _ql_implicit(d, e, Z)
     order = np.arange(n)

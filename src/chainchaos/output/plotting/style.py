@@ -38,8 +38,11 @@ ROW_HEIGHT = {1: 2.55, 2: 2.45, 3: 2.1, 4: 1.8}  # in, a composite row by its nu
 DPI = 300
 
 RC = {
-    "font.family": "DejaVu Sans",  # shipped with matplotlib, so the files do not depend on the host
-    "mathtext.fontset": "dejavusans",
+    # STIX, shipped with matplotlib (the files do not depend on the host): Times-like, as APS
+    # journals set the text, with its own math fonts. Embedding a subset of it in each PDF costs
+    # half what DejaVu Sans does (smaller layout tables), a quarter of a figure job.
+    "font.family": "STIXGeneral",
+    "mathtext.fontset": "stix",
     "font.size": 8,
     "axes.labelsize": 8,
     "axes.titlesize": 7,

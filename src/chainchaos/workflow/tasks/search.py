@@ -231,25 +231,30 @@ def plot_search_joint(inputs, outputs, params, wildcards) -> None:
 
 
 def ensemble_verdicts(inputs, outputs, params, wildcards) -> None:
-    """One scene's ensemble of perturbed orbits on the chosen chain, and its statements' verdicts."""
-    name = wildcards["scene"]
-    scene = statements.statement_scenes()[name]
+    """The ensembles of perturbed orbits of a model's scenes (params ``scenes``) on the chosen
+    chain, integrated together, and each scene's statements' verdicts in its own file (output
+    keyed by the scene's name)."""
     block = params["verdicts"]
+    lanes = int(block["lanes"])
     settings = OrbitSettings.from_config(block["settings"])
     criteria = Criteria.from_config(params.get("claims"))
     chain = read_chain(inputs["chain"])
-    orbits = [Orbit(scene.model, scene.energy, chain, int(params["site"]), lane) for lane in range(int(block["lanes"]))]
-    t, runs = integrate(orbits, settings, _progress(f"verdicts {name}"), gali_stop=np.log(criteria.gali_threshold))
-    attrs = provenance_attrs({"verdicts": block, "scene": name})
-    if settings.alignment:
-        attrs.update(gali_order=int(settings.gali_order))
-    attrs.update(model=scene.model, energy=float(scene.energy), dt=float(settings.dt),
-                 t_final=float(settings.t_final), integrator=settings.integrator, lanes=int(block["lanes"]),
-                 perturbation=float(settings.perturbation), seed=-1 if chain.seed is None else int(chain.seed))
-    ds = verdict_dataset(name, t, runs, criteria, attrs)
-    for st, frac, v in zip(ds.statement.values, ds["fraction"].values, ds["verdict"].values):
-        print(f"{st:28s} fraction {frac:.3f} verdict {v}", file=sys.stderr)
-    write_netcdf(ds, outputs["result"])
+    scenes = {name: statements.statement_scenes()[name] for name in params["scenes"]}
+    orbits = [Orbit(scene.model, scene.energy, chain, int(params["site"]), lane)
+              for scene in scenes.values() for lane in range(lanes)]
+    t, runs = integrate(orbits, settings, _progress(f"verdicts {', '.join(scenes)}"),
+                        gali_stop=np.log(criteria.gali_threshold))
+    for k, (name, scene) in enumerate(scenes.items()):
+        attrs = provenance_attrs({"verdicts": block, "scene": name})
+        if settings.alignment:
+            attrs.update(gali_order=int(settings.gali_order))
+        attrs.update(model=scene.model, energy=float(scene.energy), dt=float(settings.dt),
+                     t_final=float(settings.t_final), integrator=settings.integrator, lanes=lanes,
+                     perturbation=float(settings.perturbation), seed=-1 if chain.seed is None else int(chain.seed))
+        ds = verdict_dataset(name, t, runs[k * lanes:(k + 1) * lanes], criteria, attrs)
+        for st, frac, v in zip(ds.statement.values, ds["fraction"].values, ds["verdict"].values):
+            print(f"{name:14s} {st:28s} fraction {frac:.3f} verdict {v}", file=sys.stderr)
+        write_netcdf(ds, outputs[name])
 
 
 TASKS = (search_seeds, search_candidates, search_filter, search_score, search_merge, search_full,

@@ -1,5 +1,0 @@
-"""simulate_scene: see chainchaos.workflow.tasks.simulate.simulate_scene."""
-
-from chainchaos.workflow.tasks import run_rule
-
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
