@@ -129,3 +129,26 @@ def test_laws_cut_m2_at_the_tail_and_every_law_at_the_filled_chain():
         assert fit["exponent"].sel(law=law) == pytest.approx(exponent, abs=1e-12)
         assert fit["t_end"].sel(law=law) < fit["t_walls"].sel(law=law)
     assert float(fit["energy_error_max"]) == 1e-6 and ds.attrs["walls_participation_fraction"] == 0.1
+
+
+def test_a_study_that_names_no_law_gets_a_laws_file_without_laws(tmp_path):
+    """study_statistics writes laws.nc for every study: with no law named, its law dimension is
+    empty, and the file is written and read back like any other."""
+    import xarray as xr
+
+    from chainchaos.output.io import write_netcdf
+    from chainchaos.studies.study.laws import laws
+
+    t = np.concatenate([[0.0], _times()[:41]])
+    dims = ("model", "energy", "realization", "lane")
+    ones = np.ones((1, 1, 3, 1))
+    merged = xr.Dataset({"participation": (dims + ("time",), ones[..., None] * np.ones(t.size)),
+                         "valid": (dims, ones.astype(np.int8)), "energy_error_max": (dims, 1e-7 * ones)},
+                        coords={"model": ["fput"], "energy": [0.5], "time": t})
+    spec = {"criteria": {"slope_window_decades": 1.0},
+            "laws": {"fits": [], "min_decades": 1.0, "band": 0.1, "t_min": 10.0, "bootstrap": 10, "seed": 0,
+                     "walls": {"edge_energy": None, "participation_fraction": None}}}
+    ds = laws(merged, spec, _Grid(t), N=40)
+    assert ds.sizes["law"] == 0 and ds["energy_error_max"].item() == 1e-7
+    back = xr.load_dataset(write_netcdf(ds, tmp_path / "laws.nc"))
+    assert back.sizes["law"] == 0 and set(back.data_vars) == set(ds.data_vars)

@@ -314,10 +314,27 @@ def test_a_figure_s_job_draws_each_panel_and_the_composite_as_drawn_alone(data, 
         assert (tmp_path / "job" / path.name).read_bytes() == path.read_bytes(), path.name
 
 
-def test_mathtext_keeps_every_parse_of_a_figure_job():
-    """A figure job parses hundreds of mathtext strings (log tick labels, for the PDF and the PNG);
-    matplotlib's own cache keeps 50 (style, imported above, enlarges it). If a release renames it, this
-    fails instead of the jobs silently slowing down."""
+def test_mathtext_is_parsed_once_per_output_type_for_every_renderer():
+    """A figure job parses hundreds of mathtext strings (log tick labels, for every panel's layout,
+    PDF and PNG): style, imported above, keeps one cache for every renderer, so a second figure
+    drawing the same labels parses nothing, and its PNG is the one drawn before. If a matplotlib
+    release renames what style replaces, this fails instead of the jobs silently slowing down."""
+    import io
+
+    from matplotlib.figure import Figure
     from matplotlib.mathtext import MathTextParser
 
-    assert MathTextParser._parse_cached.cache_info().maxsize >= 4096
+    def png(label):
+        fig = Figure(figsize=(2, 1))
+        fig.text(0.1, 0.5, label)
+        out = io.BytesIO()
+        fig.savefig(out, format="png", dpi=50)
+        return out.getvalue()
+
+    info = MathTextParser._parse_cached.cache_info
+    assert info().maxsize >= 4096
+    first = png(r"$10^{-7}\,\Lambda_{\max}$")
+    misses = info().misses
+    assert png(r"$10^{-7}\,\Lambda_{\max}$") == first and info().misses == misses
+    png(r"$10^{-6}$")
+    assert info().misses > misses

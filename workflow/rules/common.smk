@@ -565,6 +565,16 @@ def kernel_flags(models=None):
     return [result("kernels", f"{model}.txt") for model in (models or panels.models())]
 
 
+def earlier_kernel_flags(wildcards):
+    """The flags of the paper's models before ``wildcards.model`` (panels.models() order): its
+    compile_kernels job loads the kernels they share (the eigen solver, the chaos indicators')
+    from the cache instead of compiling them again, while the other core runs jobs that need no
+    kernel."""
+    models = panels.models()
+    earlier = models[: models.index(wildcards.model)] if wildcards.model in models else []
+    return kernel_flags(earlier) if earlier else []
+
+
 def study_group_inputs(wildcards):
     files = {"kernels": kernel_flags(study_of(wildcards.study).models)}
     chain_file = study_of(wildcards.study).spec["lattice"]["chain_file"]
@@ -602,9 +612,7 @@ def study_targets(name):
         for m in study.models
         for e in study.energies
     ]
-    files.append(result("studies", name, "statistics.nc"))
-    if study.spec["laws"]["fits"]:
-        files.append(result("studies", name, "laws.nc"))
+    files += [result("studies", name, "statistics.nc"), result("studies", name, "laws.nc")]
     figures = [*study.spec["figures"], *(["comparison"] if study.spec["compare_with"] else [])]
     files += [
         result("studies", name, "figures", f"{f}.{ext}") for f in figures for ext in ("pdf", "png")

@@ -15,10 +15,12 @@ wildcard_constraints:
 
 rule compile_kernels:
     """Compile one model's Numba kernels once into the on-disk cache before the simulations,
-    scans and the search fan out (one job per model: they compile side by side). An edit to a
-    kernel's source reruns it, and every integration after it."""
+    scans and the search fan out (one job per model, the paper's one after the other: the second
+    loads what they share). An edit to a kernel's source reruns it, and every integration after
+    it."""
     input:
         sources=[os.path.relpath(path) for path in kernel_sources()],
+        earlier=earlier_kernel_flags,
     output:
         flag=result("kernels", "{model}.txt"),
     log:

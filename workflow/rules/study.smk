@@ -4,7 +4,7 @@
 #
 # in resumable jobs of `jobs.orbits_per_job` orbits (study_group), merged into one NetCDF file
 # per model and energy holding every realization (study_scene) and the ensemble statistics
-# (study_statistics), drawn as the study's figures (plot_study, plot_study_comparison) and shown
+# and its power laws (study_statistics), drawn as the study's figures (plot_study, plot_study_comparison) and shown
 # in the HTML report (category "Studies"). Nothing of the paper (search, claims, manuscript) runs.
 
 
@@ -20,7 +20,6 @@ localrules:
     keep_study_group,
     study_scene,
     study_statistics,
-    study_laws,
     plot_study,
     plot_study_comparison,
 
@@ -61,11 +60,13 @@ rule study_scene:
 
 
 rule study_statistics:
-    """The ensemble statistics of a study on its (model, energy) grid."""
+    """The ensemble statistics of a study on its (model, energy) grid, and the power laws it names
+    (key laws) fitted to its ensemble means: both read every group, so one job reads them once."""
     input:
         groups=lambda wildcards: study_group_files(wildcards.study),
     output:
         statistics=result("studies", "{study}", "statistics.nc"),
+        laws=result("studies", "{study}", "laws.nc"),
     params:
         spec=lambda wildcards: study_spec(wildcards.study),
     log:
@@ -74,22 +75,6 @@ rule study_statistics:
         benchmark_file("study_statistics", "{study}")
     script:
         "../scripts/study_statistics.py"
-
-
-rule study_laws:
-    """The power laws a study names (key laws), fitted to its ensemble means."""
-    input:
-        groups=lambda wildcards: study_group_files(wildcards.study),
-    output:
-        laws=result("studies", "{study}", "laws.nc"),
-    params:
-        spec=lambda wildcards: study_spec(wildcards.study),
-    log:
-        log_file("study_laws", "{study}"),
-    benchmark:
-        benchmark_file("study_laws", "{study}")
-    script:
-        "../scripts/study_laws.py"
 
 
 rule plot_study:

@@ -132,13 +132,18 @@ FIELDS = {
 }
 
 
+def _strings(values: list[str]) -> np.ndarray:
+    """Text along the law dimension; str, not object, when empty: an empty object array has no
+    type that netCDF can store as text."""
+    return np.array(values, dtype=object if values else str)
+
+
 def laws(merged: xr.Dataset, spec: dict, settings, N: int) -> xr.Dataset:
     """Every law of ``spec['laws']`` fitted on every (model, energy) of a merged study (its
-    ``study.runs.merge_groups``) of chains of ``N`` sites: dims model, energy, law; ``expected``
-    the published exponent."""
+    ``study.runs.merge_groups``) of chains of ``N`` sites: dims model, energy, law (empty when
+    the study names no law); ``expected`` the published exponent."""
     block = spec["laws"]
-    fits = block["fits"]
-    require(len(fits) > 0, "laws.fits", fits, "at least one {series, expected, reference}")
+    fits = block["fits"]  # none: a Dataset with an empty law dimension
     keys = {"window_decades": float(spec["criteria"]["slope_window_decades"]),
             "min_decades": float(block["min_decades"]), "band": float(block["band"]), "t_min": float(block["t_min"]),
             "bootstrap": int(block["bootstrap"]), "seed": int(block["seed"])}
@@ -174,15 +179,15 @@ def laws(merged: xr.Dataset, spec: dict, settings, N: int) -> xr.Dataset:
             for key, (_, text) in FIELDS.items()}
     data["expected"] = ("law", np.array([float(f["expected"]) for f in fits]),
                         {"units": "1", "long_name": "the published exponent"})
-    data["reference"] = ("law", np.array([str(f["reference"]) for f in fits], dtype=object),
+    data["reference"] = ("law", _strings([str(f["reference"]) for f in fits]),
                          {"long_name": "where the published exponent is from"})
-    data["series"] = ("law", np.array([f["series"] for f in fits], dtype=object),
+    data["series"] = ("law", _strings([f["series"] for f in fits]),
                       {"long_name": "the series whose realization mean of log10 the law is about"})
     error = merged["energy_error_max"].where(merged["valid"] == 1).max(dim=("realization", "lane"))
     data["energy_error_max"] = (("model", "energy"), error.values,
                                 {"units": "1", "long_name": "largest relative energy error of the valid orbits"})
     ds = xr.Dataset(data, coords={"model": merged["model"], "energy": merged["energy"],
-                                  "law": ("law", np.array([LAW_SERIES[f["series"]] for f in fits], dtype=object),
+                                  "law": ("law", _strings([LAW_SERIES[f["series"]] for f in fits]),
                                           {"long_name": "the law, by the series it fits"})})
     ds.attrs.update(fit_rule=" ".join(__doc__.split("\n\n", 2)[2].split("\n\nSums")[0].split()),
                     **{f"fit_{k}": v for k, v in keys.items()},

@@ -72,26 +72,20 @@ def study_scene(inputs, outputs, params, wildcards) -> None:
 
 
 def study_statistics(inputs, outputs, params, wildcards) -> None:
-    """The ensemble statistics of every model and energy of a study."""
+    """The ensemble statistics of every model and energy of a study, and the power laws its file
+    names fitted with bootstrap intervals (studies.study.laws; none named: no law), from one read
+    of its groups."""
+    from chainchaos.output.provenance import provenance_attrs
+    from chainchaos.studies.study.laws import laws
     from chainchaos.studies.study.runs import merge_groups
     from chainchaos.studies.study.statistics import statistics
 
     study = _study(params)
-    merged = merge_groups(study, [xr.load_dataset(f) for f in inputs["groups"]])
+    groups = [xr.load_dataset(f) for f in inputs["groups"]]
+    merged = merge_groups(study, groups)
     stats = statistics(merged, float(study.spec["criteria"]["slope_window_decades"]))
     stats.attrs = {**merged.attrs, **stats.attrs, "title": f"{study.title}: ensemble statistics"}
     write_netcdf(stats, outputs["statistics"])
-
-
-def study_laws(inputs, outputs, params, wildcards) -> None:
-    """The power laws a study's file names, fitted with bootstrap intervals (studies.study.laws)."""
-    from chainchaos.output.provenance import provenance_attrs
-    from chainchaos.studies.study.laws import laws
-    from chainchaos.studies.study.runs import merge_groups
-
-    study = _study(params)
-    groups = [xr.load_dataset(f) for f in inputs["groups"]]
-    merged = merge_groups(study, groups)
     ds = laws(merged, study.spec, study.settings, study.N)
     # what the study's orbits cost: CPU time, or wall time where a group made before CPU time was kept
     cpu = all("cpu_time_s" in g.attrs for g in groups)
@@ -128,4 +122,4 @@ def plot_study_comparison(inputs, outputs, params, wildcards) -> None:
     save_figure(fig, Path(outputs["pdf"]).with_suffix(""), dpi=params["dpi"])
 
 
-TASKS = (study_group, keep_study_group, study_scene, study_statistics, study_laws, plot_study, plot_study_comparison)
+TASKS = (study_group, keep_study_group, study_scene, study_statistics, plot_study, plot_study_comparison)
