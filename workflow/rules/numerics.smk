@@ -38,7 +38,7 @@ rule numerics_work_precision_case:
     """Error against run time of every scheme and solve_ivp method for one case."""
     input:
         chain=result("chain", "chain.nc"),
-        kernels=kernel_flags(),
+        kernels=lambda wildcards: kernel_flags([WP_CASES[wildcards.wp_case]["model"]]),
     output:
         data=result("numerics", "work_precision", "{wp_case}.nc"),
     params:

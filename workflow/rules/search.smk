@@ -26,6 +26,7 @@ rule search_seeds:
     """Stage 0: the chains of a chunk of seeds that pass the linear rule."""
     output:
         result=result("{search}", "seeds", "{chunk}.nc"),
+    priority: 10  # needs no kernel: runs while they compile, and the stages after it wait for it
     params:
         search=search_param("search"),
         chain=search_param("chain"),
@@ -43,6 +44,7 @@ checkpoint search_candidates:
         seeds=search_seed_files,
     output:
         result=result("{search}", "candidates.nc"),
+    priority: 10
     params:
         search=search_param("search"),
         chain=search_param("chain"),
@@ -109,6 +111,7 @@ rule search_merge:
         scores=search_score_files,
     output:
         result=result("{search}", "search.nc"),
+    priority: 4
     params:
         search=search_param("search"),
         chain=search_param("chain"),
@@ -250,7 +253,7 @@ for model, verdict_scenes in statements.statement_scenes_by_model().items():
             f"ensemble_verdicts_{model}"
         input:
             chain=result("chain", "chain.nc"),
-            kernels=kernel_flags(),
+            kernels=kernel_flags([model]),
         output:
             **{name: VERDICT_FILES[name] for name in verdict_scenes},
         priority: 3

@@ -44,7 +44,7 @@ for batch, batch_scenes in SCENE_BATCHES.items():
             f"simulate_scenes_{batch}"
         input:
             chain=result("chain", "chain.nc"),
-            kernels=kernel_flags(),
+            kernels=kernel_flags([SCENE_PARAMETERS[batch_scenes[0]].model]),
         output:
             **{name: scene_file(name) for name in batch_scenes},
         priority: 5  # the longest jobs: before the many short scan and plot jobs, so the figures do not wait
