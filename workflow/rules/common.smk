@@ -562,7 +562,10 @@ def keep_study_targets(name):
 def kernel_flags(models=None):
     """The flags of compile_kernels for ``models`` (default: the paper's): a job that integrates
     waits for its models' kernels only."""
-    return [result("kernels", f"{model}.txt") for model in (models or panels.models())]
+    return [
+        result("kernels", f"{model}.txt")
+        for model in (panels.models() if models is None else models)
+    ]
 
 
 def earlier_kernel_flags(wildcards):
@@ -571,8 +574,9 @@ def earlier_kernel_flags(wildcards):
     from the cache instead of compiling them again, while the other core runs jobs that need no
     kernel."""
     models = panels.models()
-    earlier = models[: models.index(wildcards.model)] if wildcards.model in models else []
-    return kernel_flags(earlier) if earlier else []
+    return kernel_flags(
+        models[: models.index(wildcards.model)] if wildcards.model in models else []
+    )
 
 
 def study_group_inputs(wildcards):

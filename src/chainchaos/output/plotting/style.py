@@ -29,7 +29,7 @@ def _shared_mathtext_cache(size: int = 4096) -> None:
 
     cached = getattr(MathTextParser, "_parse_cached", None)
     unwrapped = getattr(cached, "__wrapped__", None)
-    if unwrapped is None or hasattr(cached, "cache_info") and hasattr(cached, "shared"):
+    if unwrapped is None:  # matplotlib changed, or already replaced here
         return
     parsers = {}
 
@@ -41,7 +41,7 @@ def _shared_mathtext_cache(size: int = 4096) -> None:
         parsers.setdefault(self._output_type, self)
         return parse(self._output_type, s, dpi, prop, antialiased, load_glyph_flags)
 
-    _parse_cached.cache_info, _parse_cached.shared = parse.cache_info, True
+    _parse_cached.cache_info = parse.cache_info
     MathTextParser._parse_cached = _parse_cached
 
 

@@ -239,7 +239,8 @@ def ensemble_verdicts(inputs, outputs, params, wildcards) -> None:
     settings = OrbitSettings.from_config(block["settings"])
     criteria = Criteria.from_config(params.get("claims"))
     chain = read_chain(inputs["chain"])
-    scenes = {name: statements.statement_scenes()[name] for name in params["scenes"]}
+    of = statements.statement_scenes()
+    scenes = {name: of[name] for name in params["scenes"]}
     orbits = [Orbit(scene.model, scene.energy, chain, int(params["site"]), lane)
               for scene in scenes.values() for lane in range(lanes)]
     t, runs = integrate(orbits, settings, _progress(f"verdicts {', '.join(scenes)}"),
