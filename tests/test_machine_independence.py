@@ -163,6 +163,20 @@ def test_log10_and_exp10_are_the_c_library_scalars():
     assert exactmath.log(x.reshape(40, 50)).shape == (40, 50) and isinstance(exactmath.log(2.0), float)
 
 
+def test_small_arrays_take_the_same_c_functions_from_python():
+    """Up to SCALAR_LOOP_MAX elements log10 and exp10 run in Python, beyond it in the Numba loop:
+    the same bits either way, at the edges (zeros, negatives, infinities, NaNs, overflow) too."""
+    x = np.array([0.0, -0.0, -1.0, np.inf, -np.inf, np.nan, -np.nan, 1e-320, 5.0, 1e300, 0.1])
+    y = np.array([-400.0, 400.0, 308.3, -323.5, np.nan, -np.nan, np.inf, -np.inf, 0.0, 1.5, -0.7])
+    for values, python, loop in ((x, exactmath.log10, exactmath._log10_loop),
+                                 (y, exactmath.exp10, exactmath._exp10_loop)):
+        assert values.size <= exactmath.SCALAR_LOOP_MAX
+        assert np.array_equal(python(values).view(np.uint64), exactmath._elementwise(loop, values).view(np.uint64))
+    big = np.random.default_rng(6).uniform(-3.0, 3.0, exactmath.SCALAR_LOOP_MAX + 1)
+    assert exactmath.exp10(big).tolist() == [10.0 ** v for v in big]
+    assert exactmath.exp10(big[:3]).tolist() == exactmath.exp10(big)[:3].tolist()
+
+
 def test_sample_steps_are_those_of_the_numpy_version():
     """The same step indices as the former NumPy version (np.log10 and 10.0 ** array) for the
     step sizes, spans and densities of config/*.yaml (digest of its output)."""

@@ -217,7 +217,7 @@ def search_block(name):
         return {**config["search_full"], "settings": config["search"]["settings"]}
     block = {k: v for k, v in config["search"].items() if k not in SEARCH_WORKFLOW_KEYS}
     if archive_pins():
-        block["pinned_seed"] = archive.chosen_seed(archive_pins())
+        block["pinned_seed"] = ARCHIVE_CHOSEN_SEED
     return block
 
 
@@ -257,6 +257,8 @@ USED_SEARCH_ARCHIVE = kept_file(
     "search_full",
     SEARCH_ARCHIVE_KEYS,
 )
+# The seed of the archive's chosen chain, read once, when `all` pins it (search_block).
+ARCHIVE_CHOSEN_SEED = archive.chosen_seed(archive_pins()) if archive_pins() else None
 
 
 SEARCH_PLANS = {

@@ -170,13 +170,23 @@ def _exp10_loop(x, out):
         out[i] = 10.0 ** x[i]
 
 
-def _elementwise(loop, x) -> np.ndarray | float:
+#: Up to this many elements, :func:`log10` and :func:`exp10` call the C library from Python
+#: (the same function, the same bits): a process that only needs a grid of a few energies then
+#: neither compiles nor loads a kernel (loading the first one costs Numba half a second).
+SCALAR_LOOP_MAX = 64
+
+
+def _elementwise(loop, x, scalar=None) -> np.ndarray | float:
     """Apply a scalar loop to every element of x (any shape, also a scalar); float64 result of
-    x's shape (a Python float for a scalar)."""
+    x's shape (a Python float for a scalar). ``scalar``, the same function in Python, serves
+    arrays of up to :data:`SCALAR_LOOP_MAX` elements."""
     a = np.asarray(x, dtype=np.float64)
     flat = np.ascontiguousarray(a).reshape(-1)
-    out = np.empty_like(flat)
-    loop(flat, out)
+    if scalar is not None and flat.size <= SCALAR_LOOP_MAX:
+        out = np.array([scalar(v) for v in flat.tolist()], dtype=np.float64)
+    else:
+        out = np.empty_like(flat)
+        loop(flat, out)
     return float(out[0]) if a.ndim == 0 else out.reshape(a.shape)
 
 
@@ -185,14 +195,28 @@ def log(x):
     return _elementwise(_log_loop, x)
 
 
+def _log10_scalar(v: float) -> float:
+    # math.log10 raises where the C function returns -inf or NaN
+    if v > 0.0 or v != v:
+        return math.log10(v)
+    return -math.inf if v == 0.0 else math.nan
+
+
 def log10(x):
     """Decimal logarithm log10 x of every element (C library ``log10``)."""
-    return _elementwise(_log10_loop, x)
+    return _elementwise(_log10_loop, x, _log10_scalar)
 
 
 def exp10(x):
     """10^x of every element (C library ``pow(10, x)``, as Python's ``10.0 ** x``)."""
-    return _elementwise(_exp10_loop, x)
+    return _elementwise(_exp10_loop, x, _exp10_scalar)
+
+
+def _exp10_scalar(v: float) -> float:
+    try:
+        return 10.0 ** v
+    except OverflowError:  # where the C function returns inf
+        return math.inf
 
 
 # ---- products and norms, summed in index order -----------------------------------------------

@@ -121,7 +121,7 @@ def consistency_errors(config: dict) -> list[str]:
     from chainchaos.paper import panels
     from chainchaos.run.orbits import OrbitSettings
     from chainchaos.run.scenes import scene_parameters
-    from chainchaos.studies.scan.runs import energy_grid, settings_for
+    from chainchaos.studies.scan.runs import energy_range, settings_for
     from chainchaos.studies.search.selection import SelectionCriteria
     from chainchaos.studies.search.stages import SearchPlan
 
@@ -152,7 +152,7 @@ def consistency_errors(config: dict) -> list[str]:
         for kind in ("energy_scan", "disorder"):
             blocks = [(f"scan.{kind}", scan[kind]), ("scan.settings", scan.get("settings", {}))]
             _check(messages, blocks, lambda: settings_for(kind, scan))
-            _check(messages, blocks, lambda: energy_grid(scan[kind]))
+            _check(messages, blocks, lambda: energy_range(scan[kind]))  # no Numba in Snakemake's process
 
     for block in ("search", "search_full"):
         _check(messages, [(block, config[block])], lambda: SearchPlan.from_config(config[block]))

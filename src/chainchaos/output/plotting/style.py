@@ -169,9 +169,13 @@ def save_figure(fig, path_stem, dpi: int = DPI) -> tuple[Path, Path]:
 def _freeze_layout(fig) -> None:
     """Run the figure's layout engine once and keep its result. Constrained layout starts from the
     current positions, so every draw would shift them slightly: a frozen layout gives the PDF and
-    the PNG the same positions and every later save the same bytes."""
-    if fig.get_layout_engine() is not None:
-        fig.draw_without_rendering()
+    the PNG the same positions and every later save the same bytes. The engine runs as the
+    first draw would run it (after the axes' aspects), without the rest of that draw: a full
+    pass over every tick and label that the PDF's draw makes again."""
+    engine = fig.get_layout_engine()
+    if engine is not None:
+        fig._get_draw_artists(fig._get_renderer())  # applies the axes' aspects and locators
+        engine.execute(fig)
         fig.set_layout_engine("none")
 
 

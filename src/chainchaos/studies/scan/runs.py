@@ -172,13 +172,20 @@ def _gali_reading(times, run: dict, settings: ScanSettings) -> dict:
 # Configuration: grids, groups of trajectories per job
 # ----------------------------------------------------------------------------------------------
 
+def energy_range(block: dict) -> tuple[int, float, float]:
+    """(n_energies, energy_min, energy_max) of a scan block, checked (ParameterError names the
+    key): what the config check asks of a grid, without computing it."""
+    n, lo, hi = int(block["n_energies"]), float(block["energy_min"]), float(block["energy_max"])
+    require(n >= 1, "n_energies", n, ">= 1")
+    require(0 < lo <= hi, "energy_min", lo, f"0 < energy_min <= energy_max = {hi}")
+    return n, lo, hi
+
+
 def energy_grid(block: dict) -> np.ndarray:
     """Energies of a scan block: ``n_energies`` values from ``energy_min`` to ``energy_max``,
     log-spaced (``spacing: log``, default) or linear; rounded to 6 significant digits so that
     they print and compare cleanly."""
-    n, lo, hi = int(block["n_energies"]), float(block["energy_min"]), float(block["energy_max"])
-    require(n >= 1, "n_energies", n, ">= 1")
-    require(0 < lo <= hi, "energy_min", lo, f"0 < energy_min <= energy_max = {hi}")
+    n, lo, hi = energy_range(block)
     if block.get("spacing", "log") == "log":  # scalar libm logs and powers: the same grid on every CPU
         grid = exactmath.exp10(np.linspace(math.log10(lo), math.log10(hi), n))
         grid[0], grid[-1] = lo, hi

@@ -72,6 +72,8 @@ def _read(source, root: Path) -> tuple[str, dict]:
     """(name, raw dict) of a study named, given by path or given as a dict."""
     import yaml
 
+    from chainchaos.workflow.config_docs import load_yaml
+
     if isinstance(source, dict):
         return str(source.get("name", "study")), {k: v for k, v in source.items() if k != "name"}
     path = Path(source)
@@ -80,7 +82,7 @@ def _read(source, root: Path) -> tuple[str, dict]:
     if not path.is_file():
         raise StudyError([f"study {str(source)!r}: no file {path}; studies here: {study_names(root)}"])
     try:
-        raw = yaml.safe_load(path.read_text())
+        raw = load_yaml(path.read_text())
     except yaml.YAMLError as err:
         raise StudyError([f"study file {path}: not YAML ({str(err).splitlines()[0]})"]) from None
     if not isinstance(raw, dict):
@@ -330,8 +332,9 @@ class Study:
         check("lattice.N", lattice)
         check("integration", lambda: self.settings)
         check("integration.window", window)
-        if not errors and known_chain:
-            kind = self.spec["excitation"]["kind"]
+        kind = self.spec["excitation"]["kind"]
+        # a site picked by the excitation rule is a bead of the chain (no need to pick it here)
+        if not errors and known_chain and not (self.selected and kind == "site"):
             check("excitation.mode" if kind == "mode" else "excitation.site", lambda: self.excitation().check(self.N))
         if errors:
             raise StudyError(errors)
