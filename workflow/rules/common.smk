@@ -67,8 +67,13 @@ SCENE_PARAMETERS = {
 }
 # Scenes that share their integration settings run together, as many as the SIMD width of this
 # machine's batch engine (chainchaos.engine.simd.LANES), a few left over each on its own (the
-# single engine); results do not depend on the grouping.
-SCENE_BATCHES = scene_batches(SCENE_PARAMETERS, LANES, SERIAL_REMAINDER)
+# single engine) unless scene_batches.split_remainder is false; results do not depend on the
+# grouping.
+SCENE_BATCHES = scene_batches(
+    SCENE_PARAMETERS,
+    LANES,
+    SERIAL_REMAINDER if config["scene_batches"]["split_remainder"] else 0,
+)
 SCENE_BATCH = {name: batch for batch, names in SCENE_BATCHES.items() for name in names}
 
 
