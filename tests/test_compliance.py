@@ -38,7 +38,7 @@ PRODUCT_KINDS = {
     "search": "search/search.nc",
     "verdicts": "verdicts/*.nc",
     "Lyapunov spectrum": "indicators/spectrum_*.nc",
-    "work-precision case": "numerics/work_precision/*.nc",
+    "work-precision model": "numerics/work_precision/*.nc",
     "work precision": "numerics/work_precision.nc",
     "stability": "numerics/stability.nc",
     "energy drift": "numerics/energy_drift.nc",

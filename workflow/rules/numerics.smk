@@ -12,7 +12,11 @@ if "numerics" not in config:
 NUMERICS = config["numerics"]
 # The scheme of the production runs: advice, drift and the Taylor-sign probe measure that one.
 NUMERICS_INTEGRATOR = NUMERICS.get("integrator") or config["simulation"]["integrator"]
-WP_CASES = {f"{c['model']}_H{float(c['energy']):g}": c for c in NUMERICS["work_precision"]["cases"]}
+# The work-precision cases by model, in the config's order: one job per model measures its cases
+# (a case's runs take seconds at the quick scale, less than a job of its own costs).
+WP_MODELS = {}
+for case in NUMERICS["work_precision"]["cases"]:
+    WP_MODELS.setdefault(case["model"], []).append((case["model"], float(case["energy"])))
 
 NUMERICS_TARGETS = [
     result("figures", "work_precision.pdf"),
@@ -31,32 +35,32 @@ NUMERICS_TARGETS = [
 
 
 wildcard_constraints:
-    wp_case="|".join(re.escape(c) for c in WP_CASES),
+    wp_model="|".join(re.escape(m) for m in WP_MODELS),
 
 
-rule numerics_work_precision_case:
-    """Error against run time of every scheme and solve_ivp method for one case."""
+rule numerics_work_precision_model:
+    """Error against run time of every scheme and solve_ivp method for one model's cases."""
     input:
         chain=result("chain", "chain.nc"),
-        kernels=lambda wildcards: kernel_flags([WP_CASES[wildcards.wp_case]["model"]]),
+        kernels=lambda wildcards: kernel_flags([wildcards.wp_model]),
     output:
-        data=result("numerics", "work_precision", "{wp_case}.nc"),
+        data=result("numerics", "work_precision", "{wp_model}.nc"),
     params:
-        model=lambda wildcards: WP_CASES[wildcards.wp_case]["model"],
-        energy=lambda wildcards: float(WP_CASES[wildcards.wp_case]["energy"]),
+        cases=lambda wildcards: WP_MODELS[wildcards.wp_model],
         settings={k: v for k, v in NUMERICS["work_precision"].items() if k != "cases"},
     log:
-        log_file("numerics_work_precision_case", "{wp_case}"),
+        log_file("numerics_work_precision_model", "{wp_model}"),
     benchmark:
-        benchmark_file("numerics_work_precision_case", "{wp_case}")
+        benchmark_file("numerics_work_precision_model", "{wp_model}")
     script:
-        "../scripts/numerics_work_precision_case.py"
+        "../scripts/numerics_work_precision_model.py"
 
 
 rule numerics_work_precision:
-    """All cases in one file, and the table of observed orders (CSV, LaTeX)."""
+    """All cases in one file (by model, each model's in the config's order), and the table of
+    observed orders (CSV, LaTeX)."""
     input:
-        cases=[result("numerics", "work_precision", f"{c}.nc") for c in WP_CASES],
+        models=[result("numerics", "work_precision", f"{m}.nc") for m in WP_MODELS],
     output:
         data=result("numerics", "work_precision.nc"),
         orders_csv=report(
@@ -106,6 +110,8 @@ rule numerics_stability:
         kernels=kernel_flags(),
     output:
         data=result("numerics", "stability.nc"),
+    # a long job whose figure the manuscript waits for: among the first once the kernels are ready
+    priority: 5
     params:
         settings=NUMERICS["stability"],
     log:

@@ -30,11 +30,13 @@ def _load(path) -> xr.Dataset:
     return xr.load_dataset(path, engine="netcdf4")
 
 
-def numerics_work_precision_case(inputs, outputs, params, wildcards) -> None:
-    """Error against run time of every scheme and solve_ivp method for one case (model, energy)."""
+def numerics_work_precision_model(inputs, outputs, params, wildcards) -> None:
+    """Error against run time of every scheme and solve_ivp method for one model's cases (model,
+    energy)."""
     chain = read_chain(inputs["chain"])
     s = dict(params["settings"])
-    ds = work_precision(chain, [(params["model"], float(params["energy"]))], schemes=s["schemes"], dts=s["dts"],
+    cases = [(model, float(energy)) for model, energy in params["cases"]]
+    ds = work_precision(chain, cases, schemes=s["schemes"], dts=s["dts"],
                         tolerances=s["tolerances"], t_final=s["t_final"], t_probe=s["t_probe"],
                         reference=s["reference"], floor_factor=s.get("floor_factor", 10.0),
                         check_interval=s.get("check_interval", 1.0), repeats=s.get("repeats", 3),
@@ -46,7 +48,7 @@ def numerics_work_precision_case(inputs, outputs, params, wildcards) -> None:
 def numerics_work_precision(inputs, outputs, params, wildcards) -> None:
     """The cases in one file (results/numerics/work_precision.nc), the tables of observed orders
     (CSV, LaTeX) and the CSV of every run."""
-    ds = merge_cases([_load(f) for f in inputs["cases"]])
+    ds = merge_cases([_load(f) for f in inputs["models"]])
     write_netcdf(ds, outputs["data"])
     work_precision_tables(ds, outputs["orders_csv"], outputs["orders_tex"], outputs["runs_csv"])
 
@@ -117,5 +119,5 @@ def numerics_plot_stability(inputs, outputs, params, wildcards) -> None:
     stability_tables(stab, dr, ta, outputs["csv"], outputs["tex"])
 
 
-TASKS = (numerics_work_precision_case, numerics_work_precision, numerics_plot_work_precision, numerics_stability,
+TASKS = (numerics_work_precision_model, numerics_work_precision, numerics_plot_work_precision, numerics_stability,
          numerics_energy_drift, numerics_taylor_sign, numerics_step_advice, numerics_plot_stability)
