@@ -23,7 +23,9 @@ given double radii (exact integer arithmetic, chainchaos.engine.exactmath): the 
 """
 
 import copy
+import itertools
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -40,23 +42,38 @@ def bead_mass(r: float) -> float:
     return rational(num**3, den**3)
 
 
-def bond_parameters(r_left: float, r_right: float) -> tuple[float, float, float, float, float]:
-    """(A, delta, K2, K3, K4 with s = +1) of the bond between beads of radii r_left, r_right > 0,
-    each the double nearest to its exact value: with h = 2 r_l r_r / (r_l + r_r) = P / Q,
-    A = sqrt(h / 36), delta = h^(-1/3), K2 = h^(1/3) / 4, K3 = -h^(2/3) / 16, K4 = h / 96."""
+#: Each bond parameter (K4 with s = +1) as the double nearest to its exact value, from the bond's
+#: mean h = 2 r_l r_r / (r_l + r_r) = P / Q given as the integers P, Q.
+BOND_LAWS = {
+    "A": lambda P, Q: root(P, 36 * Q, 2),  # sqrt(h / 36)
+    "delta": lambda P, Q: root(Q, P, 3),  # h^(-1/3)
+    "K2": lambda P, Q: root(P, 64 * Q, 3),  # h^(1/3) / 4
+    "K3": lambda P, Q: -root(P * P, 4096 * Q * Q, 3),  # -h^(2/3) / 16
+    "K4": lambda P, Q: rational(P, 96 * Q),  # h / 96
+}
+
+
+def bond_mean(r_left: float, r_right: float) -> tuple[int, int]:
+    """(P, Q) with h = 2 r_l r_r / (r_l + r_r) = P / Q exactly, for radii r_l, r_r > 0."""
     nl, dl = float(r_left).as_integer_ratio()
     nr, dr = float(r_right).as_integer_ratio()
-    P, Q = 2 * nl * nr, nl * dr + nr * dl  # h = P / Q exactly (dl, dr are powers of two)
-    return (root(P, 36 * Q, 2), root(Q, P, 3), root(P, 64 * Q, 3), -root(P * P, 4096 * Q * Q, 3),
-            rational(P, 96 * Q))
+    return 2 * nl * nr, nl * dr + nr * dl  # dl, dr are powers of two
+
+
+def bond_parameters(r_left: float, r_right: float) -> tuple[float, float, float, float, float]:
+    """(A, delta, K2, K3, K4 with s = +1) of the bond between beads of radii r_left, r_right > 0,
+    each the double nearest to its exact value (:data:`BOND_LAWS`)."""
+    P, Q = bond_mean(r_left, r_right)
+    return tuple(law(P, Q) for law in BOND_LAWS.values())
 
 
 @dataclass(frozen=True)
 class Chain:
     """A chain of N beads with reduced radii ``radius`` (r_n = R_n / R_ref, n = 1..N).
 
-    mass (N,), A, delta, K2, K3 and K4 (N+1 bonds) are computed once, correctly rounded (module
-    docstring); K4 carries the sign ``k4_sign``."""
+    mass (N,), A, delta, K2, K3 and K4 (N+1 bonds) are correctly rounded (module docstring), each
+    bond parameter computed on its first use (the linear rule of the realization search reads K2
+    alone, of ten thousand chains); K4 carries the sign ``k4_sign``."""
 
     radius: np.ndarray
     alpha: float
@@ -64,11 +81,6 @@ class Chain:
     wall_radius: float = 1.0
     k4_sign: float = 1.0
     mass: np.ndarray = field(init=False, repr=False)
-    A: np.ndarray = field(init=False, repr=False)
-    delta: np.ndarray = field(init=False, repr=False)
-    K2: np.ndarray = field(init=False, repr=False)
-    K3: np.ndarray = field(init=False, repr=False)
-    K4: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self):
         r = np.ascontiguousarray(self.radius, dtype=float)
@@ -77,14 +89,34 @@ class Chain:
         require(np.isfinite(self.alpha) and self.alpha >= 1, "alpha", self.alpha, "alpha >= 1")
         require(np.isfinite(self.wall_radius) and self.wall_radius > 0, "wall_radius", self.wall_radius, "> 0")
         require(self.k4_sign in (1.0, -1.0), "K4_sign", self.k4_sign, "+1 (paper) or -1 (Taylor expansion)")
-        radii = r.tolist()
-        ext = [float(self.wall_radius), *radii, float(self.wall_radius)]
-        bonds = np.array([bond_parameters(left, right) for left, right in zip(ext[:-1], ext[1:])])
         object.__setattr__(self, "radius", r)
-        object.__setattr__(self, "mass", np.array([bead_mass(x) for x in radii]))
-        for name, column in zip(("A", "delta", "K2", "K3", "K4"), bonds.T):
-            object.__setattr__(self, name, np.ascontiguousarray(column))
-        object.__setattr__(self, "K4", self.k4_sign * self.K4)
+        object.__setattr__(self, "mass", np.array([bead_mass(x) for x in r.tolist()]))
+
+    def _bond_column(self, name: str) -> np.ndarray:
+        """Bond parameter ``name`` of :data:`BOND_LAWS` on every bond, walls included."""
+        law = BOND_LAWS[name]
+        ext = [float(self.wall_radius), *self.radius.tolist(), float(self.wall_radius)]
+        return np.array([law(*bond_mean(left, right)) for left, right in itertools.pairwise(ext)])
+
+    @cached_property
+    def A(self) -> np.ndarray:
+        return self._bond_column("A")
+
+    @cached_property
+    def delta(self) -> np.ndarray:
+        return self._bond_column("delta")
+
+    @cached_property
+    def K2(self) -> np.ndarray:
+        return self._bond_column("K2")
+
+    @cached_property
+    def K3(self) -> np.ndarray:
+        return self._bond_column("K3")
+
+    @cached_property
+    def K4(self) -> np.ndarray:
+        return self.k4_sign * self._bond_column("K4")
 
     @property
     def N(self) -> int:
