@@ -15,6 +15,7 @@ for number in FIGURES:
         params:
             number=number,
             dpi=config["figures"]["dpi"],
+        priority: 1  # the longest drawing jobs first: the short ones fill the end of a run
         log:
             log_file("plot_figure", f"fig{number}"),
         benchmark:

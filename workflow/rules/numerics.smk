@@ -95,6 +95,7 @@ rule numerics_plot_work_precision:
             category=REPORT_CATEGORIES["numerics"],
             labels={"result": "work precision", "shows": "error against run time"},
         ),
+    priority: 1  # the longest drawing jobs first: the short ones fill the end of a run
     log:
         log_file("numerics_plot_work_precision"),
     benchmark:
@@ -110,7 +111,8 @@ rule numerics_stability:
         kernels=kernel_flags(),
     output:
         data=result("numerics", "stability.nc"),
-    # a long job whose figure the manuscript waits for: among the first once the kernels are ready
+    # the stability figure's inputs, which the manuscript waits for: among the first jobs once the
+    # kernels are ready (run late, they and the figure were the quick scale's tail)
     priority: 5
     params:
         settings=NUMERICS["stability"],
@@ -153,6 +155,7 @@ rule numerics_taylor_sign:
         kernels=kernel_flags(),
     output:
         data=result("numerics", "taylor_sign.nc"),
+    priority: 5  # an input of the stability figure (numerics_stability)
     params:
         settings=NUMERICS["taylor"],
         integrator=NUMERICS_INTEGRATOR,
@@ -178,6 +181,7 @@ rule numerics_step_advice:
             labels={"result": "step advice (CSV)", "shows": "energy error per scene against step"},
         ),
         tex=result("tables", "step_advice.tex"),
+    priority: 5  # an input of the stability figure (numerics_stability)
     params:
         settings=NUMERICS["advice"],
         scenes=[[s.model, float(s.energy)] for s in SCENES.values()],
@@ -214,6 +218,7 @@ rule numerics_plot_stability:
         tex=result("tables", "stability.tex"),
     params:
         integrator=NUMERICS_INTEGRATOR,
+    priority: 1  # the longest drawing jobs first: the short ones fill the end of a run
     log:
         log_file("numerics_plot_stability"),
     benchmark:
