@@ -32,6 +32,7 @@ from chainchaos.output.io import chain_dataset
 from chainchaos.output.provenance import EMULATED_AVX2
 from chainchaos.run.driver import sample_steps
 from chainchaos.run.scenes import SceneParameters, simulate
+from chainchaos.system.chain import sonic_vacuum_chain
 from chainchaos.system.initial import initial_deviation, initial_state
 from chainchaos.system.linear import tridiagonal_eigh
 from chainchaos.system.models import get_model
@@ -78,6 +79,18 @@ def test_chain_parameters_are_correctly_rounded(name):
     taylor = chain.with_k4_sign(-1)
     assert np.array_equal(taylor.K4, -chain.K4) and taylor.k4_sign == -1.0
     assert np.array_equal(taylor.with_k4_sign(1).K4, chain.K4)
+
+
+@pytest.mark.parametrize("name", CHAINS)
+def test_bond_values_are_the_columns_entries(name):
+    """A few bonds' parameters, asked for before or after their column is computed, are the
+    column's entries (K4 with the chain's sign; a precompressed chain's own delta)."""
+    for chain in (CHAINS[name](), CHAINS[name]().with_k4_sign(-1), sonic_vacuum_chain(CHAINS[name]())):
+        bonds = (0, 2, chain.N)
+        early = {key: chain.bond_values(key, bonds) for key in ("A", "delta", "K2", "K3", "K4")}
+        for key, values in early.items():
+            column = getattr(chain, key)
+            assert values.tolist() == column[list(bonds)].tolist() == chain.bond_values(key, bonds).tolist(), key
 
 
 def test_homogeneous_chain_parameters_are_exact():

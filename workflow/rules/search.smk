@@ -197,6 +197,8 @@ rule search_rejudge:
 
 
 rule plot_search:
+    """The search's two figures from one read of its candidates: the statements each keeps, and
+    the statements analysed jointly."""
     input:
         search=search_population(),
     output:
@@ -207,23 +209,8 @@ rule plot_search:
             category=REPORT_CATEGORIES["search"],
             labels={"result": "search", "shows": "statements kept by each candidate chain"},
         ),
-    params:
-        dpi=config["figures"]["dpi"],
-    log:
-        log_file("plot_search"),
-    benchmark:
-        benchmark_file("plot_search")
-    script:
-        "../scripts/plot_search.py"
-
-
-rule plot_search_joint:
-    """The statements analysed jointly over the searched candidates."""
-    input:
-        search=search_population(),
-    output:
-        pdf=result("figures", "search_joint.pdf"),
-        png=report(
+        joint_pdf=result("figures", "search_joint.pdf"),
+        joint_png=report(
             result("figures", "search_joint.png"),
             caption="../report/search_joint.rst",
             category=REPORT_CATEGORIES["search"],
@@ -236,11 +223,11 @@ rule plot_search_joint:
         dpi=config["figures"]["dpi"],
         claims=config.get("claims", {}),
     log:
-        log_file("plot_search_joint"),
+        log_file("plot_search"),
     benchmark:
-        benchmark_file("plot_search_joint")
+        benchmark_file("plot_search")
     script:
-        "../scripts/plot_search_joint.py"
+        "../scripts/plot_search.py"
 
 
 VERDICT_FILES = {name: result("verdicts", f"{name}.nc") for name in statements.statement_scenes()}

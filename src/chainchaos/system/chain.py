@@ -98,6 +98,15 @@ class Chain:
         ext = [float(self.wall_radius), *self.radius.tolist(), float(self.wall_radius)]
         return np.array([law(*bond_mean(left, right)) for left, right in itertools.pairwise(ext)])
 
+    def bond_values(self, name: str, bonds) -> np.ndarray:
+        """Bond parameter ``name`` of the bonds ``bonds`` (0..N) alone: their entries of the column,
+        without computing the rest of it where it is not known yet."""
+        if name in self.__dict__:  # computed, or set by a subclass
+            return getattr(self, name)[list(bonds)]
+        ext = [float(self.wall_radius), *self.radius.tolist(), float(self.wall_radius)]
+        values = np.array([BOND_LAWS[name](*bond_mean(ext[b], ext[b + 1])) for b in bonds])
+        return self.k4_sign * values if name == "K4" else values
+
     @cached_property
     def A(self) -> np.ndarray:
         return self._bond_column("A")

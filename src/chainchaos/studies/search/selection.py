@@ -49,7 +49,7 @@ def candidate_row(seed: int, c: SelectionCriteria) -> dict:
     |delta_site - target| + |delta_site+1 - target|, P of the selection mode, the two overlaps."""
     chain = random_chain(seed, c.alpha, c.N)
     ok, P = qualifies(chain, c)
-    overlaps = chain.delta[c.site - 1 : c.site + 1]
+    overlaps = chain.bond_values("delta", (c.site - 1, c.site))  # the bonds on either side of the site
     return {"seed": int(seed), "score": float(np.abs(overlaps - c.target_overlap).sum()), "mode_participation": P,
             "overlap_left": float(overlaps[0]), "overlap_right": float(overlaps[1]), "qualifies": bool(ok)}
 

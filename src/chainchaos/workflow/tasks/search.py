@@ -210,24 +210,20 @@ def search_rejudge(inputs, outputs, params, wildcards) -> None:
 
 
 def plot_search(inputs, outputs, params, wildcards) -> None:
-    """The search figure: how many candidates satisfy each statement, and every candidate."""
-    from chainchaos.studies.search.plots import (
-        plot_search as draw,  # matplotlib: only in the plotting jobs
-    )
+    """The search's figures: how many candidates satisfy each statement, and every candidate
+    (``pdf``, ``png``); the statements that hold together, the scores, and Hertz H = 1.8's onset
+    of chaos against its level, with the claims' tolerances on the paper's values (``joint_pdf``,
+    ``joint_png``)."""
+    # matplotlib: only in the plotting jobs
+    from chainchaos.studies.search.plots import plot_search as draw
+    from chainchaos.studies.search.plots import plot_search_joint
 
-    draw(xr.load_dataset(inputs["search"]), outputs["pdf"], outputs["png"], int(params.get("dpi", 200)))
-
-
-def plot_search_joint(inputs, outputs, params, wildcards) -> None:
-    """The joint-analysis figure: statements that hold together, the scores, and Hertz H = 1.8's
-    onset of chaos against its level, with the claims' tolerances on the paper's values."""
-    from chainchaos.studies.search.plots import (
-        plot_search_joint as draw,  # matplotlib: only in the plotting jobs
-    )
-
+    ds = xr.load_dataset(inputs["search"])
+    dpi = int(params.get("dpi", 200))
+    draw(ds, outputs["pdf"], outputs["png"], dpi)
     tol = Criteria.from_config(params.get("claims")).tolerance
-    draw(xr.load_dataset(inputs["search"]), outputs["pdf"], outputs["png"], int(params.get("dpi", 200)),
-         time_factor=tol.time_factor, level_factor=tol.mlce_factor)
+    plot_search_joint(ds, outputs["joint_pdf"], outputs["joint_png"], dpi, time_factor=tol.time_factor,
+                      level_factor=tol.mlce_factor)
 
 
 def ensemble_verdicts(inputs, outputs, params, wildcards) -> None:
@@ -259,5 +255,5 @@ def ensemble_verdicts(inputs, outputs, params, wildcards) -> None:
 
 
 TASKS = (search_seeds, search_candidates, search_filter, search_score, search_merge, search_full,
-         search_rejudge_filter, search_rejudge_score, search_rejudge, plot_search, plot_search_joint,
+         search_rejudge_filter, search_rejudge_score, search_rejudge, plot_search,
          ensemble_verdicts)
