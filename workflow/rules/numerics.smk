@@ -48,6 +48,7 @@ rule numerics_work_precision_model:
     params:
         cases=lambda wildcards: WP_MODELS[wildcards.wp_model],
         settings={k: v for k, v in NUMERICS["work_precision"].items() if k != "cases"},
+    priority: 5  # the head of a chain the manuscript waits for (merge, figure): first once the kernels are ready
     log:
         log_file("numerics_work_precision_model", "{wp_model}"),
     benchmark:
