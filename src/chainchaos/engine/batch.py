@@ -396,17 +396,18 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
             block_bad[lane] = bad[j]
             for k in range(extra):
                 block_x_growth[k, lane] = x_growth[k, j]
-        block_extra = 0
-        for j in range(first, min(first + LANES, B)):
-            if vectors_on[j]:
-                block_extra = extra
+        # The counts of extra vectors are int64 in both calls, never a literal 0: Numba compiles a
+        # function once more for each literal argument (the tangent block again for a
+        # block_extra of Literal[int](0), the vectors' helpers again for the no-tangent block's),
+        # about 6 s per model. Without the tangent map ``extra`` is 0 and no vector is touched.
+        block_extra = extra if np.any(vectors_on[first:min(first + LANES, B)]) else 0
         # the tangent flag literal: each case compiles to its own code without these branches
         if tangent:
             _advance_block(model, True, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, block_gaps,
                            block_growth, block_max_gaps, block_bad, V, block_extra, orthogonal, block_x_growth)
         else:
             _advance_block(model, False, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
-                           block_gaps, block_growth, block_max_gaps, block_bad, V, 0, 0, block_x_growth)
+                           block_gaps, block_growth, block_max_gaps, block_bad, V, extra, extra, block_x_growth)
         for lane in range(min(LANES, B - first)):
             j = first + lane
             for n in range(N):
