@@ -141,14 +141,14 @@ def render_record(record: dict, level: str = "###") -> str:
 
 
 def performance(folder: Path = RESULTS) -> str:
-    """The newest record of each measurement (a benchmark and its title: the quick and the paper
-    scale are two), then the earlier records, each as a table."""
+    """The newest record of each measurement (a benchmark, its title and its label: the quick and
+    the paper scale are two), then the earlier records, each as a table."""
     found = records(folder)
     if not found:
         return "No benchmark record yet: run `python benchmarks/record.py --help`.\n"
     current, earlier, seen = [], [], set()
     for record in found:
-        key = (record["benchmark"], record.get("title"))
+        key = (record["benchmark"], record.get("title"), record.get("label"))  # quick and paper scale
         (earlier if key in seen else current).append(record)
         seen.add(key)
     out = ["## Current measurements", ""] + [render_record(r) for r in current]
