@@ -197,7 +197,7 @@ def log(x):
 
 def _log10_scalar(v: float) -> float:
     # math.log10 raises where the C function returns -inf or NaN
-    if v > 0.0 or v != v:
+    if v > 0.0 or math.isnan(v):
         return math.log10(v)
     return -math.inf if v == 0.0 else math.nan
 
@@ -207,16 +207,16 @@ def log10(x):
     return _elementwise(_log10_loop, x, _log10_scalar)
 
 
-def exp10(x):
-    """10^x of every element (C library ``pow(10, x)``, as Python's ``10.0 ** x``)."""
-    return _elementwise(_exp10_loop, x, _exp10_scalar)
-
-
 def _exp10_scalar(v: float) -> float:
     try:
         return 10.0 ** v
     except OverflowError:  # where the C function returns inf
         return math.inf
+
+
+def exp10(x):
+    """10^x of every element (C library ``pow(10, x)``, as Python's ``10.0 ** x``)."""
+    return _elementwise(_exp10_loop, x, _exp10_scalar)
 
 
 # ---- products and norms, summed in index order -----------------------------------------------

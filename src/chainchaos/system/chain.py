@@ -23,7 +23,6 @@ given double radii (exact integer arithmetic, chainchaos.engine.exactmath): the 
 """
 
 import copy
-import itertools
 from dataclasses import dataclass, field
 from functools import cached_property
 
@@ -60,13 +59,6 @@ def bond_mean(r_left: float, r_right: float) -> tuple[int, int]:
     return 2 * nl * nr, nl * dr + nr * dl  # dl, dr are powers of two
 
 
-def bond_parameters(r_left: float, r_right: float) -> tuple[float, float, float, float, float]:
-    """(A, delta, K2, K3, K4 with s = +1) of the bond between beads of radii r_left, r_right > 0,
-    each the double nearest to its exact value (:data:`BOND_LAWS`)."""
-    P, Q = bond_mean(r_left, r_right)
-    return tuple(law(P, Q) for law in BOND_LAWS.values())
-
-
 @dataclass(frozen=True)
 class Chain:
     """A chain of N beads with reduced radii ``radius`` (r_n = R_n / R_ref, n = 1..N).
@@ -92,40 +84,39 @@ class Chain:
         object.__setattr__(self, "radius", r)
         object.__setattr__(self, "mass", np.array([bead_mass(x) for x in r.tolist()]))
 
-    def _bond_column(self, name: str) -> np.ndarray:
-        """Bond parameter ``name`` of :data:`BOND_LAWS` on every bond, walls included."""
-        law = BOND_LAWS[name]
+    def _bond_law(self, name: str, bonds) -> np.ndarray:
+        """Bond parameter ``name`` (:data:`BOND_LAWS`, K4 with the chain's sign) of the bonds
+        ``bonds`` (0..N; bond b joins beads b-1 and b, the walls at 0 and N+1)."""
         ext = [float(self.wall_radius), *self.radius.tolist(), float(self.wall_radius)]
-        return np.array([law(*bond_mean(left, right)) for left, right in itertools.pairwise(ext)])
+        values = np.array([BOND_LAWS[name](*bond_mean(ext[b], ext[b + 1])) for b in bonds])
+        return self.k4_sign * values if name == "K4" else values
 
     def bond_values(self, name: str, bonds) -> np.ndarray:
         """Bond parameter ``name`` of the bonds ``bonds`` (0..N) alone: their entries of the column,
         without computing the rest of it where it is not known yet."""
         if name in self.__dict__:  # computed, or set by a subclass
             return getattr(self, name)[list(bonds)]
-        ext = [float(self.wall_radius), *self.radius.tolist(), float(self.wall_radius)]
-        values = np.array([BOND_LAWS[name](*bond_mean(ext[b], ext[b + 1])) for b in bonds])
-        return self.k4_sign * values if name == "K4" else values
+        return self._bond_law(name, bonds)
 
     @cached_property
     def A(self) -> np.ndarray:
-        return self._bond_column("A")
+        return self._bond_law("A", range(self.N + 1))
 
     @cached_property
     def delta(self) -> np.ndarray:
-        return self._bond_column("delta")
+        return self._bond_law("delta", range(self.N + 1))
 
     @cached_property
     def K2(self) -> np.ndarray:
-        return self._bond_column("K2")
+        return self._bond_law("K2", range(self.N + 1))
 
     @cached_property
     def K3(self) -> np.ndarray:
-        return self._bond_column("K3")
+        return self._bond_law("K3", range(self.N + 1))
 
     @cached_property
     def K4(self) -> np.ndarray:
-        return self.k4_sign * self._bond_column("K4")
+        return self._bond_law("K4", range(self.N + 1))
 
     @property
     def N(self) -> int:
