@@ -174,6 +174,21 @@ def test_ordered_mean_skips_missing_values():
     assert mean.tolist() == [2.0, 2.0] and count.tolist() == [2, 1]
 
 
+def test_ordered_mean_adds_the_terms_in_index_order():
+    # 1e16 + 1 + 1 + ... in index order loses every 1 (half an ulp of 1e16 is 1); a pairwise or
+    # reordered sum keeps some of them
+    column = np.array([1e16] + [1.0] * 15 + [-1e16])
+    x = np.stack([column, column[::-1]], axis=1)
+    mean, count = st.ordered_mean(x, axis=0)
+    expected = []
+    for values in x.T:
+        total = 0.0
+        for v in values:
+            total += v
+        expected.append(total / values.size)
+    assert mean.tolist() == expected and expected == [0.0, 0.0] and count.tolist() == [17, 17]
+
+
 def test_every_study_key_is_described_and_the_committed_readme_is_generated():
     from pathlib import Path
 

@@ -47,13 +47,13 @@ class CheckedRun:
         N = problem.N
         self.inv_mass, self.bonds = problem.lane(0)
         sites = problem.lane_sites(0)
-        self._sites = () if sites is None else (sites,)
+        self.site_parameters = sites  # None passed, not omitted: the kernels then compile once for every caller
         self.mass = problem.chains[0].mass
         self.q, self.p = np.array(q, dtype=float), np.array(p, dtype=float)
         self.dq = np.zeros(N) if dq is None else np.array(dq, dtype=float)
         self.dp = np.zeros(N) if dp is None else np.array(dp, dtype=float)
         self.H0 = float(energy_kernel(problem.model, self.q, self.p, self.mass, self.bonds, np.empty(N + 1),
-                                      *self._sites))
+                                      self.site_parameters))
         self.diagnostics = np.zeros(2)
         self.gap_steps = np.zeros(N + 1, dtype=np.int64)
         self._scratch = [np.empty(N + 1) for _ in range(3)]
@@ -66,4 +66,4 @@ class CheckedRun:
         return run_chunks(pr.model, self.q, self.p, self.dq, self.dp, self.inv_mass, self.mass, self.bonds,
                           scheme.kicks, scheme.drifts, pr.dt, n_chunks, chunk_steps, pr.tangent, self.H0, err,
                           offset, stop_error, pr.track_gaps, self.gap_steps, self.diagnostics, *self._scratch,
-                          *self._sites)
+                          self.site_parameters)

@@ -27,6 +27,15 @@ from chainchaos.system.models.base import (MAX_BOND_PARAMETERS, MAX_SITE_PARAMET
                                            bond_opening, check_sites, site_kick, site_kick_deviation)
 
 
+def inner(**options):
+    """``njit(cache=True, **options)`` for a function that only compiled code calls. Numba builds a
+    CPython and a C entry point for every function it compiles, each lowered and optimised like
+    the function itself; the engines' helpers, over a hundred literal specialisations, never need
+    one (a tenth of a cold compile of the engines). Without its CPython entry point a function
+    cannot be called from Python (the interpreter would crash): only private names get this."""
+    return njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True, **options)
+
+
 @dataclass(frozen=True)
 class Scheme:
     name: str
@@ -119,7 +128,7 @@ def get_scheme(name: str) -> Scheme:
     return SCHEMES[name]
 
 
-@njit(cache=True)
+@inner()
 def _renormalise(dq, dp):
     s = 0.0
     for n in range(dq.shape[0]):
@@ -167,7 +176,7 @@ ROWS = ("U", "DQ", "P", "DP", "IM", "F", "K", "B0", "B1", "B2", "S0", "S1")
 assert len(ROWS) == 7 + MAX_BOND_PARAMETERS + MAX_SITE_PARAMETERS and MAX_SITE_PARAMETERS == 2
 
 
-@njit(cache=True)
+@inner()
 def _row_offsets(L):
     """Where each of ``ROWS`` starts in the work buffer: rows of L + LANES doubles, so that every
     row starts on a vector boundary and a sweep may read one vector past L."""
@@ -175,21 +184,21 @@ def _row_offsets(L):
     return 0, R, 2 * R, 3 * R, 4 * R, 5 * R, 6 * R, 7 * R, 8 * R, 9 * R
 
 
-@njit(cache=True)
+@inner()
 def _site_rows(L):
     """Where the site parameter rows S0 and S1 of ``ROWS`` start in the work buffer."""
     R = L + LANES
     return 10 * R, 11 * R
 
 
-@njit(cache=True)
+@inner()
 def _site_vector(Z, S0, S1, n):
     """The site parameters (S0, S1) of the beads of vector n, as vectors."""
     return vload(Z, S0 + n), vload(Z, S1 + n)
 
 
-@njit(cache=True)
-def drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, n, a):
+@inner()
+def _drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, n, a):
     """(u, dq) of the vector of beads at n of rows U and DQ, drifted by a if ``drift``:
     u += a M^-1 p, dq += a M^-1 dp, with p, dp and M^-1 at n of rows P, DP and IM (stored back)."""
     u = vload(Z, U + n)
@@ -204,7 +213,7 @@ def drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, n, a):
     return u, dq
 
 
-@njit(cache=True)
+@inner()
 def _kick_vector(model, tangent, Z, P, DP, site, n, c, f_before, f, g_before, k, u, dq, dq_after):
     """kick(c) of the beads of vector n: p_i += c (F_{i-1} - F_i) and, with the tangent map,
     dp_i += c (G_{i-1} - G_i), G_b = K_b (dq_b - dq_{b+1}); f, k are the forces and stiffnesses of
@@ -221,7 +230,7 @@ def _kick_vector(model, tangent, Z, P, DP, site, n, c, f_before, f, g_before, k,
     return f, g
 
 
-@njit(cache=True, error_model="numpy")
+@inner(error_model="numpy")
 def _stage(model, tangent, drift, kick, keep_forces, L, Z, a, c):
     """One pass over the vectors of the work buffer: (if ``drift``) drift(a) of every bead, then
     (if ``kick``) the force and stiffness of every bond at the new positions (stored in F and K
@@ -238,11 +247,11 @@ def _stage(model, tangent, drift, kick, keep_forces, L, Z, a, c):
     literally(keep_forces)
     U, DQ, P, DP, IM, F, K, B0, B1, B2 = _row_offsets(L)
     S0, S1 = _site_rows(L)
-    u, dq = drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, 0, a)
+    u, dq = _drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, np.int64(0), a)  # not Literal[int](0): one compile
     f_before = g_before = vload(Z, U + L)  # U[L:L+LANES], always zero
     for b in range(0, L, LANES):
         if b + LANES < L:
-            u_after, dq_after = drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, b + LANES, a)
+            u_after, dq_after = _drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, b + LANES, a)
         else:  # the vector past L: zero, never drifted
             u_after, dq_after = vload(Z, U + L), vload(Z, DQ + L)
         if kick:
@@ -260,7 +269,7 @@ def _stage(model, tangent, drift, kick, keep_forces, L, Z, a, c):
         u, dq = u_after, dq_after
 
 
-@njit(cache=True, error_model="numpy")
+@inner(error_model="numpy")
 def _kick(model, tangent, L, Z, c):
     """kick(c) of every bead with the stored forces F and stiffnesses K:
     p_i += c (F_{i-1} - F_i);  dp_i += c (G_{i-1} - G_i), G_b = K_b (dq_b - dq_{b+1}); a site law's
@@ -277,7 +286,7 @@ def _kick(model, tangent, L, Z, c):
         dq = dq_after
 
 
-@njit(cache=True, error_model="numpy")
+@inner(error_model="numpy")
 def _step_loop(model, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, gap_steps,
                diagnostics):
     """The steps of ``advance`` on its work buffer Z (``ROWS``, ``_row_offsets``).
@@ -337,7 +346,7 @@ def _step_loop(model, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every,
     return bad
 
 
-@njit(cache=True)
+@inner()
 def _aligned_zeros(n):
     """n zeros starting on a 64-byte boundary (a cache line, an AVX-512 vector)."""
     buf = np.zeros(n + 8)
@@ -345,8 +354,8 @@ def _aligned_zeros(n):
     return buf[(8 - misalignment) % 8:][:n]
 
 
-@njit(cache=True)
-def put(Z, start, x):
+@inner()
+def _put(Z, start, x):
     """Z[start:start + x.size] = x, one element at a time. A slice assignment between arrays
     compiles Numba's formatted shape-mismatch error (seconds of compilation per kernel that has
     one) for a check these copies, sized by construction, never need."""
@@ -354,9 +363,9 @@ def put(Z, start, x):
         Z[start + i] = x[i]
 
 
-@njit(cache=True)
-def take(Z, start, x, n):
-    """x[:n] = Z[start:start + n], one element at a time (see :func:`put`)."""
+@inner()
+def _take(Z, start, x, n):
+    """x[:n] = Z[start:start + n], one element at a time (see :func:`_put`)."""
     for i in range(n):
         x[i] = Z[start + i]
 
@@ -387,17 +396,17 @@ def advance(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, ta
     L = (N + 1 + LANES) // LANES * LANES
     Z = _aligned_zeros(len(ROWS) * (L + LANES))
     U, DQ, P, DP, IM, F, K, B0, B1, B2 = _row_offsets(L)
-    put(Z, U + 1, q)
-    put(Z, DQ + 1, dq)
-    put(Z, P + 1, p)
-    put(Z, DP + 1, dp)
-    put(Z, IM + 1, inv_mass)
+    _put(Z, U + 1, q)
+    _put(Z, DQ + 1, dq)
+    _put(Z, P + 1, p)
+    _put(Z, DP + 1, dp)
+    _put(Z, IM + 1, inv_mass)
     for r, start in enumerate((B0, B1, B2)):
-        put(Z, start, bonds[r])
+        _put(Z, start, bonds[r])
     if sites is not None:
         S0, S1 = _site_rows(L)
-        put(Z, S0 + 1, sites[0])
-        put(Z, S1 + 1, sites[1])
+        _put(Z, S0 + 1, sites[0])
+        _put(Z, S1 + 1, sites[1])
     # the tangent flag literal: each case compiles to its own code without these branches
     if tangent:
         bad = _step_loop(model, True, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
@@ -405,10 +414,10 @@ def advance(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, ta
     else:
         bad = _step_loop(model, False, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
                          gap_steps, diagnostics)
-    take(Z, U + 1, q, N)
-    take(Z, DQ + 1, dq, N)
-    take(Z, P + 1, p, N)
-    take(Z, DP + 1, dp, N)
-    take(Z, F, f, N + 1)
-    take(Z, K, k, N + 1)
+    _take(Z, U + 1, q, N)
+    _take(Z, DQ + 1, dq, N)
+    _take(Z, P + 1, p, N)
+    _take(Z, DP + 1, dp, N)
+    _take(Z, F, f, N + 1)
+    _take(Z, K, k, N + 1)
     return bad

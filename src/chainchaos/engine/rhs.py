@@ -65,9 +65,9 @@ class RightHandSide:
         self.N = chain.N
         self.bonds = self.model.bond_parameters(chain)
         sites = self.model.site_parameters(chain)
-        self._sites = () if sites is None else (sites,)
+        self.site_parameters = sites  # None passed, not omitted: the kernels then compile once for every caller
         self._args = (self.model, 1.0 / chain.mass, self.bonds, self.tangent, np.empty(self.N + 1),
-                      np.empty(self.N + 1), *self._sites)
+                      np.empty(self.N + 1), self.site_parameters)
         self.size = (4 if tangent else 2) * self.N
         self.nfev = 0
 
@@ -81,7 +81,7 @@ class RightHandSide:
         """Total energy of the state part of ``y``."""
         c, N = self.chain, self.N
         return float(energy_kernel(self.model, np.ascontiguousarray(y[:N]), np.ascontiguousarray(y[N:2 * N]),
-                                   c.mass, self.bonds, np.empty(N + 1), *self._sites))
+                                   c.mass, self.bonds, np.empty(N + 1), self.site_parameters))
 
 
 def rhs(model, chain, tangent: bool = False) -> RightHandSide:

@@ -5,6 +5,7 @@ Units are those of docs/conventions.md#units (time in 1/omega_max of the homogen
 energies in the derived unit); energy errors are relative, |H(t) - H(0)| / H(0).
 """
 
+import functools
 import math
 import time
 
@@ -38,14 +39,15 @@ def harmonic_half_trace(scheme: str, x) -> np.ndarray:
     return np.abs(m11 + m22) / 2.0
 
 
-def linear_instability_intervals(scheme: str, x_max: float = 20.0, resolution: float = 1e-5) -> list[tuple[float, float]]:
+@functools.cache  # a scheme's property, asked for by every run of the step search (2 million points)
+def linear_instability_intervals(scheme: str, x_max: float = 20.0, resolution: float = 1e-5) -> tuple[tuple[float, float], ...]:
     """The intervals of x = omega dt in (0, x_max] where ``scheme`` is linearly unstable, found on
     a grid of spacing ``resolution`` (compositions have narrow resonance intervals, width ~1e-3,
     near x = pi); the last interval may end at x_max."""
     grid = np.arange(1, int(round(x_max / resolution)) + 1) * resolution
     unstable = harmonic_half_trace(scheme, grid) > 1.0 + 1e-12
     change = np.flatnonzero(np.diff(np.concatenate(([False], unstable, [False])).astype(np.int8)))
-    return [(float(grid[i]), float(grid[j - 1])) for i, j in zip(change[::2], change[1::2])]
+    return tuple((float(grid[i]), float(grid[j - 1])) for i, j in zip(change[::2], change[1::2]))
 
 
 def linear_stability_bound(scheme: str, min_width: float = 0.0) -> float:

@@ -44,11 +44,10 @@ def log10(x) -> np.ndarray:
 def ordered_mean(x: np.ndarray, axis: int) -> tuple[np.ndarray, np.ndarray]:
     """(mean over ``axis`` of the finite values, their count), the terms added in index order."""
     x = np.moveaxis(np.asarray(x, dtype=np.float64), axis, 0)
-    total, count = np.zeros(x.shape[1:]), np.zeros(x.shape[1:], dtype=np.int32)
-    for row in x:
-        finite = np.isfinite(row)
-        total = total + np.where(finite, row, 0.0)
-        count = count + finite
+    finite = np.isfinite(x)
+    # a running sum from zero: add.accumulate adds term after term (never pairwise, as sum may)
+    terms = np.concatenate([np.zeros((1, *x.shape[1:])), np.where(finite, x, 0.0)])
+    total, count = np.add.accumulate(terms, axis=0)[-1], finite.sum(axis=0, dtype=np.int32)
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.where(count > 0, total / np.maximum(count, 1), np.nan), count
 
