@@ -338,3 +338,23 @@ def test_mathtext_is_parsed_once_per_output_type_for_every_renderer():
     assert png(r"$10^{-7}\,\Lambda_{\max}$") == first and info().misses == misses
     png(r"$10^{-6}$")
     assert info().misses > misses
+
+
+def test_a_font_subset_is_made_once_per_glyph_set_and_every_pdf_is_written_as_without_sharing(data, tmp_path,
+                                                                                               monkeypatch):
+    """Each PDF embeds subsets of its fonts; style keeps one per font and glyph set for the
+    process. A PDF written with a kept subset is the same bytes as one subset afresh. If a
+    matplotlib release renames what style replaces, this fails instead of the jobs silently
+    slowing down."""
+    from matplotlib.backends import _backend_pdf_ps
+
+    shared = _backend_pdf_ps.get_glyphs_subset
+    info = shared.cache_info
+    fig = plot_panel("4a", data)
+    first = save_figure(fig, tmp_path / "first")[0].read_bytes()
+    hits = info().hits
+    again = save_figure(fig, tmp_path / "again")[0].read_bytes()
+    assert info().hits > hits  # every subset of the second PDF was kept from the first
+    monkeypatch.setattr(_backend_pdf_ps, "get_glyphs_subset", shared.__wrapped__)
+    fresh = save_figure(fig, tmp_path / "fresh")[0].read_bytes()
+    assert first == again == fresh
