@@ -36,7 +36,7 @@ Speed: ``benchmarks/batch_throughput.py`` (figures in the README, per machine).
 import numpy as np
 from numba import literally, njit
 
-from chainchaos.engine.integrators import _aligned_zeros, _drift_vector, _renormalise, advance, gram_schmidt, inner
+from chainchaos.engine.integrators import _aligned_zeros, _drift_vector, _renormalise, advance, gram_schmidt
 from chainchaos.engine.simd import LANES, vbelow, vload, vstore
 from chainchaos.errors import require
 from chainchaos.system.models import MAX_BOND_PARAMETERS, MAX_SITE_PARAMETERS
@@ -60,19 +60,19 @@ assert len(QUANTITIES) == 7 + MAX_BOND_PARAMETERS + MAX_SITE_PARAMETERS and MAX_
 ROW = len(QUANTITIES) * LANES
 
 
-@inner()
+@njit(cache=True)
 def _bond_parameters(Z, bond):
     """The bond parameters (B0, B1, B2) of the bond whose row starts at ``bond``, as vectors."""
     return vload(Z, bond + _B0), vload(Z, bond + _B1), vload(Z, bond + _B2)
 
 
-@inner()
+@njit(cache=True)
 def _site_parameters(Z, row):
     """The site parameters (S0, S1) of the bead whose momenta are in row ``row``, as vectors."""
     return vload(Z, row + _S0), vload(Z, row + _S1)
 
 
-@inner(error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _sweep(model, tangent, drift, kick, keep_forces, N, Z, a, c):
     """One pass over the bonds b = 0..N of a block: (if ``drift``) drift(a) of every bead, (if
     ``kick``) the force and stiffness of every bond at the new positions and kick(c) of every
@@ -91,7 +91,7 @@ def _sweep(model, tangent, drift, kick, keep_forces, N, Z, a, c):
     literally(keep_forces)
     u_left = vload(Z, _U)  # the wall
     dq_left = vload(Z, _DQ)  # deviation of bead b-1
-    u_right, dq_right = _drift_bead(drift, tangent, Z, np.int64(0), a)  # int64, not Literal[int](0): one compile
+    u_right, dq_right = _drift_bead(drift, tangent, Z, 0, a)
     f1 = f2 = g1 = g2 = u_left  # f, g of bonds b-1 and b-2
     for b in range(N + 1):
         bond = b * ROW
@@ -120,15 +120,15 @@ def _sweep(model, tangent, drift, kick, keep_forces, N, Z, a, c):
         _kick_bead(model, tangent, Z, (N - 1) * ROW, c, f2, f1, g2, g1)
 
 
-@inner()
+@njit(cache=True)
 def _drift_bead(drift, tangent, Z, bond, a):
     """(u, dq) of the bead whose momenta are in row ``bond`` (its displacement in row bond + ROW),
     drifted by a if ``drift``: u += a M^-1 p, dq += a M^-1 dp (``integrators._drift_vector``)."""
     bead = bond + ROW
-    return _drift_vector(drift, tangent, Z, bead + _U, bead + _DQ, bond + _P, bond + _DP, bond + _IM, np.int64(0), a)
+    return _drift_vector(drift, tangent, Z, bead + _U, bead + _DQ, bond + _P, bond + _DP, bond + _IM, 0, a)
 
 
-@inner()
+@njit(cache=True)
 def _kick_bead(model, tangent, Z, row, c, f_left, f_right, g_left, g_right):
     """kick(c) of the bead of ``row`` between bonds whose forces are f_left and f_right (tangent
     forces g_left, g_right): p += c (f_left - f_right), dp += c (g_left - g_right); with a site law
@@ -143,7 +143,7 @@ def _kick_bead(model, tangent, Z, row, c, f_left, f_right, g_left, g_right):
         vstore(Z, row + _DP, vload(Z, row + _DP) + c * site_kick_deviation(model, site, u, dq, g_left - g_right))
 
 
-@inner(error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _kick_only(model, tangent, N, Z, c):
     """kick(c) of every bead with the stored forces and stiffnesses (the tangent force of bond b,
     g_b = k_b (dq_{b-1} - dq_b), carried from one bead to the next); a site law's w'(u) and w''(u)
@@ -171,7 +171,7 @@ _VQ, _VP = 0, LANES
 VROW = 2 * LANES
 
 
-@inner()
+@njit(cache=True)
 def _vector_base(N, j):
     """Where extra deviation vector j starts in the buffer of a block's extra vectors."""
     return j * (N + 2) * VROW
@@ -182,7 +182,7 @@ def _vector_base(N, j):
 VECTOR_GROUP = 3
 
 
-@inner()
+@njit(cache=True)
 def _vector_bond(model, V, vector, b, N, drift, kick, a_im, stiffness, site, u_left, c, wall, dq_left, g_left,
                  dp_left):
     """Iteration b of a pass over the bonds for one extra deviation vector starting at ``vector``:
@@ -208,7 +208,7 @@ def _vector_bond(model, V, vector, b, N, drift, kick, a_im, stiffness, site, u_l
     return dq, g, dp
 
 
-@inner(error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _drift_kick_vectors(model, N, Z, V, extra, drift, kick, a, c):
     """drift(a) (if ``drift``) then kick(c) (if ``kick``) of the ``extra`` deviation vectors in V
     with the inverse masses and the stiffnesses stored in the block Z (the orbit's sweep stored
@@ -245,7 +245,7 @@ def _drift_kick_vectors(model, N, Z, V, extra, drift, kick, a, c):
             q0, g0, p0 = _vector_bond(model, V, v0, b, N, drift, kick, a_im, k, site, u, c, wall, q0, g0, p0)
 
 
-@inner(error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _normalise_vectors(N, Z, V, lane, extra, orthogonal, growth, W, lane_growth):
     """The extra deviation vectors of one lane at a check, gathered with the block's own vector
     (already normalised) into the rows of W (extra + 1, 2N), the first ``orthogonal`` of them
@@ -258,7 +258,7 @@ def _normalise_vectors(N, Z, V, lane, extra, orthogonal, growth, W, lane_growth)
             W[j + 1, n] = V[_vector_base(N, j) + (n + 1) * VROW + _VQ + lane]
             W[j + 1, N + n] = V[_vector_base(N, j) + n * VROW + _VP + lane]
     lane_growth[:] = 0.0
-    gram_schmidt(W, np.int64(1), orthogonal + 1, lane_growth)  # the int64 variant Python calls too
+    gram_schmidt(W, 1, orthogonal + 1, lane_growth)
     for j in range(extra):
         growth[j, lane] += lane_growth[j]
         for n in range(N):
@@ -266,7 +266,7 @@ def _normalise_vectors(N, Z, V, lane, extra, orthogonal, growth, W, lane_growth)
             V[_vector_base(N, j) + n * VROW + _VP + lane] = W[j + 1, N + n]
 
 
-@inner(error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _count_gaps(model, N, Z, gap_steps, max_gaps):
     """Open bonds of every lane (the model's opening < 0): one step added to
     gap_steps[b] (a row of LANES counts per bond, as doubles) and max_gaps (LANES) raised to the
@@ -281,7 +281,7 @@ def _count_gaps(model, N, Z, gap_steps, max_gaps):
     vstore(max_gaps, 0, max(n_open, vload(max_gaps, 0)))
 
 
-@inner(error_model="numpy")
+@njit(cache=True, error_model="numpy")
 def _advance_block(model, tangent, N, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, gap_steps,
                    log_growth, max_gaps, bad, V, extra, orthogonal, vector_growth):
     """``advance_batch`` for one block in its buffer Z; gap_steps is (N+1) x LANES, flattened, and
@@ -367,7 +367,7 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
     V = _aligned_zeros(max(extra, 1) * (N + 2) * VROW)
     block_gaps = _aligned_zeros((N + 1) * LANES)  # counts as doubles, exact below 2**53
     block_growth = np.zeros(LANES)
-    block_max_gaps = _aligned_zeros(np.int64(LANES))
+    block_max_gaps = _aligned_zeros(LANES)
     block_bad = np.zeros(LANES, dtype=np.int64)
     block_x_growth = np.zeros((max(extra, 1), LANES))
     for first in range(0, B, LANES):
@@ -444,7 +444,7 @@ class Batch:
     def __init__(self, problem, q, p, dq=None, dp=None, serial_lanes: int = 0, xq=None, xp=None):
         self.problem, self.model, self.scheme = problem, problem.model, problem.scheme
         self.inv_mass, self.bonds = problem.lane_parameters
-        self.site_parameters = problem.site_parameters  # None passed, not omitted: the kernels then compile once for every caller
+        self._sites = () if problem.site_parameters is None else (problem.site_parameters,)
         self.q = np.ascontiguousarray(q, dtype=float).copy()
         self.p = np.ascontiguousarray(p, dtype=float).copy()
         shape = self.q.shape
@@ -484,7 +484,7 @@ class Batch:
             advance_batch(self.model, self.q, self.p, self.dq, self.dp, self.inv_mass, self.bonds, self.scheme.kicks,
                           self.scheme.drifts, pr.dt, int(n_steps), pr.tangent, pr.check_every, pr.track_gaps,
                           self.gap_steps, self.log_growth, self.max_gaps, bad, self.block_lanes, self.xq, self.xp,
-                          pr.spectrum - 1, self.x_growth, self.vectors_on, self.site_parameters)
+                          pr.spectrum - 1, self.x_growth, self.vectors_on, *self._sites)
         for j, lane in self._serial.items():
             bad[j] = self._advance_serial(j, lane, int(n_steps))
         newly = (bad >= 0) & (self.bad < 0)

@@ -128,7 +128,7 @@ def get_scheme(name: str) -> Scheme:
     return SCHEMES[name]
 
 
-@inner()
+@njit(cache=True)  # with its entry points: the batch engine's code is compiled as it was measured
 def _renormalise(dq, dp):
     s = 0.0
     for n in range(dq.shape[0]):
@@ -197,7 +197,7 @@ def _site_vector(Z, S0, S1, n):
     return vload(Z, S0 + n), vload(Z, S1 + n)
 
 
-@inner()
+@njit(cache=True)  # with its entry points: the batch engine's code is compiled as it was measured
 def _drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, n, a):
     """(u, dq) of the vector of beads at n of rows U and DQ, drifted by a if ``drift``:
     u += a M^-1 p, dq += a M^-1 dp, with p, dp and M^-1 at n of rows P, DP and IM (stored back)."""
@@ -346,7 +346,7 @@ def _step_loop(model, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every,
     return bad
 
 
-@inner()
+@njit(cache=True)  # with its entry points: the batch engine's code is compiled as it was measured
 def _aligned_zeros(n):
     """n zeros starting on a 64-byte boundary (a cache line, an AVX-512 vector)."""
     buf = np.zeros(n + 8)
