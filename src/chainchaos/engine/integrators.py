@@ -30,9 +30,11 @@ from chainchaos.system.models.base import (MAX_BOND_PARAMETERS, MAX_SITE_PARAMET
 def inner(**options):
     """``njit(cache=True, **options)`` for a function that only compiled code calls. Numba builds a
     CPython and a C entry point for every function it compiles, each lowered and optimised like
-    the function itself; the engines' helpers, over a hundred literal specialisations, never need
-    one (a tenth of a cold compile of the engines). Without its CPython entry point a function
-    cannot be called from Python (the interpreter would crash): only private names get this."""
+    the function itself; the single engine's helpers (dozens of literal specialisations) never
+    need one, and their callers' machine code is the same without. The batch engine's helpers
+    keep theirs: without them its machine code changed. Without its CPython entry point a
+    function cannot be called from Python (the interpreter would crash): only private names get
+    this."""
     return njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True, **options)
 
 
