@@ -46,8 +46,7 @@ class CheckedRun:
         self.problem = problem
         N = problem.N
         self.inv_mass, self.bonds = problem.lane(0)
-        sites = problem.lane_sites(0)
-        self.site_parameters = sites  # None passed, not omitted: the kernels then compile once for every caller
+        self.site_parameters = problem.lane_sites(0)  # None passed, not omitted: one compiled variant for every caller
         self.mass = problem.chains[0].mass
         self.q, self.p = np.array(q, dtype=float), np.array(p, dtype=float)
         self.dq = np.zeros(N) if dq is None else np.array(dq, dtype=float)

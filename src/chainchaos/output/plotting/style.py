@@ -69,6 +69,7 @@ def _shared_font_subsets(size: int = 256) -> None:
             return _backend_pdf_ps.font_as_file(result.font).getvalue(), dict(result.glyph_index_map)
 
     def get_glyphs_subset(fontfile, glyphs):
+        # the face is part of the key: a FontPath hashes and compares as its path alone
         data, index_map = subset(fontfile, getattr(fontfile, "face_index", 0), frozenset(glyphs))
         font = TTFont(BytesIO(data), recalcBBoxes=False, recalcTimestamp=False)  # saved again as it was read
         return _backend_pdf_ps.SubsetResults(font, dict(index_map))._as_cm()
