@@ -3,12 +3,13 @@
     python benchmarks/record.py batch_throughput [--note TEXT] [-- OPTIONS of the benchmark]
     python benchmarks/record.py pipeline --note TEXT -- [--configfile F] [--config K=V ...] [--warm] TARGET ...
 
-Writes ``benchmarks/results/<benchmark>-<UTC date>-<commit>.json``: the benchmark and the command
+Writes ``benchmarks/results/<benchmark>-<UTC date>-<commit>.json`` (``-2``, ``-3``, ... for
+further runs of the commit that day, so that no run replaces another): the benchmark and the command
 that ran it, the commit (and whether the package's sources differed from it), the UTC date, the CPU
 (``lscpu``: model name and flags; the vector extensions, Numba's target the engines compile
-for, their SIMD width and square root), the load of the machine while it ran (``os.getloadavg`` before and after, the number of
-CPUs, and a note: a benchmark on a machine shared with other work measures less than the CPU can
-do), the benchmark's parameters and its table (``columns``: the keys of ``rows`` in order, each
+for, their SIMD width and square root), the load of the machine (``os.getloadavg`` before and after, the number of CPUs, the share of the
+CPUs other work kept busy in the second before the start, and a note: a benchmark on a machine
+shared with other work measures less than the CPU can do), the benchmark's parameters and its table (``columns``: the keys of ``rows`` in order, each
 with a label; ``rows``: one dict per row).
 
 The documentation's performance page (docs/explanation/performance.md) is generated from every
@@ -23,6 +24,7 @@ import os
 import re
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
@@ -43,6 +45,25 @@ def lscpu() -> dict:
     fields = dict(line.split(":", 1) for line in text.splitlines() if ":" in line)
     fields = {key.strip(): value.strip() for key, value in fields.items()}
     return {"model_name": fields.get("Model name", ""), "flags": fields.get("Flags", "")}
+
+
+def busy_share(seconds: float = 1.0) -> float | None:
+    """The share of all CPUs that were busy during ``seconds`` (``/proc/stat``; None elsewhere).
+
+    Taken before a benchmark starts, it says whether other work shares the machine: the load
+    average cannot, as it still holds the previous minute's runs, and after a run holds the
+    run's own processes."""
+    def ticks():
+        fields = [int(x) for x in Path("/proc/stat").read_text().split("\n", 1)[0].split()[1:]]
+        return sum(fields), fields[3] + fields[4]  # all, idle + iowait
+
+    try:
+        total0, idle0 = ticks()
+        time.sleep(seconds)
+        total1, idle1 = ticks()
+    except (OSError, ValueError, IndexError):
+        return None
+    return round(1 - (idle1 - idle0) / max(total1 - total0, 1), 3)
 
 
 def batch_throughput(argv: list[str]) -> dict:
@@ -75,7 +96,6 @@ def pipeline(argv: list[str]) -> dict:
     (benchmarks/pipeline_cost.py)."""
     import shutil
     import tempfile
-    import time
 
     sys.path.insert(0, str(HERE))
     import pipeline_cost
@@ -195,6 +215,7 @@ def record(name: str, argv: list[str], note: str = "") -> Path:
         sqrt_choice,
     )
 
+    busy_before = busy_share()
     load_before = os.getloadavg()
     started = dt.datetime.now(dt.UTC)
     measured = BENCHMARKS[name](argv)
@@ -209,13 +230,21 @@ def record(name: str, argv: list[str], note: str = "") -> Path:
         "cpu": {**lscpu(), "vector_extensions": cpu_vector_extensions(), "numba_target": numba_target_cpu(),
                 "simd_width_doubles": LANES, "square_root": sqrt_choice(), "cpus": os.cpu_count()},
         "load_average_1min": {"before": round(load_before[0], 2), "after": round(load_after[0], 2)},
-        "loaded_machine": max(load_before[0], load_after[0]) > 0.5,
+        "busy_share_before": busy_before,
+        # other work at the start (a quarter of the CPUs or more); the load average after the run
+        # is the run's own
+        "loaded_machine": busy_before is None or busy_before >= 0.25,
         "note": note,
         **measured,
     }
     RESULTS.mkdir(exist_ok=True)
     label = measured.pop("label", "")
-    path = RESULTS / f"{name}{'-' + label if label else ''}-{started:%Y-%m-%d}-{commit[:7]}.json"
+    stem = f"{name}{'-' + label if label else ''}-{started:%Y-%m-%d}-{commit[:7]}"
+    path = RESULTS / f"{stem}.json"
+    runs = 1
+    while path.exists():
+        runs += 1
+        path = RESULTS / f"{stem}-{runs}.json"
     path.write_text(json.dumps(out, indent=1, ensure_ascii=False) + "\n")
     return path
 

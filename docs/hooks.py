@@ -127,6 +127,8 @@ def render_record(record: dict, level: str = "###") -> str:
          f"{cpu.get('vector_extensions') or 'unknown'}; Numba target {cpu.get('numba_target', '?')}, "
          f"SIMD width {cpu.get('simd_width_doubles', '?')} doubles, square root {cpu.get('square_root', '?')}"),
         (f"- **load**: 1-minute load average {load.get('before', '?')} before, {load.get('after', '?')} after"
+         + (f"; CPUs busy with other work at the start: {record['busy_share_before']:.0%}"
+            if record.get("busy_share_before") is not None else "")
          + ("; **measured on a loaded machine**" if record.get("loaded_machine") else "")),
     ]
     if record.get("note"):
