@@ -4,15 +4,13 @@
     python benchmarks/record.py pipeline --note TEXT -- [--configfile F] [--config K=V ...] [--warm] TARGET ...
 
 Writes ``benchmarks/results/<benchmark>-<UTC date>-<commit>.json`` (``-2``, ``-3``, ... for
-further runs of the commit that day, so that no run replaces another): the benchmark and the
-command that ran it, the commit (and whether the package's sources differed from it), the UTC
-date, the CPU (``lscpu``: model name and flags; the vector extensions, Numba's target the engines
-compile for, their SIMD width and square root), the state of the machine (the load average before
-and after, the number of CPUs, the share of the CPUs other work kept busy in the second before the
-start, the start-up time of a Python process importing what a pipeline job imports, and a note: a
-benchmark on a machine shared with other work measures less than the CPU can do), the benchmark's
-parameters and its table (``columns``: the keys of ``rows`` in order, each with a label; ``rows``:
-one dict per row).
+further runs of the commit that day, so that no run replaces another): the benchmark and the command
+that ran it, the commit (and whether the package's sources differed from it), the UTC date, the CPU
+(``lscpu``: model name and flags; the vector extensions, Numba's target the engines compile
+for, their SIMD width and square root), the load of the machine (``os.getloadavg`` before and after, the number of CPUs, the share of the
+CPUs other work kept busy in the second before the start, and a note: a benchmark on a machine
+shared with other work measures less than the CPU can do), the benchmark's parameters and its table (``columns``: the keys of ``rows`` in order, each
+with a label; ``rows``: one dict per row).
 
 The documentation's performance page (docs/explanation/performance.md) is generated from every
 record in that folder when the site builds (docs/hooks.py), so the figures it shows are those of
@@ -66,24 +64,6 @@ def busy_share(seconds: float = 1.0) -> float | None:
     except (OSError, ValueError, IndexError):
         return None
     return round(1 - (idle1 - idle0) / max(total1 - total0, 1), 3)
-
-
-#: What a job of the pipeline imports before it does anything: most of a quick-scale job's time.
-JOB_IMPORTS = "import numpy, xarray, numba, matplotlib.figure, matplotlib.backends.backend_pdf"
-
-
-def start_up_seconds(repeats: int = 5) -> float:
-    """The median wall time of a fresh Python process importing :data:`JOB_IMPORTS`.
-
-    The machine's speed at what the quick scale is made of (process start-up, imports: file reads
-    and page faults more than arithmetic): on a virtual machine it varies between runs of one
-    commit, and a record that holds it tells a slow machine from slow code."""
-    times = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        subprocess.run([sys.executable, "-c", JOB_IMPORTS], check=True)
-        times.append(time.perf_counter() - start)
-    return round(sorted(times)[len(times) // 2], 3)
 
 
 def batch_throughput(argv: list[str]) -> dict:
@@ -236,7 +216,6 @@ def record(name: str, argv: list[str], note: str = "") -> Path:
     )
 
     busy_before = busy_share()
-    start_up = start_up_seconds()
     load_before = os.getloadavg()
     started = dt.datetime.now(dt.UTC)
     measured = BENCHMARKS[name](argv)
@@ -252,7 +231,6 @@ def record(name: str, argv: list[str], note: str = "") -> Path:
                 "simd_width_doubles": LANES, "square_root": sqrt_choice(), "cpus": os.cpu_count()},
         "load_average_1min": {"before": round(load_before[0], 2), "after": round(load_after[0], 2)},
         "busy_share_before": busy_before,
-        "start_up_seconds": start_up,
         # other work at the start (a quarter of the CPUs or more); the load average after the run
         # is the run's own
         "loaded_machine": busy_before is None or busy_before >= 0.25,

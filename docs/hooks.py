@@ -129,8 +129,6 @@ def render_record(record: dict, level: str = "###") -> str:
         (f"- **load**: 1-minute load average {load.get('before', '?')} before, {load.get('after', '?')} after"
          + (f"; CPUs busy with other work at the start: {record['busy_share_before']:.0%}"
             if record.get("busy_share_before") is not None else "")
-         + (f"; a Python process importing what a job imports started in {record['start_up_seconds']} s"
-            if record.get("start_up_seconds") is not None else "")
          + ("; **measured on a loaded machine**" if record.get("loaded_machine") else "")),
     ]
     if record.get("note"):
