@@ -3,14 +3,15 @@
     python benchmarks/record.py batch_throughput [--note TEXT] [-- OPTIONS of the benchmark]
     python benchmarks/record.py pipeline --note TEXT -- [--configfile F] [--config K=V ...] [--warm] TARGET ...
 
-Writes ``benchmarks/results/<benchmark>-<UTC date>-<commit>.json`` (``-2``, ``-3``, ... for
-further runs of the commit that day, so that no run replaces another): the benchmark and the command
-that ran it, the commit (and whether the package's sources differed from it), the UTC date, the CPU
-(``lscpu``: model name and flags; the vector extensions, Numba's target the engines compile
-for, their SIMD width and square root), the load of the machine (``os.getloadavg`` before and after, the number of CPUs, the share of the
-CPUs other work kept busy in the second before the start, and a note: a benchmark on a machine
-shared with other work measures less than the CPU can do), the benchmark's parameters and its table (``columns``: the keys of ``rows`` in order, each
-with a label; ``rows``: one dict per row).
+Writes ``benchmarks/results/<benchmark>-<UTC date>-<commit>.json`` (``-2``, ``-3``, ... for further
+runs of the commit that day, so that no run replaces another): the benchmark and the command that
+ran it, the commit (and whether the package's sources differed from it), the UTC date, the CPU
+(``lscpu``: model name and flags; the vector extensions, Numba's target the engines compile for,
+their SIMD width and square root), the load of the machine (``os.getloadavg`` before and after, the
+number of CPUs, the share of the CPUs other work kept busy in the second before the start, and a
+note: a benchmark on a machine shared with other work measures less than the CPU can do), the
+benchmark's parameters and its table (``columns``: the keys of ``rows`` in order, each with a
+label; ``rows``: one dict per row).
 
 The documentation's performance page (docs/explanation/performance.md) is generated from every
 record in that folder when the site builds (docs/hooks.py), so the figures it shows are those of
