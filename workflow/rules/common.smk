@@ -23,7 +23,6 @@ from chainchaos.studies.search import archive, rejudge
 from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION, SearchPlan
 from chainchaos.studies.study import runs as study_runs
 from chainchaos.studies.study.runs import scene_name
-from chainchaos.studies.study.spec import FIGURES as STUDY_FIGURES
 from chainchaos.studies.study.spec import kept_group_path, load_study, study_names
 from chainchaos.workflow.tasks.chain import selection_criteria
 from chainchaos.workflow.tasks.figures import figure_outputs as figure_files
@@ -605,9 +604,40 @@ def study_runtime(name):
     return cluster_runtime(orbits * max(1.0, N / 40), settings.t_final, settings.dt)
 
 
-def study_comparison_inputs(wildcards):
-    names = [wildcards.study, *study_of(wildcards.study).spec["compare_with"]]
-    return {name: result("studies", name, "statistics.nc") for name in names}
+def figure_studies():
+    """The studies that draw figures: those of studies/ and the file config `study` names."""
+    names = set(study_names())
+    if config.get("study"):
+        names.add(study_name(config["study"]))
+    return [name for name in sorted(names) if study_figure_names(name)]
+
+
+def rule_key(name):
+    """``name`` as a part of a rule's name (a study may be named ``my-study.v2``)."""
+    return re.sub(r"\W", "_", name)
+
+
+def study_figure_inputs(name):
+    """The statistics a study's figures read: its own, then those of the studies it compares with."""
+    names = [name, *study_of(name).spec["compare_with"]]
+    return {n: result("studies", n, "statistics.nc") for n in names}
+
+
+def study_figure_outputs(name):
+    """Each figure of a study as PDF and PNG, the PNG in the report (category Studies)."""
+    outputs = {}
+    for figure in study_figure_names(name):
+        path = result("studies", name, "figures", figure)
+        caption = "study_comparison" if figure == "comparison" else "study"
+        outputs[f"{figure}_pdf"] = f"{path}.pdf"
+        outputs[f"{figure}_png"] = report(
+            f"{path}.png",
+            caption=f"../report/{caption}.rst",
+            category=REPORT_CATEGORIES["studies"],
+            subcategory=name,
+            labels={"study": name, "figure": figure},
+        )
+    return outputs
 
 
 def study_targets(name):

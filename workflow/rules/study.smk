@@ -4,24 +4,21 @@
 #
 # in resumable jobs of `jobs.orbits_per_job` orbits (study_group), merged into one NetCDF file
 # per model and energy holding every realization (study_scene) and the ensemble statistics
-# and its power laws (study_statistics), drawn as the study's figures (plot_study, plot_study_comparison) and shown
+# and its power laws (study_statistics), drawn as the study's figures (plot_study_<name>) and shown
 # in the HTML report (category "Studies"). Nothing of the paper (search, claims, manuscript) runs.
 
 
 wildcard_constraints:
     group=r"\d+",
     study=r"[A-Za-z0-9][A-Za-z0-9_.-]*",
-    study_figure="|".join(STUDY_FIGURES),
 
 
-# Seconds of work each: on a cluster they run on the submitting host.
+# Seconds of work each: on a cluster they run on the submitting host (as does plot_study_<name>).
 localrules:
     study,
     keep_study_group,
     study_scene,
     study_statistics,
-    plot_study,
-    plot_study_comparison,
 
 
 rule study_group:
@@ -77,50 +74,29 @@ rule study_statistics:
         "../scripts/study_statistics.py"
 
 
-rule plot_study:
-    """One of a study's standard figures."""
-    input:
-        statistics=result("studies", "{study}", "statistics.nc"),
-    output:
-        pdf=result("studies", "{study}", "figures", "{study_figure}.pdf"),
-        png=report(
-            result("studies", "{study}", "figures", "{study_figure}.png"),
-            caption="../report/study.rst",
-            category=REPORT_CATEGORIES["studies"],
-            subcategory="{study}",
-            labels={"study": "{study}", "figure": "{study_figure}"},
-        ),
-    params:
-        dpi=config["figures"]["dpi"],
-    log:
-        log_file("plot_study", "{study}-{study_figure}"),
-    benchmark:
-        benchmark_file("plot_study", "{study}-{study_figure}")
-    script:
-        "../scripts/plot_study.py"
+# One job per study draws every figure it names and its comparison (rule plot_study_<name>), one
+# target per figure (asking for one runs its study's job), paying the plotting set-up once.
+for study_with_figures in figure_studies():
+    key = rule_key(study_with_figures)
 
-
-rule plot_study_comparison:
-    """A study's ensemble means beside those of the studies it names in compare_with."""
-    input:
-        unpack(study_comparison_inputs),
-    output:
-        pdf=result("studies", "{study}", "figures", "comparison.pdf"),
-        png=report(
-            result("studies", "{study}", "figures", "comparison.png"),
-            caption="../report/study_comparison.rst",
-            category=REPORT_CATEGORIES["studies"],
-            subcategory="{study}",
-            labels={"study": "{study}", "figure": "comparison"},
-        ),
-    params:
-        dpi=config["figures"]["dpi"],
-    log:
-        log_file("plot_study_comparison", "{study}"),
-    benchmark:
-        benchmark_file("plot_study_comparison", "{study}")
-    script:
-        "../scripts/plot_study_comparison.py"
+    rule:
+        name:
+            f"plot_study_{key}"
+        localrule: True
+        input:
+            **study_figure_inputs(study_with_figures),
+        output:
+            **study_figure_outputs(study_with_figures),
+        params:
+            study=study_with_figures,
+            figures=study_figure_names(study_with_figures),
+            dpi=config["figures"]["dpi"],
+        log:
+            log_file("plot_study", study_with_figures),
+        benchmark:
+            benchmark_file("plot_study", study_with_figures)
+        script:
+            "../scripts/plot_study.py"
 
 
 rule keep_study_group:

@@ -103,23 +103,20 @@ def study_statistics(inputs, outputs, params, wildcards) -> None:
 
 
 def plot_study(inputs, outputs, params, wildcards) -> None:
-    """One of a study's standard figures (PDF and PNG)."""
+    """A study's figures, PDF and PNG each: those its key ``figures`` names and, with
+    ``compare_with``, its ensemble means beside those of the studies it names (``inputs``: each
+    study's statistics by name, the study's own first)."""
     from chainchaos.output.plotting.style import save_figure  # matplotlib: only in the plotting jobs
-    from chainchaos.studies.study.plots import study_figure
-
-    stats = xr.load_dataset(inputs["statistics"])
-    fig = study_figure(wildcards["study_figure"], stats, stats.attrs["study_title"])
-    save_figure(fig, Path(outputs["pdf"]).with_suffix(""), dpi=params["dpi"])
-
-
-def plot_study_comparison(inputs, outputs, params, wildcards) -> None:
-    """A study's ensemble means beside those of the studies it compares with."""
-    from chainchaos.output.plotting.style import save_figure
-    from chainchaos.studies.study.plots import comparison_figure
+    from chainchaos.studies.study.plots import comparison_figure, study_figure
 
     named = {name: xr.load_dataset(path) for name, path in inputs.items()}
-    fig = comparison_figure(named, f"study {wildcards['study']} beside {', '.join(list(named)[1:])}")
-    save_figure(fig, Path(outputs["pdf"]).with_suffix(""), dpi=params["dpi"])
+    stats = named[params["study"]]
+    for figure in params["figures"]:
+        if figure == "comparison":
+            fig = comparison_figure(named, f"study {params['study']} beside {', '.join(list(named)[1:])}")
+        else:
+            fig = study_figure(figure, stats, stats.attrs["study_title"])
+        save_figure(fig, Path(outputs[f"{figure}_pdf"]).with_suffix(""), dpi=params["dpi"])
 
 
-TASKS = (study_group, keep_study_group, study_scene, study_statistics, plot_study, plot_study_comparison)
+TASKS = (study_group, keep_study_group, study_scene, study_statistics, plot_study)

@@ -1,5 +1,0 @@
-"""plot_study_comparison: see chainchaos.workflow.tasks.study.plot_study_comparison."""
-
-from chainchaos.workflow.tasks import run_rule
-
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
