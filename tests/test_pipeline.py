@@ -76,6 +76,19 @@ def test_deleted_panel_reruns_only_its_figure_s_drawing_job(quick):
 
 
 @pytest.mark.slow
+def test_deleted_study_figure_reruns_only_its_study_s_drawing_job(quick, tmp_path):
+    figure = quick / "studies" / "kg_weak_chaos" / "figures" / "chaos.pdf"
+    kept = shutil.copy2(figure, tmp_path / "chaos.pdf")
+    figure.unlink()
+    try:
+        code, out = snakemake(str(figure), *QUICK, "--config", f"results={quick}", "-n")
+    finally:
+        shutil.copy2(kept, figure)  # the other tests of the quick run read it
+    assert code == 0, out
+    assert planned_jobs(out) == {"plot_study_kg_weak_chaos": 1}
+
+
+@pytest.mark.slow
 def test_changed_scene_parameter_reruns_only_its_batch(quick, tmp_path):
     """The changed scene leaves its batch (its step differs now), so it and the scenes it shared a
     SIMD block with rerun, and the panels drawn from them; nothing else."""
