@@ -605,8 +605,10 @@ def study_runtime(name):
 
 
 def figure_studies():
-    """The studies that draw figures: those of studies/ and the file config `study` names."""
-    names = set(study_names())
+    """The studies whose figures a run can ask for: those the manuscript shows and the one config
+    `study` names. Only the studies a run reads are read at parse time: a half-written file in
+    studies/ stops no other run."""
+    names = set(BEYOND_STUDIES)
     if config.get("study"):
         names.add(study_name(config["study"]))
     return [name for name in sorted(names) if study_figure_names(name)]
