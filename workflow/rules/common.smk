@@ -656,9 +656,10 @@ def study_targets(name):
         for e in study.energies
     ]
     files += [result("studies", name, "statistics.nc"), result("studies", name, "laws.nc")]
-    figures = [*study.spec["figures"], *(["comparison"] if study.spec["compare_with"] else [])]
     files += [
-        result("studies", name, "figures", f"{f}.{ext}") for f in figures for ext in ("pdf", "png")
+        result("studies", name, "figures", f"{f}.{ext}")
+        for f in study_figure_names(name)
+        for ext in ("pdf", "png")
     ]
     return files
 
