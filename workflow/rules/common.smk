@@ -611,7 +611,16 @@ def figure_studies():
     names = set(BEYOND_STUDIES)
     if config.get("study"):
         names.add(study_name(config["study"]))
-    return [name for name in sorted(names) if study_figure_names(name)]
+    return [name for name in sorted(names) if asked_figures(name)]
+
+
+def asked_figures(name):
+    """The figures of study `name` a run asks for, in the study's order: every one of the study
+    config `study` names, those config manuscript.beyond shows of a study the manuscript shows."""
+    asked = set(BEYOND_ENTRIES[name]) if name in BEYOND_STUDIES else set()
+    if config.get("study") and study_name(config["study"]) == name:
+        asked.update(study_figure_names(name))
+    return [figure for figure in study_figure_names(name) if figure in asked]
 
 
 def rule_key(name):
@@ -620,15 +629,18 @@ def rule_key(name):
 
 
 def study_figure_inputs(name):
-    """The statistics a study's figures read: its own, then those of the studies it compares with."""
-    names = [name, *study_of(name).spec["compare_with"]]
+    """The statistics a study's asked figures read: its own, then, for its comparison, those of
+    the studies it compares with."""
+    compared = study_of(name).spec["compare_with"] if "comparison" in asked_figures(name) else []
+    names = [name, *compared]
     return {n: result("studies", n, "statistics.nc") for n in names}
 
 
 def study_figure_outputs(name):
-    """Each figure of a study as PDF and PNG, the PNG in the report (category Studies)."""
+    """Each figure of a study the run asks for as PDF and PNG, the PNG in the report (category
+    Studies)."""
     outputs = {}
-    for figure in study_figure_names(name):
+    for figure in asked_figures(name):
         path = result("studies", name, "figures", figure)
         caption = "study_comparison" if figure == "comparison" else "study"
         outputs[f"{figure}_pdf"] = f"{path}.pdf"

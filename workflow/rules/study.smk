@@ -74,8 +74,9 @@ rule study_statistics:
         "../scripts/study_statistics.py"
 
 
-# One job per study draws every figure it names and its comparison (rule plot_study_<name>), one
-# target per figure (asking for one runs its study's job), paying the plotting set-up once.
+# One job per study draws the figures of it the run asks for (rule plot_study_<name>): all of the
+# study config `study` names, those the manuscript shows of the others; one target per figure
+# (asking for one runs its study's job), paying the plotting set-up once.
 for study_with_figures in figure_studies():
     key = rule_key(study_with_figures)
 
@@ -89,7 +90,7 @@ for study_with_figures in figure_studies():
             **study_figure_outputs(study_with_figures),
         params:
             study=study_with_figures,
-            figures=study_figure_names(study_with_figures),
+            figures=asked_figures(study_with_figures),
             dpi=config["figures"]["dpi"],
         log:
             log_file("plot_study", study_with_figures),
