@@ -7,6 +7,7 @@
 
 from snakemake.utils import min_version, validate
 
+from chainchaos.workflow import jobserver
 from chainchaos.workflow.config_check import check_config, typed_overrides
 
 min_version("9.0")
@@ -34,6 +35,26 @@ include: "workflow/rules/indicators.smk"
 include: "workflow/rules/search.smk"
 include: "workflow/rules/manuscript.smk"
 include: "workflow/rules/study.smk"
+
+
+# A local run's jobs are forked from one process that has imported the libraries they use
+# (chainchaos.workflow.jobserver): a job then costs its work, not a new interpreter's imports.
+JOB_SERVERS = []
+
+
+onstart:
+    if workflow.local_exec:
+        JOB_SERVERS.append(jobserver.start())
+
+
+onsuccess:
+    for server in JOB_SERVERS:
+        print(f"chainchaos job server: {server.stop()}")
+
+
+onerror:
+    for server in JOB_SERVERS:
+        server.stop()
 
 
 rule all:

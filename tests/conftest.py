@@ -43,6 +43,8 @@ def pytest_collection_modifyitems(config, items):
 # Where the quick run of the `quick` fixture puts the manuscript, inside its results directory
 # (config manuscript.pdf), so that no test writes the project's manuscript/ms.pdf.
 QUICK_MANUSCRIPT = "manuscript/ms.pdf"
+# What Snakemake printed in that run, beside its results directory.
+QUICK_RUN_OUTPUT = "quick_run_output.txt"
 
 
 @pytest.fixture(scope="session")
@@ -72,4 +74,5 @@ def quick(tmp_path_factory):
          "--config", f"results={results}", f"manuscript={{pdf: {pdf}}}"],
         cwd=ROOT, capture_output=True, text=True, timeout=1500)
     assert done.returncode == 0, (done.stdout + done.stderr)[-6000:]
+    (results.parent / QUICK_RUN_OUTPUT).write_text(done.stdout + done.stderr)
     return results

@@ -61,6 +61,19 @@ def test_each_scene_holds_what_its_panels_asked_for(quick):
             assert np.all(np.isin(10.0 ** np.arange(0, 4), ds.time.values))
 
 
+@pytest.mark.slow
+def test_a_local_run_forks_its_jobs_from_the_job_server(quick):
+    """The jobs of the quick run ran in workers of its job server (chainchaos.workflow.jobserver),
+    but those of MEASURED_RULES and those that started while the server was still importing."""
+    from chainchaos.workflow.tasks import MEASURED_RULES
+
+    output = (quick.parent / "quick_run_output.txt").read_text()  # conftest.QUICK_RUN_OUTPUT
+    steps = int(re.search(r"(\d+) of \1 steps \(100%\) done", output).group(1))
+    served = int(re.search(r"^chainchaos job server: served (\d+) jobs$", output, re.MULTILINE).group(1))
+    measured = len(re.findall(rf"^(?:local)?rule (?:{'|'.join(MEASURED_RULES)}):$", output, re.MULTILINE))
+    assert steps - measured - 10 <= served <= steps - measured - 1  # the target rule all runs no script
+
+
 def _contract_variables():
     from chainchaos.observe.registry import OBSERVABLES
 

@@ -62,16 +62,36 @@ def _task(smk):
                 return family_tasks(path.stem)[name]
     return _all_tasks()[smk.rule]
 
+
+#: Rules whose Snakemake benchmark is kept as data: its CPU seconds are the cost of an archived
+#: search, of its re-judging or of kept disorder statistics (``studies.search.archive.job_costs``).
+#: They run in their own process, which the benchmark measures (a job server's worker is not its
+#: child).
+MEASURED_RULES = frozenset({"search_seeds", "search_candidates", "search_filter", "search_score", "search_merge",
+                            "search_rejudge_filter", "search_rejudge_score", "study_group"})
+
 #: Errors whose message tells the reader what to do (install TeX, ...): shown without a traceback.
 READER_ERRORS = (BuildError,)
 
 
 def run_rule(smk) -> None:
-    """Run ``TASKS[smk.rule]`` with stderr in the rule's log (the first ``log:`` file).
+    """Run ``TASKS[smk.rule]`` with stderr in the rule's log (the first ``log:`` file): in a
+    worker of the run's job server if it has one (``chainchaos.workflow.jobserver``), else here.
 
     A failure's traceback goes to the log, which Snakemake shows for a failed job; a
     :data:`READER_ERRORS` error ends the job with its message alone (exit status 1).
     """
+    from chainchaos.workflow import jobserver
+
+    status = None if smk.rule in MEASURED_RULES else jobserver.submit(__name__, "run_rule_here", smk)
+    if status is None:
+        run_rule_here(smk)
+    elif status:
+        raise SystemExit(status)
+
+
+def run_rule_here(smk) -> None:
+    """:func:`run_rule` in this process."""
     task = _task(smk)
     with open(smk.log[0], "w") as log, contextlib.redirect_stderr(log):
         try:
