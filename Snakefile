@@ -7,7 +7,7 @@
 
 from snakemake.utils import min_version, validate
 
-from chainchaos.workflow import jobserver
+from chainchaos.workflow import jobserver, tasks
 from chainchaos.workflow.config_check import check_config, typed_overrides
 
 min_version("9.0")
@@ -44,7 +44,7 @@ JOB_SERVERS = []
 
 onstart:
     if workflow.local_exec:
-        JOB_SERVERS.append(jobserver.start())
+        JOB_SERVERS.append(jobserver.start(tasks.MODULES))
 
 
 onsuccess:

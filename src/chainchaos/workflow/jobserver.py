@@ -21,6 +21,7 @@ gone. A job's ``benchmark:`` file keeps its wall time; its CPU time and memory a
 waiting job process, not of the worker.
 """
 
+import importlib
 import os
 import pickle
 import shutil
@@ -54,16 +55,17 @@ _HEADER = struct.Struct("!Q")  # the length of a pickled message
 _STREAMS = 2  # a job's standard output and error, passed to its worker as file descriptors
 
 
-def _preload() -> None:
-    """Import what the workflow's tasks use, and have Numba's CPU target load its registries."""
+def _preload(modules) -> None:
+    """Import ``modules`` (and what they import) and matplotlib's and Snakemake's parts that a
+    job's first call would, and have Numba's CPU target load its registries."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot  # the font manager and the Agg and PDF backends
     import snakemake.script  # noqa: F401 (what unpickles a job's ``snakemake`` object)
 
-    from chainchaos.workflow.tasks import TASKS  # noqa: F401 (every task module, and what they import)
-
+    for module in modules:
+        importlib.import_module(module)
     try:  # what loading the first kernel from the cache does in each job otherwise
         from numba.core.registry import cpu_target
 
@@ -147,10 +149,10 @@ def _work(conn: socket.socket, streams: list[int], request: dict) -> None:
         os._exit(status)
 
 
-def serve(address: str, parent: int) -> None:
-    """Preload, then fork a worker for every job that connects to ``address`` (a Unix socket),
-    until SIGTERM or until process ``parent`` (the run's Snakemake) is gone."""
-    _preload()
+def serve(address: str, parent: int, modules=()) -> None:
+    """Import ``modules``, then fork a worker for every job that connects to ``address`` (a Unix
+    socket), until SIGTERM or until process ``parent`` (the run's Snakemake) is gone."""
+    _preload(modules)
     environ = _comparable(os.environ)
     listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     listener.bind(address + ".binding")
@@ -258,14 +260,15 @@ class Server:
         return report[-1] if report else f"ended with status {self.process.returncode}"
 
 
-def start() -> Server:
-    """Start a server for the jobs this process (Snakemake's) starts afterwards: its socket in a
-    new private directory, its address in the environment they inherit (:data:`ADDRESS_VARIABLE`)."""
+def start(modules=()) -> Server:
+    """Start a server for the jobs this process (Snakemake's) starts afterwards, which imports
+    ``modules`` (those of the calls the jobs submit): its socket in a new private directory, its
+    address in the environment they inherit (:data:`ADDRESS_VARIABLE`)."""
     directory = Path(tempfile.mkdtemp(prefix="chainchaos-jobs-"))
     address = str(directory / "socket")
     os.environ[ADDRESS_VARIABLE] = address
     with open(directory / "server.log", "w") as log:
-        process = subprocess.Popen([sys.executable, "-m", "chainchaos.workflow.jobserver", address, str(os.getpid())],
+        process = subprocess.Popen([sys.executable, "-m", __name__, address, str(os.getpid()), *modules],
                                    env={**os.environ, **dict.fromkeys(THREAD_VARIABLES, "1")},
                                    stdin=subprocess.DEVNULL, stdout=log, stderr=subprocess.STDOUT)
     return Server(process, directory)
@@ -282,4 +285,4 @@ def wait_until_ready(server: Server, timeout: float = 60.0) -> bool:
 
 
 if __name__ == "__main__":
-    serve(sys.argv[1], int(sys.argv[2]))
+    serve(sys.argv[1], int(sys.argv[2]), sys.argv[3:])

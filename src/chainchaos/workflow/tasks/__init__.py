@@ -21,6 +21,9 @@ from chainchaos.errors import BuildError
 #: The task modules, one per rule file of the workflow (workflow/rules/<name>.smk).
 FAMILIES = ("search", "chain", "simulate", "scan", "numerics", "indicators", "figures", "manuscript", "study")
 
+#: Every module a job may call into: what the job server imports (``chainchaos.workflow.jobserver``).
+MODULES = (__name__, *(f"{__name__}.{family}" for family in FAMILIES))
+
 
 def family_tasks(family: str) -> dict:
     """The tasks of one task module, by rule name."""
