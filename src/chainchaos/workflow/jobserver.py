@@ -4,21 +4,21 @@ Every job of the workflow is a fresh Python process, and before it does any work
 xarray and pandas, Numba (whose CPU target then loads its registries and SciPy's BLAS on the
 first kernel it loads) and, to draw, matplotlib: about a second of every job, as much as the
 work of most jobs of the quick scale. For a local run the Snakefile's ``onstart`` starts one
-server process (:func:`start`) that imports all of that once; a job (``tasks.run_rule``) then
-hands its task to the server (:func:`submit`), which forks a worker that runs it with the job's
-own standard output and error, environment and working directory, and the job exits with the
-worker's status. The work and its results are those of the job run alone: the same task
-function, the same Numba kernels from the same on-disk cache.
+server process (:func:`start`) that imports all of that once; a job whose task reads, reduces or
+draws (``tasks.run_rule``, ``tasks.SERVED_TASKS``) then hands it to the server (:func:`submit`),
+which forks a worker that runs it with the job's own standard output and error, environment and
+working directory, and the job exits with the worker's status. The work and its results are
+those of the job run alone: the same task function, the same Numba kernels from the same on-disk
+cache.
 
 A job runs in its own process instead (``submit`` returns None) when there is no server (a
 cluster run, where each job runs on its node; ``--no-hooks``; the server's first seconds, while it
 imports) or when its environment differs from the server's in a variable other than those of
 :data:`PER_JOB_VARIABLES` (a job with more than one thread, say): the libraries read theirs when
-imported. A worker ends when its
-job's process does (an interrupted run leaves no worker running); the server ends with the run
-(:func:`stop`, from ``onsuccess`` and ``onerror``) or when the Snakemake process that started it is
-gone. A job's ``benchmark:`` file keeps its wall time; its CPU time and memory are those of the
-waiting job process, not of the worker.
+imported. A worker ends when its job's process does (an interrupted run leaves no worker
+running); the server ends with the run (:func:`Server.stop`, from ``onsuccess`` and ``onerror``)
+or when the Snakemake process that started it is gone. A job's ``benchmark:`` file keeps its wall
+time; its CPU time and memory are those of the waiting job process, not of the worker.
 """
 
 import importlib

@@ -54,24 +54,37 @@ def _task_name(rule: str, text: str) -> str | None:
     return None
 
 
-def _task(smk):
-    """The task of the rule of a workflow script: that of the module named like the rule file
-    that defines the rule (``workflow/rules/<family>.smk``, beside the scripts' directory), or,
-    without a workflow around it, looked up among all tasks."""
+def _family_and_task_name(smk) -> tuple[str | None, str]:
+    """The task module (None: unknown) and the task name of the rule of a workflow script,
+    without importing the module: from the rule file that defines the rule
+    (``workflow/rules/<family>.smk``, beside the scripts' directory), or the rule's own name."""
     rule_files = Path(smk.scriptdir).parent / "rules" if getattr(smk, "scriptdir", None) else None
     if rule_files is not None and rule_files.is_dir():
         for path in sorted(rule_files.glob("*.smk")):
             if path.stem in FAMILIES and (name := _task_name(smk.rule, path.read_text())):
-                return family_tasks(path.stem)[name]
-    return _all_tasks()[smk.rule]
+                return path.stem, name
+    return None, smk.rule
 
 
-#: Rules whose Snakemake benchmark is kept as data: its CPU seconds are the cost of an archived
-#: search, of its re-judging or of kept disorder statistics (``studies.search.archive.job_costs``).
-#: They run in their own process, which the benchmark measures (a job server's worker is not its
-#: child).
-MEASURED_RULES = frozenset({"search_seeds", "search_candidates", "search_filter", "search_score", "search_merge",
-                            "search_rejudge_filter", "search_rejudge_score", "study_group"})
+def _task(smk):
+    """The task of the rule of a workflow script: that of the module named like the rule file
+    that defines the rule, or, without a workflow around it, looked up among all tasks."""
+    family, name = _family_and_task_name(smk)
+    return family_tasks(family)[name] if family else _all_tasks()[name]
+
+
+#: The tasks whose jobs the run's job server takes: those that read, reduce and draw. A job that
+#: integrates orbits keeps its own process, as every job of a cluster run does: the
+#: single-trajectory engine's speed depends on where its work buffer lands in memory (233 or 332 ns
+#: a step on one machine, docs/explanation/performance.md), which is the same in each fresh process
+#: of a run but differs from one forked worker to the next; and the benchmark of a search's or a
+#: study's job, whose CPU seconds are kept as the cost of an archive, measures only its own process.
+SERVED_TASKS = frozenset({
+    "beyond_the_paper", "build_manuscript", "compute_ensemble", "evaluate_claims", "keep_study_group",
+    "merge_disorder", "merge_energy_scan", "numerics_plot_stability", "numerics_plot_work_precision",
+    "numerics_work_precision", "plot_disorder_statistics", "plot_energy_scan", "plot_figure", "plot_lyapunov_spectra",
+    "plot_search", "plot_study", "run_summary", "scan_thresholds", "select_chain", "study_scene", "study_statistics",
+})
 
 #: Errors whose message tells the reader what to do (install TeX, ...): shown without a traceback.
 READER_ERRORS = (BuildError,)
@@ -79,14 +92,16 @@ READER_ERRORS = (BuildError,)
 
 def run_rule(smk) -> None:
     """Run ``TASKS[smk.rule]`` with stderr in the rule's log (the first ``log:`` file): in a
-    worker of the run's job server if it has one (``chainchaos.workflow.jobserver``), else here.
+    worker of the run's job server (``chainchaos.workflow.jobserver``) if it has one and the task
+    is one of :data:`SERVED_TASKS`, else here.
 
     A failure's traceback goes to the log, which Snakemake shows for a failed job; a
     :data:`READER_ERRORS` error ends the job with its message alone (exit status 1).
     """
     from chainchaos.workflow import jobserver
 
-    status = None if smk.rule in MEASURED_RULES else jobserver.submit(__name__, "run_rule_here", smk)
+    served = _family_and_task_name(smk)[1] in SERVED_TASKS
+    status = jobserver.submit(__name__, "run_rule_here", smk) if served else None
     if status is None:
         run_rule_here(smk)
     elif status:
