@@ -37,8 +37,9 @@ include: "workflow/rules/manuscript.smk"
 include: "workflow/rules/study.smk"
 
 
-# A local run's jobs are forked from one process that has imported the libraries they use
-# (chainchaos.workflow.jobserver): a job then costs its work, not a new interpreter's imports.
+# A local run's jobs that read, reduce and draw are forked from one process that has imported the
+# libraries they use (chainchaos.workflow.jobserver, tasks.SERVED_TASKS): such a job then costs its
+# work, not a new interpreter's imports.
 JOB_SERVERS = []
 
 

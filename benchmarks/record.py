@@ -216,17 +216,18 @@ def record(name: str, argv: list[str], note: str = "") -> Path:
         sqrt_choice,
     )
 
+    commit = _git("rev-parse", "HEAD")  # the code that runs: a commit made during a long run is not it
+    sources_differ = bool(_git("status", "--porcelain", "--", "src", f"benchmarks/{name}.py"))
     busy_before = busy_share()
     load_before = os.getloadavg()
     started = dt.datetime.now(dt.UTC)
     measured = BENCHMARKS[name](argv)
     load_after = os.getloadavg()
-    commit = _git("rev-parse", "HEAD")
     out = {
         "benchmark": name,
         "command": " ".join(["python", "benchmarks/record.py", name, "--", *argv]),
         "commit": commit,
-        "sources_differ_from_commit": bool(_git("status", "--porcelain", "--", "src", f"benchmarks/{name}.py")),
+        "sources_differ_from_commit": sources_differ,
         "date": started.replace(microsecond=0).isoformat(),
         "cpu": {**lscpu(), "vector_extensions": cpu_vector_extensions(), "numba_target": numba_target_cpu(),
                 "simd_width_doubles": LANES, "square_root": sqrt_choice(), "cpus": os.cpu_count()},

@@ -75,9 +75,9 @@ def _task(smk):
 
 #: The tasks whose jobs the run's job server takes: those that read, reduce and draw. A job that
 #: integrates orbits keeps its own process, as every job of a cluster run does: the
-#: single-trajectory engine's speed depends on where its work buffer lands in memory (233 or 332 ns
-#: a step on one machine, docs/explanation/performance.md), which is the same in each fresh process
-#: of a run but differs from one forked worker to the next; and the benchmark of a search's or a
+#: single-trajectory engine's speed depends on where its work buffer lands in memory (by up to a
+#: half, docs/explanation/performance.md), which is the same in each fresh process of a run but
+#: differs from one forked worker to the next; and the benchmark of a search's or a
 #: study's job, whose CPU seconds are kept as the cost of an archive, measures only its own process.
 SERVED_TASKS = frozenset({
     "beyond_the_paper", "build_manuscript", "compute_ensemble", "evaluate_claims", "keep_study_group",
