@@ -70,8 +70,8 @@ def test_every_rule_runs_the_script_and_task_named_like_it():
 
 def test_a_script_s_task_is_found_through_its_rule_file_alone():
     """A job imports only the task module named like its rule's file (the scripts' `scriptdir`)."""
-    code = ("import sys, types\nfrom chainchaos.workflow.tasks import _task\n"
-            f"task = _task(types.SimpleNamespace(rule='plot_figure_4', scriptdir={str(SCRIPTS)!r}))\n"
+    code = ("import sys, types\nfrom chainchaos.workflow.tasks import _family_and_task_name, _task\n"
+            f"task = _task(*_family_and_task_name(types.SimpleNamespace(rule='plot_figure_4', scriptdir={str(SCRIPTS)!r})))\n"
             "print(task.__module__, sorted(m for m in sys.modules if m.startswith(('chainchaos.workflow.tasks.', 'numba'))))")
     done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert done.stdout.split(" ", 1) == ["chainchaos.workflow.tasks.figures", "['chainchaos.workflow.tasks.figures']\n"]

@@ -66,10 +66,9 @@ def _family_and_task_name(smk) -> tuple[str | None, str]:
     return None, smk.rule
 
 
-def _task(smk):
-    """The task of the rule of a workflow script: that of the module named like the rule file
-    that defines the rule, or, without a workflow around it, looked up among all tasks."""
-    family, name = _family_and_task_name(smk)
+def _task(family: str | None, name: str):
+    """The task ``name`` of the task module ``family`` (:func:`_family_and_task_name`), or, without
+    a workflow around it (family None), looked up among all tasks."""
     return family_tasks(family)[name] if family else _all_tasks()[name]
 
 
@@ -100,17 +99,18 @@ def run_rule(smk) -> None:
     """
     from chainchaos.workflow import jobserver
 
-    served = _family_and_task_name(smk)[1] in SERVED_TASKS
-    status = jobserver.submit(__name__, "run_rule_here", smk) if served else None
+    family, name = _family_and_task_name(smk)
+    status = jobserver.submit(__name__, "run_rule_here", smk, family, name) if name in SERVED_TASKS else None
     if status is None:
-        run_rule_here(smk)
+        run_rule_here(smk, family, name)
     elif status:
         raise SystemExit(status)
 
 
-def run_rule_here(smk) -> None:
-    """:func:`run_rule` in this process."""
-    task = _task(smk)
+def run_rule_here(smk, family: str | None, name: str) -> None:
+    """:func:`run_rule` in this process, with the task ``name`` of the module ``family`` that it
+    found (:func:`_family_and_task_name`)."""
+    task = _task(family, name)
     with open(smk.log[0], "w") as log, contextlib.redirect_stderr(log):
         try:
             task(dict(smk.input.items()), dict(smk.output.items()), dict(smk.params.items()),
