@@ -4,13 +4,29 @@
 #   snakemake --cores 2 all                                   paper scale
 #   snakemake --cores 2 all --configfile config/quick.yaml    quick scale
 #   snakemake --cores 2 results/figures/fig4d.pdf             one panel and what it needs
+#   snakemake --cores 2 keep --config keep=<what>             a kept result (workflow/rules/keep.smk)
+
+import os
+import sys
 
 from snakemake.utils import min_version, validate
 
-from chainchaos.workflow import jobserver, tasks
-from chainchaos.workflow.config_check import check_config, typed_overrides
-
 min_version("9.0")
+
+# The package of this checkout, whatever else is installed: a second clone runs its own code, here
+# and in every job (PYTHONPATH is passed on to the jobs' interpreters).
+SOURCES = str(Path(workflow.basedir, "src").resolve())
+sys.path.insert(0, SOURCES)
+os.environ["PYTHONPATH"] = os.pathsep.join([SOURCES, *filter(None, [os.environ.get("PYTHONPATH")])])
+import chainchaos
+
+if str(Path(chainchaos.__file__).resolve().parents[1]) != SOURCES:
+    raise ImportError(
+        f"this workflow ({workflow.basedir}) would run the chainchaos of {chainchaos.__file__}, "
+        "not its own src/: unset PYTHONPATH or run the other checkout's workflow"
+    )
+
+from chainchaos.workflow.config_check import check_config, typed_overrides
 
 
 configfile: "config/config.yaml"
@@ -25,6 +41,8 @@ validate(config, "config/schema.yaml")
 report: "workflow/report/workflow.rst"
 
 
+# common.smk first: the paths and lookups the rule files use; the rule files define the lists of
+# targets that `all` asks for (numerics.smk: NUMERICS_TARGETS, ...).
 include: "workflow/rules/common.smk"
 include: "workflow/rules/chain.smk"
 include: "workflow/rules/simulate.smk"
@@ -35,27 +53,7 @@ include: "workflow/rules/indicators.smk"
 include: "workflow/rules/search.smk"
 include: "workflow/rules/manuscript.smk"
 include: "workflow/rules/study.smk"
-
-
-# A local run's jobs that read, reduce and draw are forked from one process that has imported the
-# libraries they use (chainchaos.workflow.jobserver, tasks.SERVED_TASKS): such a job then costs its
-# work, not a new interpreter's imports.
-JOB_SERVERS = []
-
-
-onstart:
-    if workflow.local_exec:
-        JOB_SERVERS.append(jobserver.start(tasks.MODULES))
-
-
-onsuccess:
-    for server in JOB_SERVERS:
-        print(f"chainchaos job server: {server.stop()}")
-
-
-onerror:
-    for server in JOB_SERVERS:
-        server.stop()
+include: "workflow/rules/keep.smk"
 
 
 rule all:

@@ -18,7 +18,7 @@ rule compute_ensemble:
 rule select_chain:
     """The chain file of the realization the search chose (workflow/rules/search.smk)."""
     input:
-        search=chosen_search(),
+        search=CHOSEN_SEARCH,
     output:
         chain=result("chain", "chain.nc"),
     params:

@@ -9,7 +9,7 @@ for number in FIGURES:
         name:
             f"plot_figure_{number}"
         input:
-            **figure_inputs(number),
+            **plan.figure_inputs(number, RESULTS),
         output:
             **figure_outputs(number),
         params:

@@ -15,9 +15,8 @@ CLAIMS_OUTPUTS = {
 }
 
 # The numerical-error report (workflow/rules/numerics.smk): its figures and tables go into the
-# manuscript when that rule file is part of the workflow (it defines NUMERICS_TARGETS; checked when
-# the DAG is built, so the order of the includes does not matter) and config manuscript.numerics is
-# true. SWITCH: otherwise the manuscript says that the report is not part of this build.
+# manuscript when config manuscript.numerics is true; otherwise the manuscript says that the report
+# is not part of this build.
 NUMERICS_FOR_MANUSCRIPT = {
     "wpfigure": result("figures", "work_precision.pdf"),
     "wptable": result("tables", "work_precision.tex"),
@@ -25,6 +24,8 @@ NUMERICS_FOR_MANUSCRIPT = {
     "stabtable": result("tables", "stability.tex"),
     "advicetable": result("tables", "step_advice.tex"),
 }
+if not config.get("manuscript", {}).get("numerics", True):
+    NUMERICS_FOR_MANUSCRIPT = {}
 
 
 rule evaluate_claims:
@@ -32,7 +33,7 @@ rule evaluate_claims:
     claims.csv, the LaTeX table and notes, and macros.tex with every number the manuscript prints.
     """
     input:
-        unpack(claims_inputs),
+        **claims_inputs(),
     output:
         csv=report(
             CLAIMS_OUTPUTS["csv"],
@@ -72,7 +73,7 @@ rule beyond_the_paper:
         body=result("tables", "beyond_the_paper.tex"),
     params:
         studies=BEYOND_STUDIES,
-        figures={name: BEYOND_ENTRIES[name] for name in BEYOND_STUDIES},
+        figures=SHOWN,
         missing=[name for name in BEYOND_ENTRIES if name not in BEYOND_STUDIES],
     log:
         log_file("beyond_the_paper"),
@@ -86,7 +87,17 @@ rule build_manuscript:
     """latexmk in results/manuscript_build/ on a copy of manuscript/ms.tex and of its inputs; stops
     with a message naming the Debian TeX packages when TeX or revtex4-2 is missing."""
     input:
-        unpack(manuscript_inputs),
+        tex="manuscript/ms.tex",
+        **CLAIMS_OUTPUTS,
+        **{f"fig{n}": result("figures", f"fig{n}.pdf") for n in FIGURES},
+        figscan=result("figures", "energy_scan.pdf"),
+        figdisorder=result("figures", "disorder_statistics.pdf"),
+        thresholds=result("scan", "thresholds.tex"),
+        figsearch=result("figures", "search.pdf"),
+        figsearchjoint=result("figures", "search_joint.pdf"),
+        figspectra=result("figures", "lyapunov_spectra.pdf"),
+        **{f"numerics_{key}": path for key, path in NUMERICS_FOR_MANUSCRIPT.items()},
+        **beyond_inputs(),
     output:
         pdf=MANUSCRIPT_PDF,
     params:
@@ -105,6 +116,7 @@ rule run_summary:
     points to it."""
     input:
         chain=result("chain", "chain.nc"),
+        lock="requirements/lock.txt",
         scene=scene_file(sorted(SCENES)[0]),
         energy_scan=result("scan", "energy_scan.nc"),
         disorder=result("scan", "disorder_statistics.nc"),

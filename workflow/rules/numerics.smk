@@ -9,6 +9,8 @@ if "numerics" not in config:
         "(see config/config.yaml)"
     )
 
+import re
+
 NUMERICS = config["numerics"]
 # The scheme of the production runs: advice, drift and the Taylor-sign probe measure that one.
 NUMERICS_INTEGRATOR = NUMERICS.get("integrator") or config["simulation"]["integrator"]

@@ -23,7 +23,7 @@ rule merge_energy_scan:
     output:
         merged=result("scan", "energy_scan.nc"),
     params:
-        scan=scan_params("energy_scan"),
+        scan=plan.scan_params("energy_scan", SCAN),
     log:
         log_file("merge_energy_scan"),
     benchmark:
@@ -36,13 +36,17 @@ rule merge_energy_scan:
 
 
 rule merge_disorder:
-    """The disorder statistics on their grid: merged from the groups, or the archived full ones."""
+    """The disorder statistics on their grid: merged from the groups, or the kept full ones."""
     input:
-        **disorder_inputs(),
+        **(
+            {"archive": kept_input(DISORDER_KEPT)}
+            if DISORDER_KEPT.path
+            else {"groups": study_group_files("disorder")}
+        ),
     output:
         merged=result("scan", "disorder_statistics.nc"),
     params:
-        scan=scan_params("disorder"),
+        scan=plan.scan_params("disorder", SCAN),
     log:
         log_file("merge_disorder"),
     benchmark:
@@ -52,22 +56,6 @@ rule merge_disorder:
         runtime=15,
     script:
         "../scripts/merge_disorder.py"
-
-
-rule disorder_full:
-    """The full disorder statistics (config scan.disorder_full), with their cost and provenance,
-    written to scan.disorder.archive (a file of the repository that `all` reads)."""
-    input:
-        groups=study_group_files("disorder_full"),
-    params:
-        scan=scan_params("disorder_full"),
-        N=config["chain"]["N"],
-        archive=DISORDER_ARCHIVE,
-        benchmarks=result("benchmarks"),
-    log:
-        log_file("disorder_full"),
-    script:
-        "../scripts/disorder_full.py"
 
 
 rule plot_energy_scan:

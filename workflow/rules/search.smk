@@ -3,11 +3,12 @@
 # statements (chainchaos.paper.statements.STATEMENTS); then, on the chosen chain, the ensemble verdicts of
 # every statement (chainchaos.paper.verdicts) that the claims table reads.
 #
-# The rules serve two searches ({search}, common.smk): `search`, the one `all` runs, and `search_full`,
-# the search over many more chains whose merged result `snakemake search_full` keeps in the repository
-# (config search.archive). With an archive present whose settings and result version are the run's
-# (chainchaos.output.kept), `all` pins its chosen chain and re-scores that chain only; `search.pinned_seed` pins any seed. Every stage writes one file per chunk, so a killed search
-# resumes where it stopped.
+# The rules serve two searches ({search}): `search`, the one `all` runs, and `search_full`, the
+# search over many more chains whose merged result is kept in the repository (config
+# search.archive; made by `snakemake --cores 2 keep --config keep=search_full`, keep.smk). With a
+# kept archive whose settings and result version are the run's (plan.search_archive), `all` pins
+# its chosen chain and re-scores that chain only; `search.pinned_seed` pins any seed. Every stage
+# writes one file per chunk, so a killed search resumes where it stopped.
 
 
 wildcard_constraints:
@@ -15,11 +16,6 @@ wildcard_constraints:
     chunk=r"\d+",
     group=r"\d+",
     rank=r"\d+",
-
-
-localrules:
-    search_full,
-    search_rejudge,
 
 
 rule search_seeds:
@@ -74,7 +70,7 @@ rule search_filter:
         benchmark_file("search_filter", "{search}-{group}")
     resources:
         mem_mb=1000,
-        runtime=search_runtime("filter"),
+        runtime=search_minutes("filter"),
     script:
         "../scripts/search_filter.py"
 
@@ -99,7 +95,7 @@ rule search_score:
         benchmark_file("search_score", "{search}-{rank}")
     resources:
         mem_mb=1000,
-        runtime=search_runtime("score"),
+        runtime=search_minutes("score"),
     script:
         "../scripts/search_score.py"
 
@@ -125,82 +121,11 @@ rule search_merge:
         "../scripts/search_merge.py"
 
 
-rule search_full:
-    """The full search's merged result, with its cost and provenance, written to search.archive
-    (a file of the repository: no rule of `all` makes it, so `all` never reruns the full search)."""
-    input:
-        search=result("search_full", "search.nc"),
-    params:
-        **search_params("search_full"),  # the settings that key the archive (search_settings)
-        archive=SEARCH_ARCHIVE,
-        benchmarks=result("benchmarks"),
-    log:
-        log_file("search_full"),
-    script:
-        "../scripts/search_full.py"
-
-
-# Re-judging the kept full search when the code that judges some statements changed (their ids:
-# --config rejudge='[id, ...]'): only those statements' scenes are integrated again
-# (chainchaos.studies.search.rejudge), in resumable jobs whose files are kept beside the archive
-# (data/search/rejudge/, committed as they finish); the result replaces search.archive, after
-# which that directory can go. In a fresh checkout run it with --rerun-triggers mtime: a kept
-# stage file is not older than its script in any sense that matters, whatever the checkout order.
-rule search_rejudge_filter:
-    """Stage 1 again on the re-judged statements' scenes, for a group of the kept candidates.
-    No kernels input (unlike the search's stages): in a fresh clone compile_kernels runs, and a
-    job downstream of it would be redone although its kept file exists."""
-    output:
-        result=rejudge_file("filter", "{group}.nc"),
-    params:
-        **rejudge_params(),
-    log:
-        log_file("search_rejudge_filter", "search_full-{group}"),
-    benchmark:
-        rejudge_file("benchmarks", "search_rejudge_filter", "search_full-{group}.tsv")
-    resources:
-        mem_mb=1000,
-    script:
-        "../scripts/search_rejudge_filter.py"
-
-
-rule search_rejudge_score:
-    """Stage 2 again for the survivor of a given rank of the re-judged filter."""
-    input:
-        filters=[ancient(f) for f in rejudge_filter_files()],  # kept files: their checkout time says nothing
-    output:
-        result=rejudge_file("score", "{rank}.nc"),
-    params:
-        **rejudge_params(),
-    log:
-        log_file("search_rejudge_score", "search_full-{rank}"),
-    benchmark:
-        rejudge_file("benchmarks", "search_rejudge_score", "search_full-{rank}.tsv")
-    resources:
-        mem_mb=1000,
-    script:
-        "../scripts/search_rejudge_score.py"
-
-
-rule search_rejudge:
-    """The kept full search with the re-judged statements, written to search.archive."""
-    input:
-        filters=rejudge_filter_files(),
-        scores=rejudge_score_files(),
-    params:
-        **rejudge_params(),
-        benchmarks=rejudge_file("benchmarks"),
-    log:
-        log_file("search_rejudge"),
-    script:
-        "../scripts/search_rejudge.py"
-
-
 rule plot_search:
     """The search's two figures from one read of its candidates: the statements each keeps, and
     the statements analysed jointly."""
     input:
-        search=search_population(),
+        search=SEARCH_POPULATION,
     output:
         pdf=result("figures", "search.pdf"),
         png=report(
@@ -230,7 +155,6 @@ rule plot_search:
         "../scripts/plot_search.py"
 
 
-VERDICT_FILES = {name: result("verdicts", f"{name}.nc") for name in statements.statement_scenes()}
 # The scenes of one model in one job (rule ensemble_verdicts_<model>): their orbits share SIMD
 # blocks of the batch engine, and every scene's verdicts are those of its own ensemble.
 for model, verdict_scenes in statements.statement_scenes_by_model().items():
@@ -255,7 +179,7 @@ for model, verdict_scenes in statements.statement_scenes_by_model().items():
             benchmark_file("ensemble_verdicts", model)
         resources:
             mem_mb=1000,
-            runtime=orbit_runtime(
+            runtime=orbit_minutes(
                 len(verdict_scenes) * config["verdicts"]["lanes"],
                 config["verdicts"]["settings"]["t_final"],
             ),

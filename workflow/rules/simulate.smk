@@ -1,10 +1,9 @@
-# The scenes, integrated in batches of those that share their settings (one SIMD block each), each
-# computing only the observables its panels use and written one file per scene.
+# The scenes, integrated in jobs of those that share their settings (plan.scene_jobs: a count of
+# the config, the same on every CPU), each computing only the observables its panels use and
+# written one file per scene.
 
+import re
 
-import os
-
-from chainchaos.engine.cache import kernel_sources
 from chainchaos.system.models import MODELS
 
 
@@ -19,7 +18,7 @@ rule compile_kernels:
     loads what they share). An edit to a kernel's source reruns it, and every integration after
     it."""
     input:
-        sources=[os.path.relpath(path) for path in kernel_sources()],
+        sources=kernel_inputs(),
         earlier=earlier_kernel_flags,
     output:
         flag=result("kernels", "{model}.txt"),
@@ -35,21 +34,20 @@ rule compile_kernels:
         "../scripts/compile_kernels.py"
 
 
-# One job per batch (rule simulate_scenes_<batch>): the batches follow from the scenes and this
-# machine's SIMD width, and each job writes its scenes' files, one target per scene.
-for batch, batch_scenes in SCENE_BATCHES.items():
+# One job per batch of scenes (rule simulate_scenes_<batch>), one target per scene.
+for batch, batch_scenes in SCENE_JOBS.items():
 
     rule:
         name:
             f"simulate_scenes_{batch}"
         input:
             chain=result("chain", "chain.nc"),
-            kernels=kernel_flags([SCENE_PARAMETERS[batch_scenes[0]].model]),
+            kernels=kernel_flags([batch_scenes[0].model]),
         output:
-            **{name: scene_file(name) for name in batch_scenes},
+            **{scene.name: scene_file(scene.name) for scene in batch_scenes},
         priority: 5  # the longest jobs: before the many short scan and plot jobs, so the figures do not wait
         params:
-            scenes=[SCENE_PARAMETERS[name] for name in batch_scenes],
+            scenes=batch_scenes,
             batch=batch,
         log:
             log_file("simulate_scenes", batch),

@@ -16,7 +16,6 @@ wildcard_constraints:
 # Seconds of work each: on a cluster they run on the submitting host (as does plot_study_<name>).
 localrules:
     study,
-    keep_study_group,
     study_scene,
     study_statistics,
 
@@ -24,7 +23,8 @@ localrules:
 rule study_group:
     """One job's orbits of a study, integrated on the batch engine."""
     input:
-        unpack(study_group_inputs),
+        unpack(study_chain),
+        kernels=lambda wildcards: kernel_flags(study_of(wildcards.study).models),
     output:
         group=result("studies", "{study}", "groups", "{group}.nc"),
     params:
@@ -35,7 +35,7 @@ rule study_group:
         benchmark_file("study_group", "{study}-{group}")
     resources:
         mem_mb=2000,
-        runtime=lambda wildcards: study_runtime(wildcards.study),
+        runtime=lambda wildcards: plan.study_minutes(study_of(wildcards.study), US_PER_STEP),
     script:
         "../scripts/study_group.py"
 
@@ -77,7 +77,7 @@ rule study_statistics:
 # One job per study draws the figures of it the run asks for (rule plot_study_<name>): all of the
 # study config `study` names, those the manuscript shows of the others; one target per figure
 # (asking for one runs its study's job), paying the plotting set-up once.
-for study_with_figures in figure_studies():
+for study_with_figures in FIGURE_STUDIES:
     key = rule_key(study_with_figures)
 
     rule:
@@ -100,32 +100,9 @@ for study_with_figures in figure_studies():
             "../scripts/plot_study.py"
 
 
-rule keep_study_group:
-    """A finished group of a study, copied to the study's kept files (config kept_studies; commit
-    it). The kept file is written beside the declared output, a marker in results/: no rule has
-    a kept file as its output, so no run ever remakes one."""
-    input:
-        group=result("studies", "{study}", "groups", "{group}.nc"),
-    output:
-        done=result("studies", "{study}", "kept", "{group}.txt"),
-    params:
-        kept=lambda wildcards: kept_group_file(wildcards.study, int(wildcards.group)),
-    priority: 10  # kept as soon as computed: a stopped run loses no finished group
-    log:
-        log_file("keep_study_group", "{study}-{group}"),
-    script:
-        "../scripts/keep_study_group.py"
-
-
-rule keep_study:
-    """Every group of the study named by config `study`, computed where not yet kept and kept
-    under data/studies/<name>/groups/: a computation of hours, resumable by committing its
-    finished groups."""
-    input:
-        lambda wildcards: keep_study_targets(config.get("study")),
-
-
 rule study:
     """Everything of the study named by config `study` (--config study=<name>)."""
     input:
-        lambda wildcards: study_targets(config.get("study")),
+        lambda wildcards: plan.study_targets(
+            study_of(named_study()), RESULTS, study_figure_names(named_study())
+        ),

@@ -1,5 +1,6 @@
-"""beyond_the_paper: see chainchaos.workflow.tasks.manuscript.beyond_the_paper."""
+"""Rule beyond_the_paper: runs chainchaos.workflow.tasks.manuscript.beyond_the_paper."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.manuscript import beyond_the_paper
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, beyond_the_paper)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""build_manuscript: see chainchaos.workflow.tasks.manuscript.build_manuscript."""
+"""Rule build_manuscript: runs chainchaos.workflow.tasks.manuscript.build_manuscript."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.manuscript import build_manuscript
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, build_manuscript)  # noqa: F821 (snakemake: defined by Snakemake)

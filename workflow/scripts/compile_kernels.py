@@ -1,5 +1,6 @@
-"""compile_kernels: see chainchaos.workflow.tasks.simulate.compile_kernels."""
+"""Rule compile_kernels: runs chainchaos.workflow.tasks.simulate.compile_kernels."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.simulate import compile_kernels
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, compile_kernels)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""compute_ensemble: see chainchaos.workflow.tasks.chain.compute_ensemble."""
+"""Rule compute_ensemble: runs chainchaos.workflow.tasks.chain.compute_ensemble."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.chain import compute_ensemble
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, compute_ensemble)  # noqa: F821 (snakemake: defined by Snakemake)

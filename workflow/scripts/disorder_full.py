@@ -1,5 +1,6 @@
-"""disorder_full: see chainchaos.workflow.tasks.scan.disorder_full."""
+"""Rule disorder_full: runs chainchaos.workflow.tasks.scan.disorder_full."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.scan import disorder_full
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, disorder_full)  # noqa: F821 (snakemake: defined by Snakemake)

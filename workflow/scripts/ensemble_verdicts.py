@@ -1,5 +1,6 @@
-"""ensemble_verdicts: see chainchaos.workflow.tasks.search.ensemble_verdicts."""
+"""Rule ensemble_verdicts: runs chainchaos.workflow.tasks.search.ensemble_verdicts."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.search import ensemble_verdicts
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, ensemble_verdicts)  # noqa: F821 (snakemake: defined by Snakemake)

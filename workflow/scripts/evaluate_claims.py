@@ -1,5 +1,6 @@
-"""evaluate_claims: see chainchaos.workflow.tasks.manuscript.evaluate_claims."""
+"""Rule evaluate_claims: runs chainchaos.workflow.tasks.manuscript.evaluate_claims."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.manuscript import evaluate_claims
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, evaluate_claims)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""keep_study_group: see chainchaos.workflow.tasks.study.keep_study_group."""
+"""Rule keep_study_group: runs chainchaos.workflow.tasks.study.keep_study_group."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.study import keep_study_group
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, keep_study_group)  # noqa: F821 (snakemake: defined by Snakemake)

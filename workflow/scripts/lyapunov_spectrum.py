@@ -1,5 +1,6 @@
-"""lyapunov_spectrum: see chainchaos.workflow.tasks.indicators.lyapunov_spectrum."""
+"""Rule lyapunov_spectrum: runs chainchaos.workflow.tasks.indicators.lyapunov_spectrum."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.indicators import lyapunov_spectrum
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, lyapunov_spectrum)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""merge_disorder: see chainchaos.workflow.tasks.scan.merge_disorder."""
+"""Rule merge_disorder: runs chainchaos.workflow.tasks.scan.merge_disorder."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.scan import merge_disorder
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, merge_disorder)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""merge_energy_scan: see chainchaos.workflow.tasks.scan.merge_energy_scan."""
+"""Rule merge_energy_scan: runs chainchaos.workflow.tasks.scan.merge_energy_scan."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.scan import merge_energy_scan
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, merge_energy_scan)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""numerics_energy_drift: see chainchaos.workflow.tasks.numerics.numerics_energy_drift."""
+"""Rule numerics_energy_drift: runs chainchaos.workflow.tasks.numerics.numerics_energy_drift."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.numerics import numerics_energy_drift
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, numerics_energy_drift)  # noqa: F821 (snakemake: defined by Snakemake)

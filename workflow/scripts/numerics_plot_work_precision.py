@@ -1,5 +1,6 @@
-"""numerics_plot_work_precision: see chainchaos.workflow.tasks.numerics.numerics_plot_work_precision."""
+"""Rule numerics_plot_work_precision: runs chainchaos.workflow.tasks.numerics.numerics_plot_work_precision."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.numerics import numerics_plot_work_precision
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, numerics_plot_work_precision)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""numerics_stability: see chainchaos.workflow.tasks.numerics.numerics_stability."""
+"""Rule numerics_stability: runs chainchaos.workflow.tasks.numerics.numerics_stability."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.numerics import numerics_stability
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, numerics_stability)  # noqa: F821 (snakemake: defined by Snakemake)

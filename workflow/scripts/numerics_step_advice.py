@@ -1,5 +1,6 @@
-"""numerics_step_advice: see chainchaos.workflow.tasks.numerics.numerics_step_advice."""
+"""Rule numerics_step_advice: runs chainchaos.workflow.tasks.numerics.numerics_step_advice."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.numerics import numerics_step_advice
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, numerics_step_advice)  # noqa: F821 (snakemake: defined by Snakemake)

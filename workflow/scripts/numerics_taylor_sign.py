@@ -1,5 +1,6 @@
-"""numerics_taylor_sign: see chainchaos.workflow.tasks.numerics.numerics_taylor_sign."""
+"""Rule numerics_taylor_sign: runs chainchaos.workflow.tasks.numerics.numerics_taylor_sign."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.numerics import numerics_taylor_sign
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, numerics_taylor_sign)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""numerics_work_precision_model: see chainchaos.workflow.tasks.numerics.numerics_work_precision_model."""
+"""Rule numerics_work_precision_model: runs chainchaos.workflow.tasks.numerics.numerics_work_precision_model."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.numerics import numerics_work_precision_model
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, numerics_work_precision_model)  # noqa: F821 (snakemake: defined by Snakemake)

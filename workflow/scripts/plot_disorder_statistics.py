@@ -1,5 +1,6 @@
-"""plot_disorder_statistics: see chainchaos.workflow.tasks.scan.plot_disorder_statistics."""
+"""Rule plot_disorder_statistics: runs chainchaos.workflow.tasks.scan.plot_disorder_statistics."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.scan import plot_disorder_statistics
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, plot_disorder_statistics)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""plot_energy_scan: see chainchaos.workflow.tasks.scan.plot_energy_scan."""
+"""Rule plot_energy_scan: runs chainchaos.workflow.tasks.scan.plot_energy_scan."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.scan import plot_energy_scan
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, plot_energy_scan)  # noqa: F821 (snakemake: defined by Snakemake)

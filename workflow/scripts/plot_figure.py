@@ -1,5 +1,6 @@
-"""plot_figure: see chainchaos.workflow.tasks.figures.plot_figure."""
+"""Rule plot_figure: runs chainchaos.workflow.tasks.figures.plot_figure."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.figures import plot_figure
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, plot_figure)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""plot_lyapunov_spectra: see chainchaos.workflow.tasks.indicators.plot_lyapunov_spectra."""
+"""Rule plot_lyapunov_spectra: runs chainchaos.workflow.tasks.indicators.plot_lyapunov_spectra."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.indicators import plot_lyapunov_spectra
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, plot_lyapunov_spectra)  # noqa: F821 (snakemake: defined by Snakemake)

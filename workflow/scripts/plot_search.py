@@ -1,5 +1,6 @@
-"""plot_search: see chainchaos.workflow.tasks.search.plot_search."""
+"""Rule plot_search: runs chainchaos.workflow.tasks.search.plot_search."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.search import plot_search
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, plot_search)  # noqa: F821 (snakemake: defined by Snakemake)

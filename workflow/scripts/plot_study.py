@@ -1,5 +1,6 @@
-"""plot_study: see chainchaos.workflow.tasks.study.plot_study."""
+"""Rule plot_study: runs chainchaos.workflow.tasks.study.plot_study."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.study import plot_study
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, plot_study)  # noqa: F821 (snakemake: defined by Snakemake)

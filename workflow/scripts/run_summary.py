@@ -1,5 +1,6 @@
-"""run_summary: see chainchaos.workflow.tasks.manuscript.run_summary."""
+"""Rule run_summary: runs chainchaos.workflow.tasks.manuscript.run_summary."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.manuscript import run_summary
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, run_summary)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""scan_thresholds: see chainchaos.workflow.tasks.scan.scan_thresholds."""
+"""Rule scan_thresholds: runs chainchaos.workflow.tasks.scan.scan_thresholds."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.scan import scan_thresholds
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, scan_thresholds)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""search_candidates: see chainchaos.workflow.tasks.search.search_candidates."""
+"""Rule search_candidates: runs chainchaos.workflow.tasks.search.search_candidates."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.search import search_candidates
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, search_candidates)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""search_filter: see chainchaos.workflow.tasks.search.search_filter."""
+"""Rule search_filter: runs chainchaos.workflow.tasks.search.search_filter."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.search import search_filter
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, search_filter)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""search_full: see chainchaos.workflow.tasks.search.search_full."""
+"""Rule search_full: runs chainchaos.workflow.tasks.search.search_full."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.search import search_full
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, search_full)  # noqa: F821 (snakemake: defined by Snakemake)

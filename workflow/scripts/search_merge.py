@@ -1,5 +1,6 @@
-"""search_merge: see chainchaos.workflow.tasks.search.search_merge."""
+"""Rule search_merge: runs chainchaos.workflow.tasks.search.search_merge."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.search import search_merge
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, search_merge)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""search_rejudge: see chainchaos.workflow.tasks.search.search_rejudge."""
+"""Rule search_rejudge: runs chainchaos.workflow.tasks.search.search_rejudge."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.search import search_rejudge
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, search_rejudge)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""search_rejudge_score: see chainchaos.workflow.tasks.search.search_rejudge_score."""
+"""Rule search_rejudge_score: runs chainchaos.workflow.tasks.search.search_rejudge_score."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.search import search_rejudge_score
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, search_rejudge_score)  # noqa: F821 (snakemake: defined by Snakemake)

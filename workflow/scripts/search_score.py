@@ -1,5 +1,6 @@
-"""search_score: see chainchaos.workflow.tasks.search.search_score."""
+"""Rule search_score: runs chainchaos.workflow.tasks.search.search_score."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.search import search_score
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, search_score)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""search_seeds: see chainchaos.workflow.tasks.search.search_seeds."""
+"""Rule search_seeds: runs chainchaos.workflow.tasks.search.search_seeds."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.search import search_seeds
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, search_seeds)  # noqa: F821 (snakemake: defined by Snakemake)

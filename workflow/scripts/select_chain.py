@@ -1,5 +1,6 @@
-"""select_chain: see chainchaos.workflow.tasks.chain.select_chain."""
+"""Rule select_chain: runs chainchaos.workflow.tasks.chain.select_chain."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.chain import select_chain
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, select_chain)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""simulate_scenes: see chainchaos.workflow.tasks.simulate.simulate_scenes."""
+"""Rule simulate_scenes: runs chainchaos.workflow.tasks.simulate.simulate_scenes."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.simulate import simulate_scenes
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, simulate_scenes)  # noqa: F821 (snakemake: defined by Snakemake)

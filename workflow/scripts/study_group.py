@@ -1,5 +1,6 @@
-"""study_group: see chainchaos.workflow.tasks.study.study_group."""
+"""Rule study_group: runs chainchaos.workflow.tasks.study.study_group."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.study import study_group
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, study_group)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -1,5 +1,6 @@
-"""study_scene: see chainchaos.workflow.tasks.study.study_scene."""
+"""Rule study_scene: runs chainchaos.workflow.tasks.study.study_scene."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.study import study_scene
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, study_scene)  # noqa: F821 (snakemake: defined by Snakemake)

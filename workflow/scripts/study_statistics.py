@@ -1,5 +1,6 @@
-"""study_statistics: see chainchaos.workflow.tasks.study.study_statistics."""
+"""Rule study_statistics: runs chainchaos.workflow.tasks.study.study_statistics."""
 
-from chainchaos.workflow.tasks import run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.study import study_statistics
 
-run_rule(snakemake)  # noqa: F821 (defined by Snakemake)
+run(snakemake, study_statistics)  # noqa: F821 (snakemake: defined by Snakemake)

@@ -52,6 +52,3 @@ def select_chain(inputs, outputs, params, wildcards) -> None:
                   selection_overlap_left=row["overlap_left"], selection_overlap_right=row["overlap_right"])
     print(f"chose seed {seed}", file=sys.stderr)
     write_netcdf(chain_dataset(chain, record), outputs["chain"])
-
-
-TASKS = (compute_ensemble, select_chain)

@@ -33,6 +33,3 @@ def plot_figure(inputs, outputs, params, wildcards) -> None:
     for panel_id in panels.panels_of_figure(number):
         save(plot_panel(panel_id, data), f"_{panel_id}")
     save(composite(number, data), "")
-
-
-TASKS = (plot_figure,)

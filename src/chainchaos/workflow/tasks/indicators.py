@@ -35,6 +35,3 @@ def plot_lyapunov_spectra(inputs, outputs, params, wildcards) -> None:
 
     fig = spectra_figure([xr.load_dataset(f) for f in inputs["spectra"]])
     save_figure(fig, Path(outputs["pdf"]).with_suffix(""), dpi=params["dpi"])
-
-
-TASKS = (lyapunov_spectrum, plot_lyapunov_spectra)

@@ -100,13 +100,14 @@ def beyond_the_paper(inputs, outputs, params, wildcards) -> None:
 
 
 def run_summary(inputs, outputs, params, wildcards) -> None:
-    """What this run did, from its files (``output.run_summary``), as the report's table."""
+    """What this run did, from its files (``output.run_summary``), as the report's table; with the
+    optional input ``lock``, whether the running environment is the locked one."""
+    from chainchaos.output.environment import lock_status
     from chainchaos.output.run_summary import summary_csv, summary_rows
 
+    lock = inputs.get("lock")
+    environment = lock_status(lock) if lock else None
     with (xr.open_dataset(inputs["chain"]) as chain, xr.open_dataset(inputs["scene"]) as scene,
           xr.open_dataset(inputs["energy_scan"]) as energy_scan, xr.open_dataset(inputs["disorder"]) as disorder):
-        rows = summary_rows(chain, scene, energy_scan, disorder, inputs["claims"])
+        rows = summary_rows(chain, scene, energy_scan, disorder, inputs["claims"], environment)
     write_text(summary_csv(rows), outputs["csv"])
-
-
-TASKS = (evaluate_claims, beyond_the_paper, build_manuscript, run_summary)

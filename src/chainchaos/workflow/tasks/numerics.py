@@ -117,7 +117,3 @@ def numerics_plot_stability(inputs, outputs, params, wildcards) -> None:
     stab, dr, ta, ad = (_load(inputs[k]) for k in ("stability", "drift", "taylor", "advice"))
     plot_stability(stab, dr, ta, ad, scheme=params["integrator"], path_stem=Path(outputs["pdf"]).with_suffix(""))
     stability_tables(stab, dr, ta, outputs["csv"], outputs["tex"])
-
-
-TASKS = (numerics_work_precision_model, numerics_work_precision, numerics_plot_work_precision, numerics_stability,
-         numerics_energy_drift, numerics_taylor_sign, numerics_step_advice, numerics_plot_stability)

@@ -91,7 +91,3 @@ def scan_thresholds(inputs, outputs, params, wildcards) -> None:
     rows = thresholds.thresholds_table(ds)
     write_text(thresholds.thresholds_csv(rows, ds), outputs["csv"])
     write_text(thresholds.thresholds_tex(rows, ds), outputs["tex"])
-
-
-TASKS = (merge_energy_scan, merge_disorder, disorder_full,
-         plot_energy_scan, plot_disorder_statistics, scan_thresholds)

@@ -252,8 +252,3 @@ def ensemble_verdicts(inputs, outputs, params, wildcards) -> None:
         for st, frac, v in zip(ds.statement.values, ds["fraction"].values, ds["verdict"].values):
             print(f"{name:14s} {st:28s} fraction {frac:.3f} verdict {v}", file=sys.stderr)
         write_netcdf(ds, outputs[name])
-
-
-TASKS = (search_seeds, search_candidates, search_filter, search_score, search_merge, search_full,
-         search_rejudge_filter, search_rejudge_score, search_rejudge, plot_search,
-         ensemble_verdicts)

@@ -26,6 +26,3 @@ def simulate_scenes(inputs, outputs, params, wildcards) -> None:
     datasets = integrate_scenes(chain, scenes, ProgressReporter(params["batch"], scenes[0].t_final, every=10.0))
     for scene, ds in zip(scenes, datasets):
         write_netcdf(ds, outputs[scene.name])
-
-
-TASKS = (compile_kernels, simulate_scenes)

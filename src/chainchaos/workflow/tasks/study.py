@@ -117,6 +117,3 @@ def plot_study(inputs, outputs, params, wildcards) -> None:
         else:
             fig = study_figure(figure, stats, stats.attrs["study_title"])
         save_figure(fig, Path(outputs[f"{figure}_pdf"]).with_suffix(""), dpi=params["dpi"])
-
-
-TASKS = (study_group, keep_study_group, study_scene, study_statistics, plot_study)

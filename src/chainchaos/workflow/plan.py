@@ -1,0 +1,347 @@
+"""What a run of the workflow asks for and how its work is cut into jobs.
+
+The rule files (``workflow/rules/*.smk``) hold paths and config lookups; every decision they need
+is a function here, of explicit arguments (the config, or a part of it), so that it can be tested
+without Snakemake:
+
+- :func:`use_kept`, the one function that looks at files while the workflow is parsed: whether a
+  kept result (``data/``) stands in for its computation;
+- which scenes share a job (:func:`scene_jobs`), what the paper's targets are
+  (:func:`paper_targets`), which files a figure reads (:func:`figure_inputs`);
+- the settings each kind of job gets (:func:`scan_params`, :func:`search_params`) and how many
+  jobs a search stage has (:func:`search_plans`);
+- which studies and figures a run asks for (:func:`beyond_entries`, :func:`asked_figures`,
+  :func:`study_targets`), and what a cluster job may take (:func:`cluster_minutes`).
+"""
+
+import math
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from chainchaos.errors import KeptFileError
+from chainchaos.output import kept
+from chainchaos.paper import panels
+from chainchaos.run.scenes import SceneParameters, scene_batches, scene_parameters
+
+#: The scans are studies too (``studies.scan.runs.scan_study``), named by their kind.
+SCAN_STUDIES = ("energy_scan", "disorder", "disorder_full")
+
+#: Kept results a run can make when config ``keep`` names them (a study's name keeps its groups).
+KEPT_PRODUCTS = ("search_full", "search_rejudge", "disorder_full")
+
+
+# ---- kept results -------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Kept:
+    """The decision on one kept file (:func:`use_kept`).
+
+    Attributes
+    ----------
+    path : str or None
+        The kept file to read instead of computing it, or None: compute at the configured scale.
+    reason : str or None
+        Why the file is not used (one line), or why it could not be checked.
+    attrs : dict
+        The file's global attributes (empty when it is not used or cannot be read).
+    sizes : dict
+        The sizes of its dimensions, from its header.
+    """
+
+    path: str | None
+    reason: str | None = None
+    attrs: dict = field(default_factory=dict)
+    sizes: dict = field(default_factory=dict)
+
+
+def use_kept(path, settings: dict, version: int, remake: str, keys=None) -> Kept:
+    """Whether the kept file ``path`` stands in for its computation with ``settings``.
+
+    The only function that opens a file while the workflow is parsed: it reads the file's header
+    (its key, ``chainchaos.output.kept``, and its dimensions), never its data. A file whose
+    settings (all of them, or the top-level ``keys``) and result version are this run's is used;
+    one that differs is not, and one line on stderr says which key differs. A file whose header
+    cannot be read is used all the same, so that only the jobs that read it stop, with the
+    :class:`~chainchaos.errors.KeptFileError` that names it and how to restore it.
+
+    Parameters
+    ----------
+    path : str or None
+        The kept file (a missing file or None: not used, nothing printed).
+    settings : dict
+        The settings this run would compute the result with.
+    version : int
+        The result version of the code that computes it.
+    remake : str
+        The command that remakes the file (named in the messages).
+    keys : sequence of str, optional
+        Compare only these top-level keys of the settings.
+
+    Returns
+    -------
+    Kept
+    """
+    if not path or not Path(path).exists():
+        return Kept(None)
+    try:
+        why = kept.why_not_usable(path, settings, version, remake, keys)
+        header = _header(path)
+    except KeptFileError as error:
+        print(f"{error}; the jobs that read it stop", file=sys.stderr)
+        return Kept(str(path), str(error))
+    if why is not None:
+        print(f"{why}; not used, computed at the configured scale", file=sys.stderr)
+        return Kept(None, why)
+    return Kept(str(path), None, *header)
+
+
+def _header(path) -> tuple[dict, dict]:
+    """A NetCDF file's global attributes and dimension sizes, from its header alone."""
+    import netCDF4
+
+    with netCDF4.Dataset(path) as nc:
+        return {name: nc.getncattr(name) for name in nc.ncattrs()}, {k: len(d) for k, d in nc.dimensions.items()}
+
+
+# ---- the paper's scenes and figures --------------------------------------------------------------
+
+
+def scene_jobs(config: dict) -> dict[str, list[SceneParameters]]:
+    """The paper's scenes as the config runs them, cut into jobs: up to
+    ``scene_batches.scenes_per_job`` scenes that share their integration settings per job, and a
+    group's last ``scene_batches.single_scenes`` or fewer scenes each in a job of its own (one
+    trajectory on the single engine: cheaper than a mostly padded SIMD block).
+
+    A count of the config, not the machine's SIMD width: the same config gives the same jobs on
+    every CPU (the batch engine packs lanes inside a job), and every scene's numbers are the
+    same whatever job it runs in.
+
+    Parameters
+    ----------
+    config : dict
+        The workflow's config (blocks ``simulation``, ``scenes``, ``scene_batches``).
+
+    Returns
+    -------
+    dict
+        ``{job name (<model>_<n>): [SceneParameters, ...]}``.
+    """
+    scenes = {name: scene_parameters(config, scene, name, panels.scene_observables(name))
+              for name, scene in panels.scenes().items()}
+    cut = config["scene_batches"]
+    batches = scene_batches(scenes, cut["scenes_per_job"], cut["single_scenes"])
+    return {batch: [scenes[name] for name in names] for batch, names in batches.items()}
+
+
+def paper_targets(results: str) -> list[str]:
+    """Every panel's and every figure's PDF and PNG under ``results``/figures."""
+    stems = [f"fig{p}" for p in sorted(panels.PANELS)] + [f"fig{n}" for n in sorted(panels.LAYOUTS)]
+    return [f"{results}/figures/{stem}.{ext}" for stem in stems for ext in ("pdf", "png")]
+
+
+def figure_inputs(number: int, results: str) -> dict[str, str]:
+    """The files figure ``number``'s panels are drawn from: their scenes, and the ensemble
+    statistics or the chain where a panel shows them."""
+    files = {}
+    for panel_id in panels.panels_of_figure(number):
+        panel = panels.PANELS[panel_id]
+        files.update({s.name: f"{results}/scenes/{s.name}.nc" for s in panel.scenes})
+        if panel.kind == "ensemble_participation":
+            files["ensemble"] = f"{results}/ensemble/participation_stats.nc"
+        if panel.kind == "chain_spectrum":
+            files["chain"] = f"{results}/chain/chain.nc"
+    return files
+
+
+def cluster_minutes(orbits: float, t_final: float, dt: float, us_per_step: float = 1.0) -> int:
+    """Minutes a cluster job of ``orbits`` orbits to ``t_final`` at step ``dt`` may take: the
+    steps times ``us_per_step`` (microseconds, config ``scan.us_per_step``), three times over
+    and ten minutes more for sampling, start-up and a busy node."""
+    seconds = orbits * (float(t_final) / float(dt)) * us_per_step * 1e-6
+    return math.ceil(3 * seconds / 60) + 10
+
+
+# ---- scans and the search -------------------------------------------------------------------
+
+
+def scan_params(kind: str, scan: dict) -> dict:
+    """The part of the config block ``scan`` that a kind's jobs depend on (a change elsewhere
+    reruns nothing there); a kind that extends another (disorder_full) gets the other's block
+    updated with its own keys."""
+    from chainchaos.studies.scan.runs import scan_config
+
+    base, block = scan_config(kind, scan)
+    return {"settings": scan.get("settings", {}), base: block[base]}
+
+
+#: Keys of the config block ``search`` that say where its archive is, not what it searches.
+SEARCH_WORKFLOW_KEYS = ("archive", "reuse_archive_chain")
+
+
+def search_chain(name: str, config: dict) -> dict:
+    """The chain block of search ``name``: the full search scans ``search_full.n_seeds`` seeds."""
+    if name != "search_full":
+        return config["chain"]
+    selection = {**config["chain"]["selection"], "n_seeds": config["search_full"]["n_seeds"]}
+    return {**config["chain"], "selection": selection}
+
+
+def search_params(name: str, config: dict, pinned_seed: int | None = None) -> dict:
+    """The parameters of search ``name`` (``search`` or ``search_full``): its block (the full
+    search's with the orbit settings of ``search``), chain, claims and excited site.
+    ``pinned_seed``: the seed ``search`` re-scores instead of searching (the kept archive's
+    choice, :func:`search_archive`), unless its block pins one itself."""
+    if name == "search_full":
+        block = {**config["search_full"], "settings": config["search"]["settings"]}
+    else:
+        block = {k: v for k, v in config["search"].items() if k not in SEARCH_WORKFLOW_KEYS}
+        if pinned_seed is not None and block.get("pinned_seed") is None:
+            block["pinned_seed"] = int(pinned_seed)
+    return {"search": block, "chain": search_chain(name, config),
+            "claims": config.get("claims", {}), "site": config["simulation"]["excited_site"]}
+
+
+def search_archive(config: dict) -> Kept:
+    """The decision on the kept full search (config ``search.archive``): its settings must be
+    those the full search would run with; with ``search.reuse_archive_chain`` (a scale that only
+    shortens runs) only its chain's."""
+    from chainchaos.studies.search.archive import search_settings
+    from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION
+
+    keys = ("chain",) if config["search"].get("reuse_archive_chain") else None
+    return use_kept(config["search"].get("archive"), search_settings(search_params("search_full", config)),
+                    SEARCH_RESULT_VERSION, "snakemake --cores 2 keep --config keep=search_full", keys)
+
+
+def pinned_archive(config: dict, archive: Kept) -> Kept:
+    """The kept full search when ``all`` takes its chosen chain from it (it is used and the
+    config pins no seed itself), else ``Kept(None)``."""
+    return archive if archive.path and config["search"].get("pinned_seed") is None else Kept(None)
+
+
+def search_plans(config: dict, pinned: Kept):
+    """The :class:`~chainchaos.studies.search.stages.SearchPlan` of each search."""
+    from chainchaos.studies.search.stages import SearchPlan
+
+    seed = pinned.attrs.get("chosen_seed") if pinned.path else None
+    return {name: SearchPlan.from_config(search_params(name, config, seed)["search"])
+            for name in ("search", "search_full")}
+
+
+def disorder_archive(config: dict) -> Kept:
+    """The decision on the kept full disorder statistics (config ``scan.disorder.archive``)."""
+    from chainchaos.studies.scan.runs import DISORDER_RESULT_VERSION, disorder_settings
+
+    scan = config["scan"]
+    return use_kept(scan["disorder"].get("archive"),
+                    disorder_settings(scan_params("disorder_full", scan), config["chain"]["N"]),
+                    DISORDER_RESULT_VERSION, "snakemake --cores 2 keep --config keep=disorder_full")
+
+
+# ---- studies --------------------------------------------------------------------------------
+
+
+def study_name(given) -> str:
+    """The name of the study config ``study`` gives: a name of studies/, or a file's stem."""
+    return Path(given).stem if str(given).endswith((".yaml", ".yml")) else str(given)
+
+
+def load_run_study(name: str, config: dict):
+    """The study ``name`` as this run reads it: a scan kind (from config block ``scan``), the file
+    config ``study`` names (whose stem is ``name``), or ``studies/<name>.yaml``."""
+    from chainchaos.studies.study.spec import load_study
+
+    if name in SCAN_STUDIES:
+        from chainchaos.studies.scan.runs import scan_study
+
+        chain_file = f"{config['results']}/chain/chain.nc"
+        return load_study(scan_study(name, config["scan"], config["chain"]["N"], chain_file))
+    given = str(config.get("study") or "")
+    return load_study(given if study_name(given) == name and given != name else name)
+
+
+def study_figure_names(study) -> list[str]:
+    """The figures a study draws: those of its key ``figures``, and ``comparison`` when it
+    compares itself with other studies."""
+    return [*study.spec["figures"], *(["comparison"] if study.spec["compare_with"] else [])]
+
+
+def kept_group(study, group: int, kept_root) -> Kept:
+    """The decision on a study's kept group (``<kept_root>/<name>/groups/<group>.nc``)."""
+    from chainchaos.studies.study.runs import STUDY_RESULT_VERSION, group_settings
+    from chainchaos.studies.study.spec import kept_group_path
+
+    if study.name in SCAN_STUDIES:
+        return Kept(None)
+    return use_kept(kept_group_path(study.name, group, kept_root), group_settings(study, group),
+                    STUDY_RESULT_VERSION, f"snakemake --cores 2 keep --config keep={study.name}")
+
+
+def beyond_entries(beyond: list, figure_names) -> dict[str, list[str]]:
+    """Config ``manuscript.beyond`` as ``{study: figures shown}``: a name shows every figure of its
+    study, a mapping ``{name: [figures]}`` only those. ``figure_names(name)``: a study's figures.
+
+    Raises
+    ------
+    ValueError
+        For a figure the study does not draw, or a study named twice.
+    """
+    entries = {}
+    for item in beyond or []:
+        for name, figures in (item.items() if isinstance(item, dict) else [(item, None)]):
+            known = figure_names(name)
+            unknown = sorted(set(figures or ()) - set(known))
+            if unknown:
+                raise ValueError(f"config manuscript.beyond: study {name} has no figure {', '.join(unknown)}; "
+                                 f"its figures: {known}")
+            if name in entries:
+                raise ValueError(f"config manuscript.beyond: study {name} is named twice")
+            entries[name] = known if figures is None else list(figures)
+    return entries
+
+
+def asked_figures(name: str, figure_names: list[str], shown: dict, named_study: str | None) -> list[str]:
+    """The figures of study ``name`` a run asks for, in the study's order: every one of the study
+    config ``study`` names (``named_study``), those the manuscript shows (``shown``: study ->
+    figures, of the studies it shows)."""
+    asked = set(shown.get(name, ()))
+    if named_study == name:
+        asked.update(figure_names)
+    return [figure for figure in figure_names if figure in asked]
+
+
+def study_targets(study, results: str, figure_names: list[str]) -> list[str]:
+    """Every product of a study: its file per model and energy, statistics, laws and figures."""
+    from chainchaos.studies.study.runs import scene_name
+
+    root = f"{results}/studies/{study.name}"
+    files = [f"{root}/{scene_name(m, e)}.nc" for m in study.models for e in study.energies]
+    files += [f"{root}/statistics.nc", f"{root}/laws.nc"]
+    return files + [f"{root}/figures/{f}.{ext}" for f in figure_names for ext in ("pdf", "png")]
+
+
+def study_minutes(study, us_per_step: float) -> int:
+    """Minutes a group job of ``study`` may take on a cluster (:func:`cluster_minutes`)."""
+    settings = study.settings
+    orbits = study.per_job * study.lanes * (1 + 0.4 * (settings.gali_order - 1) * settings.alignment)
+    N = study.spec["lattice"].get("N") or 40  # a chain file may not exist yet
+    return cluster_minutes(orbits * max(1.0, N / 40), settings.t_final, settings.dt, us_per_step)
+
+
+def kept_product(keep, study_names) -> str | None:
+    """The kept result config ``keep`` asks this run to make: one of :data:`KEPT_PRODUCTS`, a
+    study's name (its kept groups), or None.
+
+    Raises
+    ------
+    ValueError
+        Naming the value and what is allowed.
+    """
+    if keep in (None, ""):
+        return None
+    if keep in KEPT_PRODUCTS or keep in study_names:
+        return str(keep)
+    raise ValueError(f"config keep is {keep!r}: one of {', '.join(KEPT_PRODUCTS)} or a study of studies/ "
+                     f"({', '.join(study_names)})")
