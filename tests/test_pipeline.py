@@ -63,21 +63,6 @@ def test_each_scene_holds_what_its_panels_asked_for(quick):
             assert np.all(np.isin(10.0 ** np.arange(0, 4), ds.time.values))
 
 
-@pytest.mark.slow
-def test_a_local_run_forks_its_reading_and_drawing_jobs_from_the_job_server(quick):
-    """The jobs of the quick run whose tasks are SERVED_TASKS ran in workers of its job server
-    (chainchaos.workflow.jobserver), but those that started while it was still importing."""
-    from chainchaos.workflow.tasks import SERVED_TASKS, _family_and_task_name
-
-    output = (quick.parent / QUICK_RUN_OUTPUT).read_text()
-    rules = re.findall(r"^(?:local)?rule (\w+):$", output, re.MULTILINE)
-    scripts = ROOT / "workflow" / "scripts"
-    servable = sum(_family_and_task_name(types.SimpleNamespace(rule=rule, scriptdir=str(scripts)))[1] in SERVED_TASKS
-                   for rule in rules)  # the rule all has no task: its own name, not served
-    served = int(re.search(r"^chainchaos job server: served (\d+) jobs$", output, re.MULTILINE).group(1))
-    assert servable - 8 <= served <= servable and servable >= 25
-
-
 def _contract_variables():
     from chainchaos.observe.registry import OBSERVABLES
 

@@ -215,7 +215,7 @@ def test_quick_scan_runs_through_slurm(slurm, tmp_path):
 
 
 def test_small_full_search_runs_through_slurm(slurm, tmp_path):
-    """`snakemake --profile profiles/slurm search_full` at a small scale: the checkpoint of stage 0
+    """`snakemake --profile profiles/slurm keep --config keep=search_full` at a small scale: the checkpoint of stage 0
     and the archive behave on a cluster as on one machine."""
     from test_search_full import SMALL
 
@@ -226,7 +226,7 @@ def test_small_full_search_runs_through_slurm(slurm, tmp_path):
            "--nolock", "--jobs", "2", "--latency-wait", "5",
            "--default-resources", "slurm_partition=debug", "mem_mb=1000", "runtime=30", "cpus_per_task=1",
            "--slurm-status-command", "squeue", "--slurm-init-seconds-before-status-checks", "5",
-           "--configfile", "config/quick.yaml", str(config), "--config", f"results={results}", "--", "search_full"]
+           "--configfile", "config/quick.yaml", str(config), "--config", f"results={results}", "keep=search_full", "--", "keep"]
     done = subprocess.run(cmd, cwd=ROOT, env=slurm, capture_output=True, text=True, timeout=480)
     assert done.returncode == 0, (done.stdout + done.stderr)[-6000:]
     with xr.open_dataset(archive) as ds:

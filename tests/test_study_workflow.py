@@ -154,13 +154,13 @@ jobs: {orbits_per_job: 1}
 
 @pytest.mark.slow
 def test_a_kept_study_is_read_not_run_while_its_settings_hold(tmp_path):
-    """keep_study keeps each group with its key; the study then plans no group job, a change of
-    a key its numbers do not depend on (its figures) neither, a changed step says which key
-    differs and computes again, and keep_study refuses to overwrite the stale groups."""
+    """`keep --config keep=<study>` keeps each group with its key; the study then plans no group
+    job, a change of a key its numbers do not depend on (its figures) neither, a changed step says
+    which key differs and computes again, and keep refuses to overwrite the stale groups."""
     study, results, kept = tmp_path / "tiny.yaml", tmp_path / "results", tmp_path / "kept"
     study.write_text(TINY)
     config = ("--config", f"study={study}", f"results={results}", f"kept_studies={kept}")
-    code, out = snakemake("keep_study", *config)
+    code, out = snakemake("keep", *config, "keep=tiny")
     assert code == 0, out[-4000:]
     files = sorted((kept / "tiny" / "groups").glob("*.nc"))
     assert [f.name for f in files] == ["0000.nc", "0001.nc"]
@@ -176,5 +176,5 @@ def test_a_kept_study_is_read_not_run_while_its_settings_hold(tmp_path):
     code, plan = snakemake("-n", "study", *config)
     assert code == 0 and planned_jobs(plan)["study_group"] == 2, plan[-3000:]
     assert "integration.dt is 0.05 in the file, 0.04 in this run; not used" in plan
-    code, out = snakemake("-n", "keep_study", *config)
+    code, out = snakemake("-n", "keep", *config, "keep=tiny")
     assert code != 0 and f"delete {kept / 'tiny'} to remake them" in out

@@ -1,11 +1,12 @@
 """The workflow's scripts and the task functions they run (chainchaos.workflow.tasks).
 
-Every rule `X` of workflow/rules/F.smk runs workflow/scripts/X.py, two lines that call
-``run_rule(snakemake)``, which runs ``chainchaos.workflow.tasks.F.X`` with stderr in the rule's log. The
-end-to-end run of every task is the quick pipeline (tests/test_pipeline.py); the cheap ones are
-also run here on small inputs."""
+Every rule `X` of workflow/rules/F.smk runs workflow/scripts/X.py, which names its task: an import
+of ``chainchaos.workflow.tasks.F.X`` and ``run(snakemake, X)``, which runs it with stderr in the
+rule's log. The end-to-end run of every task is the quick pipeline (tests/test_pipeline.py); the
+cheap ones are also run here on small inputs."""
 
 import ast
+import importlib
 import json
 import os
 import re
@@ -20,7 +21,9 @@ import xarray as xr
 
 from chainchaos.output.io import ensemble_dataset
 from chainchaos.output.manuscript import GENERATED
-from chainchaos.workflow.tasks import TASKS, run_rule
+from chainchaos.workflow.tasks import run
+from chainchaos.workflow.tasks.chain import compute_ensemble
+from chainchaos.workflow.tasks.simulate import simulate_scenes
 
 ROOT = Path(__file__).resolve().parents[1]
 SCRIPTS = ROOT / "workflow" / "scripts"
@@ -34,10 +37,11 @@ def rules() -> dict[str, tuple[Path, str]]:
     found = {}
     for path in RULE_FILES:
         text = path.read_text()
-        for m in re.finditer(r"^(?:rule|checkpoint) (\w+):|^( +)rule:\n\s+name:\n\s+f\"(\w+)_\{\w+\}\"$", text, re.M):
-            indent = m.group(2) or ""
+        pattern = r"^( *)(?:rule|checkpoint) (\w+):|^( +)rule:\n\s+name:\n\s+f\"(\w+)_\{\w+\}\"$"
+        for m in re.finditer(pattern, text, re.M):
+            indent = m.group(1) or m.group(3) or ""
             end = re.search(rf"^ {{0,{len(indent)}}}\S", text[m.end():], re.M)  # the next line at the rule's level
-            found[m.group(1) or m.group(3)] = (path, text[m.start():m.end() + (end.start() if end else len(text))])
+            found[m.group(2) or m.group(4)] = (path, text[m.start():m.end() + (end.start() if end else len(text))])
     return found
 
 
@@ -46,8 +50,20 @@ def script_of(rule_text: str) -> str | None:
     return m and m.group(1)
 
 
+def script_calls(path: Path) -> tuple[str, str]:
+    """(the task module, the task) a script names: ``from M import T`` and ``run(snakemake, T)``."""
+    body = ast.parse(path.read_text()).body
+    if isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant):
+        body = body[1:]  # the docstring
+    assert ast.unparse(body[0]) == "from chainchaos.workflow.tasks import run", path.name
+    assert isinstance(body[1], ast.ImportFrom) and len(body[1].names) == 1, path.name
+    task = body[1].names[0].name
+    assert [ast.unparse(node) for node in body[2:]] == [f"run(snakemake, {task})"], path.name
+    return body[1].module, task
+
+
 def fake_rule(rule, log, input=(), output=(), params=(), wildcards=()):
-    """What run_rule reads of the `snakemake` object of a script."""
+    """What run reads of the `snakemake` object of a script."""
     return SimpleNamespace(rule=rule, log=[str(log)], input=dict(input), output=dict(output), params=dict(params),
                            wildcards=dict(wildcards))
 
@@ -55,54 +71,45 @@ def fake_rule(rule, log, input=(), output=(), params=(), wildcards=()):
 # ------------------------------------------------------------------ one path: rule = script = task
 
 
-def test_every_rule_runs_the_script_and_task_named_like_it():
+def test_every_rule_runs_the_script_named_like_it_and_its_task_from_its_rule_file_s_module():
     found = rules()
-    assert {"all", "simulate_scenes", "numerics_work_precision", "build_manuscript"} <= set(found)
+    assert {"all", "simulate_scenes", "numerics_work_precision", "build_manuscript", "keep_study_group",
+            "search_full"} <= set(found)
     for name, (path, text) in found.items():
         script = script_of(text)
         if script is None:  # a target rule: inputs only
-            assert not re.search(r"^    (output|shell|run):", text, re.M), name
+            assert not re.search(r"^ +(output|shell|run):", text, re.M), name
             continue
         assert script == f"{name}.py", f"rule {name} runs {script}"
-        assert name in TASKS, f"rule {name} has no task"
-        assert TASKS[name].__module__ == f"chainchaos.workflow.tasks.{path.stem}", name
+        module, task = script_calls(SCRIPTS / script)
+        assert module == f"chainchaos.workflow.tasks.{path.stem}", name
+        assert task == name, f"script {script} runs {task}"
+        assert callable(getattr(importlib.import_module(module), task)), name
 
 
-def test_a_script_s_task_is_found_through_its_rule_file_alone():
-    """A job imports only the task module named like its rule's file (the scripts' `scriptdir`)."""
-    code = ("import sys, types\nfrom chainchaos.workflow.tasks import _family_and_task_name, _task\n"
-            f"task = _task(*_family_and_task_name(types.SimpleNamespace(rule='plot_figure_4', scriptdir={str(SCRIPTS)!r})))\n"
-            "print(task.__module__, sorted(m for m in sys.modules if m.startswith(('chainchaos.workflow.tasks.', 'numba'))))")
-    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    assert done.stdout.split(" ", 1) == ["chainchaos.workflow.tasks.figures", "['chainchaos.workflow.tasks.figures']\n"]
-
-
-def test_every_task_and_script_belongs_to_a_rule():
+def test_every_script_belongs_to_a_rule():
     scripted = {name for name, (_, text) in rules().items() if script_of(text)}
-    assert set(TASKS) == scripted
     assert {p.stem for p in SCRIPTS.glob("*")} == scripted
 
 
-@pytest.mark.parametrize("path", sorted(SCRIPTS.glob("*.py")), ids=lambda p: p.stem)
-def test_a_script_is_the_call_into_the_package(path):
-    body = ast.parse(path.read_text()).body
-    if isinstance(body[0], ast.Expr) and isinstance(body[0].value, ast.Constant):
-        body = body[1:]  # the docstring
-    assert [ast.unparse(node) for node in body] == ["from chainchaos.workflow.tasks import run_rule", "run_rule(snakemake)"]
+def test_every_rule_with_an_action_has_a_log_and_a_benchmark():
+    for name, (_, text) in rules().items():
+        if script_of(text):
+            assert re.search(r"^ +log:", text, re.M), name
+            assert re.search(r"^ +benchmark:", text, re.M), name
 
 
-# ------------------------------------------------------------------ run_rule
+# ------------------------------------------------------------------ run
 
 
-def test_run_rule_sends_stderr_and_a_failure_s_traceback_to_the_log(tmp_path, monkeypatch):
+def test_run_sends_stderr_and_a_failure_s_traceback_to_the_log(tmp_path):
     def fails(inputs, outputs, params, wildcards):
         print(f"working on {wildcards['scene']}", file=sys.stderr)
         raise ValueError("bad value")
 
-    monkeypatch.setitem(TASKS, "fails", fails)
     log = tmp_path / "fails.log"
     with pytest.raises(ValueError, match="bad value"):
-        run_rule(fake_rule("fails", log, wildcards={"scene": "hertz_H1"}))
+        run(fake_rule("fails", log, wildcards={"scene": "hertz_H1"}), fails)
     text = log.read_text()
     assert text.startswith("working on hertz_H1\n") and "Traceback" in text and "ValueError: bad value" in text
 
@@ -115,8 +122,9 @@ def test_missing_tex_stops_with_the_debian_packages_and_no_traceback(tmp_path):
     inputs = {"tex": "manuscript/ms.tex", **{key: str(tmp_path / "missing" / name) for key, name in GENERATED.items()}}
     rule = dict(rule="build_manuscript", log=[str(log)], input=inputs,
                 output={"pdf": str(pdf)}, params={"build_dir": str(tmp_path / "build")}, wildcards={})
-    code = ("import json, sys, types\nfrom chainchaos.workflow.tasks import run_rule\n"
-            "run_rule(types.SimpleNamespace(**json.loads(sys.argv[1])))")
+    code = ("import json, sys, types\nfrom chainchaos.workflow.tasks import run\n"
+            "from chainchaos.workflow.tasks.manuscript import build_manuscript\n"
+            "run(types.SimpleNamespace(**json.loads(sys.argv[1])), build_manuscript)")
     done = subprocess.run([sys.executable, "-c", code, json.dumps(rule)], cwd=ROOT, capture_output=True, text=True,
                           env={**os.environ, "PATH": str(empty)})
     assert done.returncode == 1
@@ -133,8 +141,8 @@ def test_missing_tex_stops_with_the_debian_packages_and_no_traceback(tmp_path):
 def test_compute_ensemble_honours_every_key_of_the_ensemble_block(tmp_path):
     block = {"alphas": [2.0, 5.0], "realizations": 4, "first_seed": 7, "convention": "period_averaged"}
     out = tmp_path / "stats.nc"
-    run_rule(fake_rule("compute_ensemble", tmp_path / "log", output={"stats": str(out)},
-                       params={"ensemble": block, "N": 12}))
+    run(fake_rule("compute_ensemble", tmp_path / "log", output={"stats": str(out)},
+                  params={"ensemble": block, "N": 12}), compute_ensemble)
     written = xr.load_dataset(out)
     expected = ensemble_dataset([2.0, 5.0], 4, 12, 7, "period_averaged")
     assert written.attrs["first_seed"] == 7 and written.attrs["convention"] == "period_averaged"
@@ -157,8 +165,8 @@ def test_simulate_scenes_writes_each_scene_of_its_batch_to_its_own_file(tmp_path
     scenes = [SceneParameters(energy=1.8, excited_site=6, observables=("participation", "mlce"), name="fput_H1.8", **common),
               SceneParameters(energy=0.5, excited_site=6, observables=("energy_density",), name="fput_H0.5", **common)]
     outputs = {s.name: str(tmp_path / "scenes" / f"{s.name}.nc") for s in scenes}
-    run_rule(fake_rule("simulate_scenes", tmp_path / "log", input={"chain": str(chain_file), "kernels": []},
-                       output=outputs, params={"scenes": scenes, "batch": "fput_1"}))
+    run(fake_rule("simulate_scenes", tmp_path / "log", input={"chain": str(chain_file), "kernels": []},
+                  output=outputs, params={"scenes": scenes, "batch": "fput_1"}), simulate_scenes)
     for params in scenes:
         written, alone = xr.load_dataset(outputs[params.name]), simulate(chain, params)
         assert set(written.data_vars) == set(alone.data_vars), params.name

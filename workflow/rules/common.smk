@@ -57,9 +57,6 @@ REPORT_CATEGORIES = {
 }
 
 
-# ---- the kept result this run makes (config keep; workflow/rules/keep.smk) -----------------------
-KEEP = plan.kept_product(config.get("keep"), study_names())
-
 
 # ---- scenes and figures (simulate.smk, figures.smk) --------------------------------------------
 SCENE_JOBS = plan.scene_jobs(config)
@@ -218,6 +215,8 @@ def study_chain(wildcards):
 
 
 NAMED_STUDY = plan.study_name(config["study"]) if config.get("study") else None
+# The kept result this run makes (config keep; workflow/rules/keep.smk).
+KEEP = plan.kept_product(config.get("keep"), [*study_names(), *filter(None, [NAMED_STUDY])])
 BEYOND_ENTRIES = plan.beyond_entries(
     config.get("manuscript", {}).get("beyond", []), study_figure_names
 )

@@ -30,7 +30,9 @@ def lyapunov_spectrum(inputs, outputs, params, wildcards) -> None:
 
 def plot_lyapunov_spectra(inputs, outputs, params, wildcards) -> None:
     """The figure of the spectra (PDF and PNG)."""
-    from chainchaos.output.plotting.style import save_figure  # matplotlib: only in the plotting jobs
+    from chainchaos.output.plotting.style import (
+        save_figure,  # matplotlib: only in the plotting jobs
+    )
     from chainchaos.studies.indicators.plots import spectra_figure
 
     fig = spectra_figure([xr.load_dataset(f) for f in inputs["spectra"]])

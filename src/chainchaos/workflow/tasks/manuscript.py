@@ -21,8 +21,8 @@ from chainchaos.paper.claims.writers import (
     write_csv,
 )
 from chainchaos.paper.criteria import Criteria
-from chainchaos.studies.search import report as search_report
 from chainchaos.studies.indicators.report import spectra_macros
+from chainchaos.studies.search import report as search_report
 
 #: The inputs of evaluate_claims that are not scene files (and the prefix of the ensemble verdicts).
 #: ``search_population``: the search whose candidates are counted (the archived full search when

@@ -18,7 +18,11 @@ from chainchaos.studies.numerics.stability import (
     taylor_dataset,
     taylor_sign_probe,
 )
-from chainchaos.studies.numerics.tables import advice_tables, stability_tables, work_precision_tables
+from chainchaos.studies.numerics.tables import (
+    advice_tables,
+    stability_tables,
+    work_precision_tables,
+)
 from chainchaos.studies.numerics.work_precision import merge_cases, work_precision
 
 
@@ -55,7 +59,9 @@ def numerics_work_precision(inputs, outputs, params, wildcards) -> None:
 
 def numerics_plot_work_precision(inputs, outputs, params, wildcards) -> None:
     """The work-precision figure (PDF and PNG)."""
-    from chainchaos.studies.numerics.plots import plot_work_precision  # matplotlib: only in the plotting jobs
+    from chainchaos.studies.numerics.plots import (
+        plot_work_precision,  # matplotlib: only in the plotting jobs
+    )
 
     plot_work_precision(_load(inputs["data"]), Path(outputs["pdf"]).with_suffix(""))
 
@@ -112,7 +118,9 @@ def numerics_step_advice(inputs, outputs, params, wildcards) -> None:
 
 def numerics_plot_stability(inputs, outputs, params, wildcards) -> None:
     """The stability figure (PDF and PNG) and its tables (CSV, LaTeX)."""
-    from chainchaos.studies.numerics.plots import plot_stability  # matplotlib: only in the plotting jobs
+    from chainchaos.studies.numerics.plots import (
+        plot_stability,  # matplotlib: only in the plotting jobs
+    )
 
     stab, dr, ta, ad = (_load(inputs[k]) for k in ("stability", "drift", "taylor", "advice"))
     plot_stability(stab, dr, ta, ad, scheme=params["integrator"], path_stem=Path(outputs["pdf"]).with_suffix(""))

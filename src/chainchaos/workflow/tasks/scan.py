@@ -7,11 +7,8 @@ from pathlib import Path
 
 import xarray as xr
 
-from chainchaos.errors import require
-from chainchaos.output import kept
 from chainchaos.output.io import read_chain, write_netcdf, write_text
-from chainchaos.studies.scan import merge, runs, thresholds
-from chainchaos.studies.search import archive
+from chainchaos.studies.scan import merge, thresholds
 
 
 def _write_merged(kind: str, ds: xr.Dataset, groups: list, out) -> None:
@@ -43,24 +40,6 @@ def merge_disorder(inputs, outputs, params, wildcards) -> None:
         return
     groups = merge.scan_groups([xr.load_dataset(f) for f in inputs["groups"]])
     _write_merged("disorder", merge.merge_disorder(groups, params["scan"]), groups, outputs["merged"])
-
-
-def disorder_full(inputs, outputs, params, wildcards) -> None:
-    """The full disorder statistics, with their cost and provenance, kept at config
-    ``scan.disorder.archive`` and keyed by their settings (``runs.disorder_settings``) and result
-    version (``chainchaos.output.kept``)."""
-    target = params.get("archive")
-    require(bool(target), "scan.disorder.archive", target,
-            "the path of the archived disorder statistics (e.g. data/disorder/disorder_full.nc)")
-    groups = merge.scan_groups([xr.load_dataset(f) for f in inputs["groups"]])
-    ds = merge.merge_disorder(groups, params["scan"])
-    costs = archive.job_costs(Path(params["benchmarks"]), "disorder_full", stages=("study_group",))
-    ds = archive.archive_dataset(ds, costs, archive.stage_machines(list(inputs["groups"])),
-                                 title="Disorder statistics at full scale: delocalization and chaos by two indicators")
-    ds.attrs.update(kept.kept_attrs(runs.disorder_settings(params["scan"], params["N"]), runs.DISORDER_RESULT_VERSION))
-    write_netcdf(ds, target)
-    print(f"{target}: {ds.sizes['realization']} realizations x {ds.sizes['energy']} energies; "
-          f"{ds.attrs['cost_total_jobs']} jobs, {ds.attrs['cost_total_cpu_seconds'] / 60:.1f} CPU-min", file=sys.stderr)
 
 
 def plot_energy_scan(inputs, outputs, params, wildcards) -> None:

@@ -38,22 +38,6 @@ def study_group(inputs, outputs, params, wildcards) -> None:
     write_netcdf(ds, outputs["group"])
 
 
-def keep_study_group(inputs, outputs, params, wildcards) -> None:
-    """Copy a finished group to the study's kept files, byte for byte (its key is in it), then
-    write the marker that says so."""
-    import shutil
-
-    from chainchaos.output.io import atomic_output, write_text
-    from chainchaos.output.kept import DIGEST_ATTR
-
-    with atomic_output(params["kept"]) as tmp:
-        shutil.copyfile(inputs["group"], tmp)
-    with xr.open_dataset(params["kept"]) as ds:
-        digest = ds.attrs[DIGEST_ATTR]
-    write_text(f"{params['kept']} {digest}\n", outputs["done"])
-    print(f"kept {params['kept']} (settings digest {digest[:12]})", file=sys.stderr)
-
-
 def study_scene(inputs, outputs, params, wildcards) -> None:
     """Every realization and lane of one model and energy, with their statistics."""
     from chainchaos.studies.study import with_statistics
@@ -106,7 +90,9 @@ def plot_study(inputs, outputs, params, wildcards) -> None:
     """A study's figures, PDF and PNG each: those its key ``figures`` names and, with
     ``compare_with``, its ensemble means beside those of the studies it names (``inputs``: each
     study's statistics by name, the study's own first)."""
-    from chainchaos.output.plotting.style import save_figure  # matplotlib: only in the plotting jobs
+    from chainchaos.output.plotting.style import (
+        save_figure,  # matplotlib: only in the plotting jobs
+    )
     from chainchaos.studies.study.plots import comparison_figure, study_figure
 
     named = {name: xr.load_dataset(path) for name, path in inputs.items()}
