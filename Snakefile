@@ -17,7 +17,7 @@ min_version("9.0")
 # and in every job (PYTHONPATH is passed on to the jobs' interpreters).
 SOURCES = str(Path(workflow.basedir, "src").resolve())
 sys.path.insert(0, SOURCES)
-os.environ["PYTHONPATH"] = os.pathsep.join([SOURCES, *filter(None, [os.environ.get("PYTHONPATH")])])
+os.environ.update(PYTHONPATH=os.pathsep.join(filter(None, [SOURCES, os.environ.get("PYTHONPATH")])))
 import chainchaos
 
 if str(Path(chainchaos.__file__).resolve().parents[1]) != SOURCES:

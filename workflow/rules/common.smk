@@ -7,11 +7,8 @@ import re
 from pathlib import Path
 
 from chainchaos.engine.cache import kernel_sources
-from chainchaos.output import beyond
 from chainchaos.output.report_captions import figure_labels, figure_subcategory, panel_labels
 from chainchaos.paper import panels, statements
-from chainchaos.studies.search import rejudge
-from chainchaos.studies.study.runs import numbers_spec
 from chainchaos.studies.study.spec import kept_group_path, study_names
 from chainchaos.workflow import plan
 from chainchaos.workflow.tasks.chain import selection_criteria
@@ -55,7 +52,6 @@ REPORT_CATEGORIES = {
     "indicators": "Chaos indicators",
     "studies": "Studies",
 }
-
 
 
 # ---- scenes and figures (simulate.smk, figures.smk) --------------------------------------------
@@ -104,8 +100,7 @@ SEARCH_KEPT = plan.search_archive(config)
 PINNED = plan.pinned_archive(config, SEARCH_KEPT)
 SEARCH_PLANS = plan.search_plans(config, PINNED)
 CHOSEN_SEED = PINNED.attrs.get("chosen_seed")
-SEARCH_ARCHIVE = config["search"].get("archive") or "data/search/search_full.nc"
-REJUDGE_DIR = str(Path(SEARCH_ARCHIVE).parent / "rejudge")
+SEARCH_ARCHIVE = config["search"].get("archive")
 
 
 def search_params(name):
@@ -116,12 +111,6 @@ def search_param(key):
     return lambda wildcards: search_params(wildcards.search)[key]
 
 
-def search_seed_files(wildcards):
-    selection = selection_criteria({"chain": plan.search_chain(wildcards.search, config)})
-    n = SEARCH_PLANS[wildcards.search].n_seed_jobs(selection)
-    return [result(wildcards.search, "seeds", f"{k:03d}.nc") for k in range(n)]
-
-
 def n_candidates(name):
     """Stage 0's count of candidates, once the checkpoint search_candidates has run."""
     import netCDF4
@@ -130,31 +119,27 @@ def n_candidates(name):
         return len(nc.dimensions["candidate"])
 
 
-def search_filter_files(wildcards):
-    search_plan = SEARCH_PLANS[wildcards.search]
-    n = 0 if search_plan.pinned else search_plan.n_filter_jobs(n_candidates(wildcards.search))
-    return [result(wildcards.search, "filter", f"{g:03d}.nc") for g in range(n)]
+def search_stage_files(stage):
+    """The files of a search stage: ``seeds`` (chunks of seeds), ``filter`` or ``score``."""
 
+    def files(wildcards):
+        search_plan = SEARCH_PLANS[wildcards.search]
+        if stage == "seeds":
+            chain = plan.search_chain(wildcards.search, config)
+            n = search_plan.n_seed_jobs(selection_criteria({"chain": chain}))
+        else:
+            found = 0 if search_plan.pinned else n_candidates(wildcards.search)
+            n = plan.search_jobs(search_plan, stage, found)
+        return [result(wildcards.search, stage, f"{k:03d}.nc") for k in range(n)]
 
-def search_score_files(wildcards):
-    search_plan = SEARCH_PLANS[wildcards.search]
-    n = search_plan.n_score_jobs(1 if search_plan.pinned else n_candidates(wildcards.search))
-    return [result(wildcards.search, "score", f"{k:03d}.nc") for k in range(n)]
-
-
-def orbit_minutes(orbits, t_final):
-    return plan.cluster_minutes(orbits, t_final, config["search"]["settings"]["dt"], US_PER_STEP)
+    return files
 
 
 def search_minutes(stage):
-    def minutes(wildcards):
-        search_plan = SEARCH_PLANS[wildcards.search]
-        filtering = stage == "filter"
-        orbits = search_plan.candidates_per_job if filtering else search_plan.lanes
-        t_final = search_plan.filter_t_final if filtering else config["search"]["settings"]["t_final"]
-        return orbit_minutes(len(statements.statement_scenes()) * orbits, t_final)
-
-    return minutes
+    settings = config["search"]["settings"]
+    return lambda wildcards: plan.search_minutes(
+        SEARCH_PLANS[wildcards.search], stage, settings["t_final"], settings["dt"], US_PER_STEP
+    )
 
 
 # The search whose candidates the manuscript counts, and the one the chain is chosen from.
@@ -199,16 +184,6 @@ def study_group_files(name):
     return [study_group_file(name, g) for g in range(study_of(name).n_groups)]
 
 
-def study_spec(name):
-    return {"name": name, **study_of(name).spec}
-
-
-def study_group_spec(name):
-    """The keys a study's group numbers depend on: a changed figure or law reruns no group."""
-    study = study_of(name)
-    return {"name": name, "title": study.spec["title"], **numbers_spec(study)}
-
-
 def study_chain(wildcards):
     chain_file = study_of(wildcards.study).spec["lattice"]["chain_file"]
     return {"chain": chain_file} if chain_file else {}
@@ -220,16 +195,10 @@ KEEP = plan.kept_product(config.get("keep"), [*study_names(), *filter(None, [NAM
 BEYOND_ENTRIES = plan.beyond_entries(
     config.get("manuscript", {}).get("beyond", []), study_figure_names
 )
-# The studies the section Beyond the paper shows: those whose every group is kept.
-BEYOND_STUDIES = [
-    name
-    for name in BEYOND_ENTRIES
-    if all(
-        plan.kept_group(study_of(name), g, config["kept_studies"]).path
-        for g in range(study_of(name).n_groups)
-    )
-]
-SHOWN = {name: BEYOND_ENTRIES[name] for name in BEYOND_STUDIES}
+SHOWN = {
+    name: BEYOND_ENTRIES[name]
+    for name in plan.shown_studies(BEYOND_ENTRIES, study_of, config["kept_studies"])
+}
 
 
 def asked_figures(name):
@@ -239,8 +208,7 @@ def asked_figures(name):
 # The studies whose figures a run can ask for (only those are read: a half-written file in
 # studies/ stops no other run).
 FIGURE_STUDIES = [
-    name for name in sorted({*BEYOND_STUDIES, *([NAMED_STUDY] if NAMED_STUDY else [])})
-    if asked_figures(name)
+    name for name in sorted({*SHOWN, *filter(None, [NAMED_STUDY])}) if asked_figures(name)
 ]
 
 
@@ -252,7 +220,9 @@ def study_figure_inputs(name):
 
 def named_study():
     if not NAMED_STUDY:
-        raise ValueError(f"this target needs a study: --config study=<name>, one of {study_names()}")
+        raise ValueError(
+            f"this target needs a study: --config study=<name>, one of {study_names()}"
+        )
     return NAMED_STUDY
 
 
@@ -286,7 +256,7 @@ def study_figure_outputs(name):
 
 
 def rejudge_file(*parts):
-    return str(Path(REJUDGE_DIR, *parts))
+    return str(Path(SEARCH_ARCHIVE).parent.joinpath("rejudge", *parts))
 
 
 def rejudge_params():
@@ -298,68 +268,12 @@ def rejudge_params():
     }
 
 
-def rejudge_filter_files():
-    ids = rejudge.check_ids(config.get("rejudge") or [])
-    n = rejudge.filter_plan(SEARCH_PLANS["search_full"], ids).n_filter_jobs(
-        SEARCH_KEPT.sizes.get("candidate", 0)
-    )
-    return [rejudge_file("filter", f"{g:03d}.nc") for g in range(n)]
-
-
-def rejudge_score_files():
-    n = SEARCH_PLANS["search_full"].n_score_jobs(SEARCH_KEPT.sizes.get("candidate", 0))
-    return [rejudge_file("score", f"{k:03d}.nc") for k in range(n)]
+def rejudge_files(stage):
+    n = SEARCH_KEPT.sizes.get("candidate", 0)
+    return plan.rejudge_files(config, SEARCH_PLANS["search_full"], n, stage)
 
 
 def kept_targets(wildcards):
-    """The kept files of the product config `keep` names; a study's kept groups made with
-    other settings are not overwritten silently."""
-    if KEEP is None:
-        raise ValueError("the target keep needs --config keep=<what>: search_full, disorder_full, "
-                         f"search_rejudge or a study of studies/ ({', '.join(study_names())})")
-    if KEEP == "disorder_full":
-        return [SCAN["disorder"]["archive"]]
-    if KEEP in plan.KEPT_PRODUCTS:
-        return [SEARCH_ARCHIVE]
-    groups = range(study_of(KEEP).n_groups)
-    stale = [kept_group_file(KEEP, g) for g in groups if os.path.exists(kept_group_file(KEEP, g))
-             and not plan.kept_group(study_of(KEEP), g, config["kept_studies"]).path]
-    if stale:
-        raise ValueError(f"kept groups of study {KEEP} made with other settings: {', '.join(stale)}; "
-                         f"delete {Path(config['kept_studies']) / KEEP} to remake them, or restore "
-                         "the study file they were made with")
-    return [kept_group_file(KEEP, g) for g in groups]
-
-
-# ---- claims and manuscript (manuscript.smk) ----------------------------------------------------
-CLAIMS_CODE = sorted(str(p) for p in Path("src/chainchaos/paper/claims").glob("*.py")) + [
-    "src/chainchaos/output/formatting.py",
-    "src/chainchaos/workflow/tasks/manuscript.py",
-]
-
-
-def claims_inputs():
-    files = {
-        "code": CLAIMS_CODE,  # a changed criterion or text in the code reruns the claims
-        "chain": result("chain", "chain.nc"),
-        "ensemble": result("ensemble", "participation_stats.nc"),
-        "energy_scan": result("scan", "energy_scan.nc"),
-        "disorder": result("scan", "disorder_statistics.nc"),
-        "search": result("search", "search.nc"),
-        "search_population": SEARCH_POPULATION,
-        **{f"verdict_{name}": path for name, path in VERDICT_FILES.items()},
-        **SPECTRA_FILES,
-    }
-    return files | {name: scene_file(name) for name in sorted(SCENES)}
-
-
-def beyond_inputs():
-    """The section Beyond the paper: its generated body and the shown studies' figures."""
-    if not BEYOND_STUDIES:
-        return {}
-    files = {"beyond_body": result("tables", "beyond_the_paper.tex")}
-    for name, figures in SHOWN.items():
-        for figure in figures:
-            path = result("studies", name, "figures", f"{figure}.pdf")
-            files[f"beyond_{beyond.figure_key(name, figure)}"] = path
-    return files
+    return plan.kept_targets(
+        KEEP, config, study_of(KEEP) if KEEP not in plan.KEPT_PRODUCTS else None
+    )

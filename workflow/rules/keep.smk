@@ -84,7 +84,7 @@ if KEEP == "search_rejudge":
     rule search_rejudge_score:
         """Stage 2 again for the survivor of a given rank of the re-judged filter."""
         input:
-            filters=[ancient(f) for f in rejudge_filter_files()],
+            filters=[ancient(f) for f in rejudge_files("filter")],
         output:
             result=rejudge_file("score", "{rank}.nc"),
         params:
@@ -101,8 +101,8 @@ if KEEP == "search_rejudge":
     rule search_rejudge:
         """The kept full search with the re-judged statements."""
         input:
-            filters=[ancient(f) for f in rejudge_filter_files()],
-            scores=[ancient(f) for f in rejudge_score_files()],
+            filters=[ancient(f) for f in rejudge_files("filter")],
+            scores=[ancient(f) for f in rejudge_files("score")],
         output:
             archive=SEARCH_ARCHIVE,
         params:
@@ -130,7 +130,7 @@ if KEEP not in (None, *plan.KEPT_PRODUCTS):
         wildcard_constraints:
             study=re.escape(KEEP),
         params:
-            spec=lambda wildcards: study_group_spec(wildcards.study),
+            spec=lambda wildcards: plan.group_spec(study_of(wildcards.study)),
         log:
             log_file("keep_study_group", "{study}-{group}"),
         benchmark:

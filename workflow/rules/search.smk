@@ -37,7 +37,7 @@ rule search_seeds:
 checkpoint search_candidates:
     """Stage 0: the candidates (or the pinned seed), from every chunk of seeds."""
     input:
-        seeds=search_seed_files,
+        seeds=search_stage_files("seeds"),
     output:
         result=result("{search}", "candidates.nc"),
     priority: 10
@@ -79,7 +79,7 @@ rule search_score:
     """Stage 2: the ensembles of the survivor of a given rank."""
     input:
         candidates=result("{search}", "candidates.nc"),
-        filters=search_filter_files,
+        filters=search_stage_files("filter"),
         kernels=kernel_flags(),
     output:
         result=result("{search}", "score", "{rank}.nc"),
@@ -103,8 +103,8 @@ rule search_score:
 rule search_merge:
     input:
         candidates=result("{search}", "candidates.nc"),
-        filters=search_filter_files,
-        scores=search_score_files,
+        filters=search_stage_files("filter"),
+        scores=search_stage_files("score"),
     output:
         result=result("{search}", "search.nc"),
     priority: 4
@@ -179,9 +179,11 @@ for model, verdict_scenes in statements.statement_scenes_by_model().items():
             benchmark_file("ensemble_verdicts", model)
         resources:
             mem_mb=1000,
-            runtime=orbit_minutes(
+            runtime=plan.cluster_minutes(
                 len(verdict_scenes) * config["verdicts"]["lanes"],
                 config["verdicts"]["settings"]["t_final"],
+                config["verdicts"]["settings"].get("dt", config["search"]["settings"]["dt"]),
+                US_PER_STEP,
             ),
         script:
             "../scripts/ensemble_verdicts.py"

@@ -28,7 +28,7 @@ rule study_group:
     output:
         group=result("studies", "{study}", "groups", "{group}.nc"),
     params:
-        spec=lambda wildcards: study_group_spec(wildcards.study),
+        spec=lambda wildcards: plan.group_spec(study_of(wildcards.study)),
     log:
         log_file("study_group", "{study}-{group}"),
     benchmark:
@@ -47,7 +47,7 @@ rule study_scene:
     output:
         scene=result("studies", "{study}", "{model}_H{energy}.nc"),
     params:
-        spec=lambda wildcards: study_spec(wildcards.study),
+        spec=lambda wildcards: plan.study_spec(study_of(wildcards.study)),
     log:
         log_file("study_scene", "{study}-{model}_H{energy}"),
     benchmark:
@@ -65,7 +65,7 @@ rule study_statistics:
         statistics=result("studies", "{study}", "statistics.nc"),
         laws=result("studies", "{study}", "laws.nc"),
     params:
-        spec=lambda wildcards: study_spec(wildcards.study),
+        spec=lambda wildcards: plan.study_spec(study_of(wildcards.study)),
     log:
         log_file("study_statistics", "{study}"),
     benchmark:

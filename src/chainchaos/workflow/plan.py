@@ -345,3 +345,111 @@ def kept_product(keep, study_names) -> str | None:
         return str(keep)
     raise ValueError(f"config keep is {keep!r}: one of {', '.join(KEPT_PRODUCTS)} or a study of studies/ "
                      f"({', '.join(study_names)})")
+
+
+def shown_studies(entries: dict, study_of, kept_root) -> list[str]:
+    """The studies of the section Beyond the paper (``entries``, :func:`beyond_entries`) that it
+    shows: those whose every group is kept with the study's settings (a run never computes them).
+    ``study_of(name)``: the study, as :func:`load_run_study` gives it."""
+    return [name for name in entries
+            if all(kept_group(study_of(name), g, kept_root).path for g in range(study_of(name).n_groups))]
+
+
+def stale_kept_groups(study, kept_root) -> list[str]:
+    """The kept groups of ``study`` made with other settings than its own: a run that keeps the
+    study must not overwrite them silently."""
+    from chainchaos.studies.study.spec import kept_group_path
+
+    paths = [kept_group_path(study.name, g, kept_root) for g in range(study.n_groups)]
+    return [str(p) for g, p in enumerate(paths) if p.exists() and not kept_group(study, g, kept_root).path]
+
+
+def kept_targets(keep: str | None, config: dict, study=None) -> list[str]:
+    """The files the target ``keep`` makes for config ``keep`` (:func:`kept_product`):
+    an archive's path, or every kept group of the study ``study``.
+
+    Raises
+    ------
+    ValueError
+        When ``keep`` is empty, or when kept groups of the study were made with other settings
+        (naming them and how to remake them).
+    """
+    from chainchaos.studies.study.spec import kept_group_path
+
+    if keep is None:
+        raise ValueError(f"the target keep needs --config keep=<what>: {', '.join(KEPT_PRODUCTS)} or a study")
+    if keep in KEPT_PRODUCTS:
+        key = "scan.disorder.archive" if keep == "disorder_full" else "search.archive"
+        block = config["scan"]["disorder"] if keep == "disorder_full" else config["search"]
+        if not block.get("archive"):
+            raise ValueError(f"config {key} is empty: keep={keep} writes its result there (e.g. "
+                             f"data/{'disorder/disorder_full' if keep == 'disorder_full' else 'search/search_full'}.nc)")
+        return [block["archive"]]
+    stale = stale_kept_groups(study, config["kept_studies"])
+    if stale:
+        raise ValueError(f"kept groups of study {keep} made with other settings: {', '.join(stale)}; delete "
+                         f"{Path(config['kept_studies']) / keep} to remake them, or restore the study file "
+                         "they were made with")
+    return [str(kept_group_path(keep, g, config["kept_studies"])) for g in range(study.n_groups)]
+
+
+def search_jobs(search_plan, stage: str, n_candidates: int = 0, selection=None) -> int:
+    """How many jobs a stage of a search has: ``seeds`` (chunks of seeds, from the linear rule
+    ``selection``), ``filter`` (groups of candidates; none when a seed is pinned) or ``score``
+    (survivors; one, the pinned seed's)."""
+    if stage == "seeds":
+        return search_plan.n_seed_jobs(selection)
+    if stage == "filter":
+        return 0 if search_plan.pinned else search_plan.n_filter_jobs(n_candidates)
+    return search_plan.n_score_jobs(1 if search_plan.pinned else n_candidates)
+
+
+def beyond_inputs(results: str, shown: dict) -> dict[str, str]:
+    """The manuscript's inputs for the section Beyond the paper: its generated body and the figures
+    it shows (``shown``: study -> figures), keyed as the manuscript task reads them."""
+    from chainchaos.output.beyond import figure_key
+
+    if not shown:
+        return {}
+    files = {"beyond_body": f"{results}/tables/beyond_the_paper.tex"}
+    for name, figures in shown.items():
+        files.update({f"beyond_{figure_key(name, f)}": f"{results}/studies/{name}/figures/{f}.pdf" for f in figures})
+    return files
+
+
+def search_minutes(search_plan, stage: str, t_final: float, dt: float, us_per_step: float) -> int:
+    """Minutes a cluster job of a search stage may take: a ``filter`` job runs
+    ``candidates_per_job`` orbits to the filter's end per statement scene, a ``score`` job
+    ``lanes`` orbits to ``t_final``."""
+    from chainchaos.paper.statements import statement_scenes
+
+    filtering = stage == "filter"
+    orbits = search_plan.candidates_per_job if filtering else search_plan.lanes
+    end = search_plan.filter_t_final if filtering else t_final
+    return cluster_minutes(len(statement_scenes()) * orbits, end, dt, us_per_step)
+
+
+def study_spec(study) -> dict:
+    """The keys of a study as its jobs see them (a changed key reruns them)."""
+    return {"name": study.name, **study.spec}
+
+
+def group_spec(study) -> dict:
+    """The keys of a study its groups' numbers depend on, with the title their files state: a
+    changed figure, comparison or law reruns no group."""
+    from chainchaos.studies.study.runs import numbers_spec
+
+    return {"name": study.name, "title": study.spec["title"], **numbers_spec(study)}
+
+
+def rejudge_files(config: dict, search_full_plan, n_candidates: int, stage: str) -> list[str]:
+    """The stage files (``filter`` or ``score``) of re-judging the kept full search of
+    ``n_candidates`` candidates for the statements config ``rejudge`` names, kept beside the
+    archive (``<archive dir>/rejudge/<stage>/<k>.nc``)."""
+    from chainchaos.studies.search import rejudge
+
+    search_plan = search_full_plan
+    if stage == "filter":
+        search_plan = rejudge.filter_plan(search_plan, rejudge.check_ids(config.get("rejudge") or []))
+    root = Path(config["search"]["archive"]).parent / "rejudge" / stage
+    return [str(root / f"{k:03d}.nc") for k in range(search_jobs(search_plan, stage, n_candidates))]
