@@ -9,6 +9,8 @@
 #
 # Each is resumable: commit what a stopped run finished and run the same command again.
 
+import re
+
 
 rule keep:
     """The kept files of what config `keep` names."""
@@ -61,8 +63,8 @@ if KEEP == "disorder_full":
 
 # Re-judging the kept full search when the code that judges some statements changed: only those
 # statements' scenes are integrated again (chainchaos.studies.search.rejudge), in resumable jobs
-# whose files are kept beside the archive (commit them as they finish); the result replaces the
-# archive, after which that directory can go. The stages read the archive they replace, so it is
+# whose files are kept beside the archive (commit them as they finish; only those not kept yet
+# have a rule); the result replaces the archive, after which that directory can go. The stages read the archive they replace, so it is
 # a parameter of theirs, not an input (it would be a cycle).
 if KEEP == "search_rejudge":
 
@@ -70,6 +72,8 @@ if KEEP == "search_rejudge":
         """Stage 1 again on the re-judged statements' scenes, for a group of the kept candidates."""
         output:
             result=rejudge_file("filter", "{group}.nc"),
+        wildcard_constraints:
+            group=plan.still_to_make(rejudge_files("filter")),
         params:
             **rejudge_params(),
         log:
@@ -87,6 +91,8 @@ if KEEP == "search_rejudge":
             filters=[ancient(f) for f in rejudge_files("filter")],
         output:
             result=rejudge_file("score", "{rank}.nc"),
+        wildcard_constraints:
+            rank=plan.still_to_make(rejudge_files("score")),
         params:
             **rejudge_params(),
         log:
@@ -117,8 +123,9 @@ if KEEP == "search_rejudge":
             "../scripts/search_rejudge.py"
 
 
-# A study's groups, each computed straight into its kept file (no kernel flag among its inputs:
-# a kept group is then never redone because a fresh clone compiles its kernels).
+# A study's groups, each computed straight into its kept file; only the groups not kept yet have
+# a rule (plan.still_to_make), and it has no kernel flag among its inputs: a kept group is never
+# redone because a fresh clone compiles its kernels or checked it out before its script.
 if KEEP not in (None, *plan.KEPT_PRODUCTS):
 
     rule keep_study_group:
@@ -129,6 +136,7 @@ if KEEP not in (None, *plan.KEPT_PRODUCTS):
             group=str(Path(config["kept_studies"], "{study}", "groups", "{group}.nc")),
         wildcard_constraints:
             study=re.escape(KEEP),
+            group=plan.still_to_make(kept_targets(None)),
         params:
             spec=lambda wildcards: plan.group_spec(study_of(wildcards.study)),
         log:

@@ -453,3 +453,16 @@ def rejudge_files(config: dict, search_full_plan, n_candidates: int, stage: str)
         search_plan = rejudge.filter_plan(search_plan, rejudge.check_ids(config.get("rejudge") or []))
     root = Path(config["search"]["archive"]).parent / "rejudge" / stage
     return [str(root / f"{k:03d}.nc") for k in range(search_jobs(search_plan, stage, n_candidates))]
+
+
+def still_to_make(paths) -> str:
+    """A wildcard constraint that matches the stems of those of ``paths`` that do not exist yet
+    (``(?!)``, which matches nothing, when all exist).
+
+    The rules that make kept files take it for the wildcard that numbers them: a file kept
+    already then has no rule that makes it, so no run redoes it, whatever its checkout time says
+    against the rule's script (Snakemake reruns a job whose output is older than its script)."""
+    import re
+
+    stems = [Path(p).stem for p in paths if not Path(p).exists()]
+    return "|".join(re.escape(s) for s in stems) or "(?!)"
