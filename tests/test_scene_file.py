@@ -76,10 +76,10 @@ def _scenes(model, energies, observables=("mlce",)):
 def test_scene_batches_fill_blocks_and_leave_a_few_scenes_to_the_single_engine():
     scenes = {**_scenes("hertz", [0.25, 0.5, 1.8, 3.0, 4.0, 6.0]), **_scenes("fput", [0.5, 1.0, 2.0])}
     hertz, fput = list(scenes)[:6], list(scenes)[6:]
-    # two scenes beyond a block of four: one batch each (the single engine, jobs side by side)
+    # two scenes beyond a job of four: one job each (the single engine, jobs side by side)
     assert scene_batches(scenes, 4, 2) == {"hertz_1": hertz[:4], "hertz_2": [hertz[4]], "hertz_3": [hertz[5]],
                                            "fput_1": fput}
-    # more left over than the single engine takes: a padded block
+    # more left over than `singles`: one job, a padded block
     assert scene_batches(scenes, 4, 1) == {"hertz_1": hertz[:4], "hertz_2": hertz[4:], "fput_1": fput}
     assert scene_batches(scenes, 8, 0) == {"hertz_1": hertz, "fput_1": fput}
     assert scene_batches(scenes, 8, 3) == {"hertz_1": hertz, "fput_1": [fput[0]], "fput_2": [fput[1]],
@@ -89,6 +89,6 @@ def test_scene_batches_fill_blocks_and_leave_a_few_scenes_to_the_single_engine()
     assert scene_batches(gali, 8, 4) == {"hertz_1": list(gali)}
 
 
-def test_scene_batches_name_a_bad_remainder():
-    with pytest.raises(ParameterError, match="serial_remainder.*-1"):
+def test_scene_batches_name_a_bad_count():
+    with pytest.raises(ParameterError, match="single_scenes.*-1"):
         scene_batches(_scenes("fput", [0.5]), 8, -1)

@@ -75,27 +75,28 @@ def batch_key(params: SceneParameters) -> tuple:
     return tuple(getattr(params, key) for key in BATCH_KEYS)
 
 
-def scene_batches(scenes: dict[str, SceneParameters], lanes: int, serial_remainder: int = 0) -> dict[str, list[str]]:
-    """The scenes (by name, in order) that run together: those sharing ``BATCH_KEYS``, at most
-    ``lanes`` at a time (one SIMD block of the batch engine), named ``<model>_<n>``. A group's
-    last scenes beyond whole blocks, if at most ``serial_remainder`` and none needs several
-    deviation vectors (which only the batch engine carries), go one per batch: each then runs on
-    the single-trajectory engine, which costs less than a block that is mostly padding
-    (``batch.SERIAL_REMAINDER``), and the batches run as jobs side by side."""
-    require(int(lanes) >= 1, "lanes", lanes, "an integer >= 1")
-    require(int(serial_remainder) >= 0, "serial_remainder", serial_remainder, "an integer >= 0")
-    lanes = int(lanes)
+def scene_batches(scenes: dict[str, SceneParameters], per_job: int, singles: int = 0) -> dict[str, list[str]]:
+    """The scenes (by name, in order) that run together in one job: those sharing ``BATCH_KEYS``,
+    at most ``per_job`` at a time, named ``<model>_<n>`` (the batch engine packs a job's scenes
+    into its SIMD lanes). A group's last scenes beyond whole jobs, if at most ``singles`` and none
+    needs several deviation vectors (which only the batch engine carries), go one per job: each
+    then runs on the single-trajectory engine, which costs less than a mostly padded block, and
+    the jobs run side by side. Counts, not the machine's SIMD width: the same scenes give the same
+    jobs on every CPU, and every scene the same numbers in any job."""
+    require(int(per_job) >= 1, "scene_batches.scenes_per_job", per_job, "an integer >= 1")
+    require(int(singles) >= 0, "scene_batches.single_scenes", singles, "an integer >= 0")
+    per_job = int(per_job)
     several_vectors = needing(SPECTRUM) | needing(ALIGNMENT)
     groups: dict[tuple, list[str]] = {}
     for name, params in scenes.items():
         groups.setdefault(batch_key(params), []).append(name)
     batches, count = {}, {}
     for key, names in groups.items():
-        whole = len(names) // lanes * lanes
-        chunks = [names[start:start + lanes] for start in range(0, whole, lanes)]
+        whole = len(names) // per_job * per_job
+        chunks = [names[start:start + per_job] for start in range(0, whole, per_job)]
         rest = names[whole:]
-        if rest and len(rest) <= int(serial_remainder) and not any(several_vectors & set(scenes[n].observables)
-                                                                   for n in rest):
+        if rest and len(rest) <= int(singles) and not any(several_vectors & set(scenes[n].observables)
+                                                          for n in rest):
             chunks += [[name] for name in rest]
         elif rest:
             chunks.append(rest)
