@@ -157,3 +157,7 @@ def test_the_run_summary_names_the_archived_disorder_statistics_it_read(tmp_path
                                            "data/disorder/disorder_full.nc (the archived full disorder statistics)")
     assert rows["scenes"] == "SRKN6b at dt = 0.0005, to t = 10^5" and rows["claims"] == "1 differs, 2 reproduced"
     assert "200000 seeds scanned, 2392 candidates passed the linear rule, 64 scored" in rows["chain chosen by"]
+    # the environment's row only when the task was given the lock (its optional input)
+    assert "environment" not in rows
+    status = "equals requirements/lock.txt (122 packages)"
+    assert summary_rows(chain, scene, scan, disorder, str(claims), status)[-1] == ("environment", status)

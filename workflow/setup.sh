@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
 # Set up a fresh machine from the project's own files: the Python package with the workflow, test and
-# docs extras, and (as root, from Debian's packages) the TeX system that builds the manuscript and
-# the Chromium that the browser tests drive.
+# docs extras at the locked versions, and (as root, from Debian's packages) the TeX system that
+# builds the manuscript and the Chromium that the browser tests drive.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-python -m pip install --quiet --disable-pip-version-check -e ".[workflow,test,docs]"
+# The exact versions of requirements/lock.txt, each wheel checked against its hash, so that every
+# machine runs the same libraries (requirements/README.md: how the lock is made and updated).
+python -m pip install --quiet --disable-pip-version-check --require-hashes -r requirements/lock.txt
+# The package itself: its dependencies are the locked ones above, so pip must not resolve them again.
+python -m pip install --quiet --disable-pip-version-check --no-deps -e .
 # TeX for the manuscript; Chromium for the tests that open the report and the docs in a browser.
 debian_packages="texlive-latex-base texlive-latex-recommended texlive-publishers latexmk poppler-utils chromium"
 if ! command -v latexmk >/dev/null || ! command -v pdftotext >/dev/null || ! kpsewhich revtex4-2.cls >/dev/null 2>&1 \

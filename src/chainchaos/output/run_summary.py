@@ -37,9 +37,11 @@ def _chain_rows(chain) -> list[tuple[str, str]]:
     return rows
 
 
-def summary_rows(chain, scene, energy_scan, disorder, claims_csv: str) -> list[tuple[str, str]]:
+def summary_rows(chain, scene, energy_scan, disorder, claims_csv: str,
+                 environment: str | None = None) -> list[tuple[str, str]]:
     """(what, value) rows: the chain and how it was chosen, the scenes' integration, the energy
-    scan's and the disorder statistics' sizes and sources, the claims' verdicts."""
+    scan's and the disorder statistics' sizes and sources, the claims' verdicts and, when given,
+    whether the environment is the locked one (``chainchaos.output.environment.lock_status``)."""
     rows = _chain_rows(chain)
     s = scene.attrs
     rows.append(("scenes", f"{s['integrator']} at dt = {plain_number(s['dt'])}, to t = {plain_time(float(s['t_final']))}"))
@@ -54,6 +56,8 @@ def summary_rows(chain, scene, energy_scan, disorder, claims_csv: str) -> list[t
     with open(claims_csv, newline="") as f:
         verdicts = Counter(row["verdict"] for row in csv.DictReader(f))
     rows.append(("claims", ", ".join(f"{n} {v}" for v, n in sorted(verdicts.items()))))
+    if environment is not None:
+        rows.append(("environment", environment))
     return rows
 
 
