@@ -8,6 +8,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import netCDF4
 import numpy as np
 import pytest
 import xarray as xr
@@ -15,6 +16,7 @@ import yaml
 
 from chainchaos.errors import KeptFileError
 from chainchaos.output import kept
+from chainchaos.output.io import write_netcdf
 from chainchaos.studies.scan import runs
 from chainchaos.studies.search import archive
 from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION
@@ -124,6 +126,109 @@ def test_a_stamp_leaves_every_variable_as_it_is(tmp_path):
     ds = xr.load_dataset(path)
     assert ds["x"].values.tobytes() == np.array([0.1, np.nan, 3.0]).tobytes() and ds.attrs["title"] == "t"
     assert kept.read_key(path, "remake") == ({"a": 1}, 2)
+
+
+# ---- the checksum of a kept file's data: a file damaged inside its data is named -----------------
+
+REMAKE = "snakemake --cores 2 keep --config keep=search_full"
+
+
+def small_kept_file(path, sealed=True) -> xr.Dataset:
+    """A small kept file (floats with a NaN, integers, strings, a scalar, a coordinate) with the
+    settings ``{"a": 1}``: written as the workflow writes kept files (compressed, with the checksum
+    of its data), or else by xarray as it is (uncompressed, no checksum)."""
+    ds = xr.Dataset({"x": ("i", np.array([0.1, np.nan, 3.0])), "n": ("i", np.arange(3, dtype=np.int32)),
+                     "name": ("i", np.array(["a", "bé", ""], dtype=object)), "t": ((), 2.5)},
+                    coords={"i": np.array([10, 20, 30], dtype=np.int32)},  # the dtype write_netcdf gives it
+                    attrs={"title": "t", **kept.kept_attrs({"a": 1}, 1)})
+    if sealed:
+        write_netcdf(ds, path, seal=True)
+    else:
+        ds.to_netcdf(path, engine="netcdf4")
+    return ds
+
+
+def one_line_naming(error, path, what: str) -> None:
+    message = str(error.value)
+    assert "\n" not in message and message.startswith(f"kept file {path}") and what in message, message
+    assert f"restore it with 'git checkout -- {path}', or delete it and remake it with '{REMAKE}'" in message
+
+
+def test_the_checksum_is_that_of_the_data_not_of_the_attributes(tmp_path):
+    sealed, plain = tmp_path / "sealed.nc", tmp_path / "plain.nc"
+    ds = small_kept_file(sealed)
+    small_kept_file(plain, sealed=False)  # the same data, uncompressed
+    checksum = kept.data_checksum(sealed)
+    assert xr.load_dataset(sealed).attrs[kept.DATA_ATTR] == checksum == kept.data_checksum(plain)
+    assert kept.check_data(sealed, REMAKE) is True
+    assert xr.load_dataset(sealed).drop_attrs().identical(ds.drop_attrs())
+    kept.stamp(sealed, {"b": 2}, 3)  # another key, and sealed again: the data and their checksum as they were
+    assert kept.data_checksum(sealed) == checksum and kept.check_data(sealed, REMAKE)
+    assert kept.read_key(sealed, REMAKE) == ({"b": 2}, 3)
+    kept.seal(plain)
+    assert xr.load_dataset(plain).attrs[kept.DATA_ATTR] == checksum
+    other = tmp_path / "other.nc"
+    ds["x"].values[0] = 0.2
+    ds.to_netcdf(other, engine="netcdf4")
+    assert kept.data_checksum(other) != checksum
+
+
+def test_a_file_altered_inside_its_data_stops_with_one_line(tmp_path):
+    path = tmp_path / "search_full.nc"
+    small_kept_file(path)
+    with netCDF4.Dataset(path, "a") as nc:  # one value changed, its header intact
+        nc["n"][1] = 7
+    assert kept.read_key(path, REMAKE) == ({"a": 1}, 1)  # what the workflow reads while it is parsed
+    with pytest.raises(KeptFileError) as error:
+        kept.check_data(path, REMAKE)
+    one_line_naming(error, path, "its data do not match the checksum it records (kept_data_checksum)")
+
+
+def test_a_truncated_or_undecodable_file_stops_with_one_line(tmp_path):
+    path = tmp_path / "search_full.nc"
+    rng = np.random.default_rng(1)  # a compressed variable filling the middle of the file
+    write_netcdf(xr.Dataset({"x": ("i", rng.random(100_000))}, attrs=kept.kept_attrs({"a": 1}, 1)), path, seal=True)
+    data = bytearray(path.read_bytes())
+    data[len(data) // 2] ^= 0xFF
+    path.write_bytes(data)
+    with pytest.raises(KeptFileError) as error:
+        kept.check_data(path, REMAKE)
+    one_line_naming(error, path, "cannot be read (NetCDF: HDF error in its variable x)")
+    path.write_bytes(data[:len(data) // 2])
+    with pytest.raises(KeptFileError) as error:
+        kept.check_data(path, REMAKE)
+    one_line_naming(error, path, "cannot be read (NetCDF: HDF error)")
+
+
+def test_a_kept_file_without_a_checksum_stops_and_a_result_is_not_checked(tmp_path):
+    unsealed, result = tmp_path / "unsealed.nc", tmp_path / "result.nc"
+    small_kept_file(unsealed, sealed=False)
+    with pytest.raises(KeptFileError) as error:
+        kept.check_data(unsealed, REMAKE)
+    one_line_naming(error, unsealed, "records no kept_data_checksum")
+    xr.Dataset({"x": ("i", [1.0])}).to_netcdf(result)
+    assert kept.check_data(result, REMAKE) is False
+
+
+def test_a_job_that_reads_a_damaged_kept_file_stops_with_one_line(tmp_path):
+    """merge_disorder with the kept disorder statistics as its input: the job stops, naming them."""
+    from chainchaos.workflow.tasks.scan import merge_disorder
+
+    damaged = tmp_path / "disorder_full.nc"
+    damaged.write_bytes(DISORDER_ARCHIVE.read_bytes())
+    with netCDF4.Dataset(damaged, "a") as nc:
+        nc["energy"][0] = -1.0  # an energy the grid does not hold
+    merged = tmp_path / "disorder_statistics.nc"
+    with pytest.raises(KeptFileError, match=f"^kept file {re.escape(str(damaged))}: its data do not match") as error:
+        merge_disorder({"archive": str(damaged)}, {"merged": str(merged)}, {}, {})
+    assert "keep=disorder_full" in str(error.value) and not merged.exists()
+
+
+def test_every_kept_file_of_the_repository_records_the_checksum_of_its_data():
+    paths = sorted((ROOT / "data").rglob("*.nc"))
+    assert SEARCH_ARCHIVE in paths and DISORDER_ARCHIVE in paths
+    for path in paths:
+        assert kept.check_data(path, REMAKE) is True, path
 
 
 # ---- the pipeline: `all` uses an archive only when its key is the run's ------------------------

@@ -10,7 +10,7 @@ import numpy as np
 import xarray as xr
 
 from chainchaos.errors import ChainFileError
-from chainchaos.output import cf
+from chainchaos.output import cf, kept
 from chainchaos.output.provenance import provenance_attrs
 from chainchaos.system.chain import GENERATOR, Chain
 from chainchaos.system.linear import mode_energy_density, normal_modes, participation_number
@@ -37,12 +37,30 @@ def atomic_output(path):
         raise
 
 
-def write_netcdf(ds: xr.Dataset, path) -> Path:
+def write_netcdf(ds: xr.Dataset, path, seal: bool = False) -> Path:
     """Write ``ds`` to ``path`` atomically, zlib-compressed, in the CF and ACDD conventions of
-    chainchaos.output.cf (the same values; ``ds`` itself is not changed)."""
+    chainchaos.output.cf (the same values; ``ds`` itself is not changed).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The data and attributes to write.
+    path : str or Path
+        The file to write (replaced when it exists).
+    seal : bool, optional
+        Also record the checksum of the data as written (``chainchaos.output.kept.DATA_ATTR``),
+        before the file appears: for a kept file, whose key ``ds`` carries.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     out, encoding = cf.encoded(ds)
     with atomic_output(path) as tmp:
         out.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
+        if seal:
+            kept.record_checksum(tmp)
     return Path(path)
 
 

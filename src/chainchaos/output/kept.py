@@ -13,14 +13,20 @@ question with the same code. So every kept file records three global attributes:
     the SHA-256 of that JSON (:func:`digest`): equal digests, equal settings;
 ``result_version``
     an integer of the code that computes the result, bumped only when a change of code changes its
-    numbers (a bit-identity test tells).
+    numbers (a bit-identity test tells);
+``kept_data_checksum``
+    the SHA-256 of its data (:func:`data_checksum`), written once the data are (:func:`seal`, or
+    ``chainchaos.output.io.write_netcdf(..., seal=True)``): a file damaged inside its data, whose
+    header still reads, is caught by :func:`check_data` in the job that reads it.
 
 :func:`why_not_usable` compares a file with the settings a run would compute it with and the
 code's current result version, and says in one line why the file may not stand in for the
-computation (or ``None`` when it may). A file that cannot be read, or that records no settings,
-raises :class:`~chainchaos.errors.KeptFileError`, whose one line names the file, what is wrong and
-how to restore or remake it. What a result's settings are is said next to the code that computes
-it (``studies.search.archive.search_settings``, ``studies.scan.runs.disorder_settings``).
+computation (or ``None`` when it may); it reads the header only, so that the workflow can decide
+while it is parsed. A file that cannot be read, that records no settings, or (:func:`check_data`)
+whose data do not match their checksum raises :class:`~chainchaos.errors.KeptFileError`, whose one
+line names the file, what is wrong and how to restore or remake it. What a result's settings are
+is said next to the code that computes it (``studies.search.archive.search_settings``,
+``studies.scan.runs.disorder_settings``).
 """
 
 import hashlib
@@ -30,11 +36,14 @@ import shutil
 import tempfile
 from pathlib import Path
 
+import numpy as np
+
 from chainchaos.errors import KeptFileError
 
 SETTINGS_ATTR = "kept_settings"
 DIGEST_ATTR = "kept_settings_digest"
 VERSION_ATTR = "result_version"
+DATA_ATTR = "kept_data_checksum"
 
 
 def canonical(value):
@@ -78,6 +87,15 @@ def _remedy(path, remake: str) -> str:
     return f"restore it with 'git checkout -- {path}', or delete it and remake it with '{remake}'"
 
 
+# what netCDF4 raises for a file it cannot open, or a variable whose bytes HDF5 cannot decode
+_READ_ERRORS = (OSError, RuntimeError, ValueError)
+
+
+def _unreadable(path, err: Exception, remake: str, where: str = "") -> KeptFileError:
+    reason = getattr(err, "strerror", None) or str(err)  # netCDF4: "NetCDF: HDF error", without the path
+    return KeptFileError(f"kept file {path} cannot be read ({reason}{where}); {_remedy(path, remake)}")
+
+
 def read_key(path, remake: str) -> tuple[dict, int]:
     """The settings and result version a kept file records.
 
@@ -89,9 +107,8 @@ def read_key(path, remake: str) -> tuple[dict, int]:
     try:
         with netCDF4.Dataset(path) as nc:
             attrs = {name: nc.getncattr(name) for name in nc.ncattrs()}
-    except (OSError, RuntimeError, ValueError) as err:
-        reason = getattr(err, "strerror", None) or str(err)  # netCDF4: "NetCDF: HDF error", without the path
-        raise KeptFileError(f"kept file {path} cannot be read ({reason}); {_remedy(path, remake)}") from None
+    except _READ_ERRORS as err:
+        raise _unreadable(path, err, remake) from None
     missing = [key for key in (SETTINGS_ATTR, DIGEST_ATTR, VERSION_ATTR) if key not in attrs]
     if missing:
         raise KeptFileError(f"kept file {path} records no {' / '.join(missing)} (made before kept results were "
@@ -167,21 +184,174 @@ def why_not_usable(path, settings: dict, version: int, remake: str, keys=None) -
     return f"kept file {path}: {key} is {_shown(a)} in the file, {_shown(b)} in this run"
 
 
-def stamp(path, settings: dict, version: int) -> None:
-    """Write the key (:func:`kept_attrs`) into the global attributes of the NetCDF file ``path``,
-    leaving its variables byte for byte as they are: the attributes are set on a copy, which then
-    replaces the file (an interrupted stamp leaves the file as it was)."""
+def _hash_variable(sha, name: str, var) -> None:
+    """Add the netCDF4 variable ``var`` named ``name`` to the SHA-256 ``sha`` (:func:`data_checksum`)."""
+    var.set_auto_maskandscale(False)  # the stored values, not their CF decoding
+    var.set_auto_chartostring(False)
+    if var.dtype is str:  # variable-length strings: each one's UTF-8 bytes after its length
+        texts = [text.encode("utf-8") for text in np.asarray(var[...], dtype=object).ravel()]
+        dtype, payload = "str", b"".join(len(t).to_bytes(8, "little") + t for t in texts)
+    else:
+        values = np.ascontiguousarray(var[...], dtype=np.dtype(var.dtype).newbyteorder("<"))
+        dtype, payload = values.dtype.str, values.tobytes()
+    header = "\0".join([name, dtype, ",".join(map(str, var.shape)), str(len(payload))]) + "\0"
+    sha.update(header.encode("utf-8"))
+    sha.update(payload)
+
+
+def data_checksum(path) -> str:
+    """The SHA-256 (hex) of the data of the NetCDF file ``path``: what :data:`DATA_ATTR` records.
+
+    The data are the values every variable of the root group (coordinates included) holds, as
+    netCDF4 reads them with its decoding turned off (no masking, scaling or joining of characters
+    into strings): the stored values, after HDF5 has undone compression and shuffling, and not a
+    library's CF decoding, which may change with its version. For each variable, in sorted name
+    order (by code point), the hash takes its name, its dtype (NumPy's ``dtype.str`` after
+    conversion to little-endian, or ``str`` for variable-length strings), its shape (``3,40``;
+    empty for a scalar) and the length of its bytes, each followed by a NUL byte, then its bytes:
+    the values in C order, little-endian, or for strings each one's UTF-8 bytes preceded by their
+    length as 8 bytes little-endian. Attributes are not part of it, so stamping a key or the
+    checksum itself changes nothing; neither are compression and chunking.
+
+    Parameters
+    ----------
+    path : str or Path
+        A NetCDF-4 file.
+
+    Returns
+    -------
+    str
+        64 hexadecimal digits.
+
+    Raises
+    ------
+    OSError, RuntimeError
+        From netCDF4, for a file or variable it cannot read (``NetCDF: HDF error``).
+    """
     import netCDF4
 
+    sha = hashlib.sha256()
+    with netCDF4.Dataset(path) as nc:
+        for name in sorted(nc.variables):
+            _hash_variable(sha, name, nc.variables[name])
+    return sha.hexdigest()
+
+
+def check_data(path, remake: str) -> bool:
+    """Check that the data of ``path``, when it is a kept file, are those it was kept with.
+
+    A kept file is one that records :data:`SETTINGS_ATTR` (so is a study group this run computed:
+    it is written sealed, to be kept as it is): its data must match the checksum it records
+    (:data:`DATA_ATTR`, :func:`data_checksum`). A file that records no settings is not a kept file
+    (a result computed by this run): only its header is read. A file whose header cannot be read
+    raises, whatever it is. One open of the file, one read of its data: call it where a job reads
+    an input that may be a kept file, before reading it.
+
+    Parameters
+    ----------
+    path : str or Path
+        The file, kept or not.
+    remake : str
+        The command that remakes the kept file, named by the error.
+
+    Returns
+    -------
+    bool
+        True for a kept file whose data match their checksum, False for a file that is not kept.
+
+    Raises
+    ------
+    KeptFileError
+        One line naming the file, what is wrong and how to restore it (``git checkout``) or
+        ``remake`` it: the file cannot be read (its header or one of its variables: ``NetCDF: HDF
+        error``), it is a kept file that records no checksum, or its data do not match it.
+    """
+    import netCDF4
+
+    sha, name = hashlib.sha256(), ""
+    try:
+        with netCDF4.Dataset(path) as nc:
+            attrs = nc.ncattrs()
+            if SETTINGS_ATTR not in attrs:
+                return False
+            recorded = str(nc.getncattr(DATA_ATTR)) if DATA_ATTR in attrs else None
+            for name in sorted(nc.variables):  # data_checksum, naming the variable HDF5 cannot decode
+                _hash_variable(sha, name, nc.variables[name])
+    except _READ_ERRORS as err:
+        raise _unreadable(path, err, remake, f" in its variable {name}" if name else "") from None
+    if recorded is None:
+        raise KeptFileError(f"kept file {path} records no {DATA_ATTR} (kept before kept files recorded the "
+                            f"checksum of their data); {_remedy(path, remake)}")
+    if sha.hexdigest() != recorded:
+        raise KeptFileError(f"kept file {path}: its data do not match the checksum it records ({DATA_ATTR}); "
+                            f"{_remedy(path, remake)}")
+    return True
+
+
+def record_checksum(path) -> None:
+    """Write :func:`data_checksum` into the global attribute :data:`DATA_ATTR` of ``path``, in
+    place: for a file no one reads yet (the temporary file of an atomic write); :func:`seal` one
+    that exists.
+
+    Parameters
+    ----------
+    path : str or Path
+        A NetCDF-4 file, opened for appending.
+    """
+    import netCDF4
+
+    checksum = data_checksum(path)
+    with netCDF4.Dataset(path, "a") as nc:
+        nc.setncattr(DATA_ATTR, checksum)
+
+
+def _amend(path, edit) -> None:
+    """Apply ``edit(copy)`` to a copy of ``path``, which then replaces it: an interrupted edit
+    leaves the file as it was (its bytes, permissions and times are copied first)."""
     path = Path(path)
     with tempfile.NamedTemporaryFile(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp", delete=False) as tmp:
         pass
     tmp = Path(tmp.name)
     try:
-        shutil.copy2(path, tmp)  # bytes and permissions
-        with netCDF4.Dataset(tmp, "a") as nc:
-            for name, value in kept_attrs(settings, version).items():
-                nc.setncattr(name, value)
+        shutil.copy2(path, tmp)
+        edit(tmp)
         tmp.replace(path)
     finally:
         tmp.unlink(missing_ok=True)
+
+
+def seal(path) -> None:
+    """Record the checksum of the data of the NetCDF file ``path`` (:func:`record_checksum`),
+    leaving its variables byte for byte as they are, atomically (on a copy that replaces it).
+
+    Parameters
+    ----------
+    path : str or Path
+        A NetCDF-4 file (sealing it again writes the same checksum, its data being the same).
+    """
+    _amend(path, record_checksum)
+
+
+def stamp(path, settings: dict, version: int) -> None:
+    """Write the key (:func:`kept_attrs`) and the checksum of the data (:data:`DATA_ATTR`) into
+    the global attributes of the NetCDF file ``path``, leaving its variables byte for byte as they
+    are, atomically (on a copy that replaces it).
+
+    Parameters
+    ----------
+    path : str or Path
+        A NetCDF-4 file.
+    settings : dict
+        The settings that determine its numbers.
+    version : int
+        The result version of the code that computed it.
+    """
+    import netCDF4
+
+    def edit(tmp):
+        with netCDF4.Dataset(tmp, "a") as nc:
+            for name, value in kept_attrs(settings, version).items():
+                nc.setncattr(name, value)
+        record_checksum(tmp)
+
+    _amend(path, edit)

@@ -44,6 +44,13 @@ def run_study(source, progress=None) -> xr.Dataset:
         realization, lane, time), the per-orbit verdicts on (model, energy, realization, lane),
         and the statistics on (model, energy[, quantile], time) (``studies.study.statistics``).
 
+    Raises
+    ------
+    KeptFileError
+        For a kept group with this study's settings that cannot be read or whose data do not
+        match the checksum it records (``chainchaos.output.kept.check_data``): the message names
+        it and how to restore it.
+
     Examples
     --------
     >>> from chainchaos import run_study
@@ -53,9 +60,10 @@ def run_study(source, progress=None) -> xr.Dataset:
     >>> dict(ds["participation"].sizes)
     {'model': 1, 'energy': 1, 'realization': 2, 'lane': 1, 'time': 22}
 
-    A group kept in the repository (``data/studies/<name>/groups/``, ``snakemake keep_study``)
-    with this study's settings and the code's result version is read, not integrated again, so
-    ``run_study("kg_weak_chaos")`` returns the kept Klein-Gordon archive in seconds.
+    A group kept in the repository (``data/studies/<name>/groups/``, ``snakemake --cores 2 keep
+    --config keep=<name>``) with this study's settings and the code's result version is read, not
+    integrated again, so ``run_study("kg_weak_chaos")`` returns the kept Klein-Gordon archive in
+    seconds.
     """
     from chainchaos.output import kept
     from chainchaos.studies.study.runs import (
@@ -76,8 +84,9 @@ def run_study(source, progress=None) -> xr.Dataset:
     groups = []
     for g in range(study.n_groups):
         path = kept_group_path(study.name, g)
-        remake = f"snakemake --cores 2 keep_study --config study={study.name}"
+        remake = f"snakemake --cores 2 keep --config keep={study.name}"
         if path.exists() and kept.why_not_usable(path, group_settings(study, g), STUDY_RESULT_VERSION, remake) is None:
+            kept.check_data(path, remake)  # a kept group damaged inside its data: KeptFileError, naming it
             groups.append(xr.load_dataset(path))
         else:
             groups.append(run_group(study, g, group_progress))

@@ -4,6 +4,7 @@ import sys
 
 import xarray as xr
 
+from chainchaos.output import kept
 from chainchaos.output.io import chain_dataset, ensemble_dataset, write_netcdf
 from chainchaos.studies.search import stages as search
 from chainchaos.studies.search.selection import SelectionCriteria, candidate_row
@@ -28,6 +29,8 @@ def select_chain(inputs, outputs, params, wildcards) -> None:
     """The chain file of the realization a search chose (the archived full search's, this run's
     or the pinned seed), with that search's record of the choice."""
     selection = selection_criteria(params)
+    # the kept full search when `all` pins its choice: a damaged one stops this job, naming it
+    kept.check_data(inputs["search"], "snakemake --cores 2 keep --config keep=search_full")
     found = xr.load_dataset(inputs["search"])
     seed = int(found.attrs["chosen_seed"])
     chain = random_chain(seed, selection.alpha, selection.N, float(params["chain"].get("wall_radius", 1.0)))

@@ -34,7 +34,7 @@ def search_full(inputs, outputs, params, wildcards) -> None:
     ds = archive.archive_dataset(xr.load_dataset(merged), archive.job_costs(Path(params["benchmarks"])),
                                  archive.stage_machines(stage_files))
     ds.attrs.update(kept.kept_attrs(archive.search_settings(params), SEARCH_RESULT_VERSION))
-    write_netcdf(ds, target)
+    write_netcdf(ds, target, seal=True)
     print(f"{target}: chose seed {ds.attrs['chosen_seed']} among {ds.sizes['candidate']} candidates; "
           f"{ds.attrs['cost_total_jobs']} jobs, {ds.attrs['cost_total_cpu_seconds'] / 60:.1f} CPU-min", file=sys.stderr)
 
@@ -52,7 +52,7 @@ def disorder_full(inputs, outputs, params, wildcards) -> None:
     ds = archive.archive_dataset(ds, costs, archive.stage_machines(list(inputs["groups"])),
                                  title="Disorder statistics at full scale: delocalization and chaos by two indicators")
     ds.attrs.update(kept.kept_attrs(runs.disorder_settings(params["scan"], params["N"]), runs.DISORDER_RESULT_VERSION))
-    write_netcdf(ds, target)
+    write_netcdf(ds, target, seal=True)
     print(f"{target}: {ds.sizes['realization']} realizations x {ds.sizes['energy']} energies; "
           f"{ds.attrs['cost_total_jobs']} jobs, {ds.attrs['cost_total_cpu_seconds'] / 60:.1f} CPU-min", file=sys.stderr)
 
@@ -68,6 +68,7 @@ def _kept_search(params: dict) -> xr.Dataset:
             "those of this run's full search (re-judging reuses its orbits: remake it with keep=search_full)")
     require(version < SEARCH_RESULT_VERSION, "kept search result_version", version,
             f"older than this code's {SEARCH_RESULT_VERSION} (it is current: nothing to re-judge)")
+    kept.check_data(path, "snakemake --cores 2 keep --config keep=search_full")
     return xr.load_dataset(path)
 
 
@@ -81,6 +82,7 @@ def _stage_files(paths, kept_search: xr.Dataset, ids) -> list[xr.Dataset]:
     for path in as_list(paths):
         why = kept.why_not_usable(path, settings, SEARCH_RESULT_VERSION, remake)
         require(why is None, "re-judging stage file", why, f"one made for this re-judging ({remake})")
+        kept.check_data(path, remake)
     return [xr.load_dataset(p) for p in as_list(paths)]
 
 
@@ -92,7 +94,7 @@ def search_rejudge_filter(inputs, outputs, params, wildcards) -> None:
     group = int(wildcards["group"])
     ds = rejudge.filter_group(_kept_search(params), selection, plan, settings, criteria,
                               rejudge.check_ids(params["rejudge"]), group, site, progress(f"rejudge filter {group}"))
-    write_search_product(ds, params, selection, outputs["result"])
+    write_search_product(ds, params, selection, outputs["result"], seal=True)
 
 
 def search_rejudge_score(inputs, outputs, params, wildcards) -> None:
@@ -108,7 +110,7 @@ def search_rejudge_score(inputs, outputs, params, wildcards) -> None:
     print(f"survivor {rank}: candidate {candidate}", file=sys.stderr)
     ds = rejudge.score_candidate(kept_search, selection, plan, settings, criteria, ids, candidate, site,
                                  progress(f"rejudge score {rank}"))
-    write_search_product(ds, params, selection, outputs["result"])
+    write_search_product(ds, params, selection, outputs["result"], seal=True)
 
 
 def search_rejudge(inputs, outputs, params, wildcards) -> None:
@@ -138,7 +140,7 @@ def search_rejudge(inputs, outputs, params, wildcards) -> None:
     }
     merged.attrs.update(provenance_attrs({"search": params["search"], "selection": vars(selection)}))
     merged.attrs.update(kept.kept_attrs(archive.search_settings(params), SEARCH_RESULT_VERSION))
-    write_netcdf(merged, params["archive"])
+    write_netcdf(merged, params["archive"], seal=True)
     print(f"{params['archive']}: re-judged {', '.join(ids)}; chose seed {merged.attrs['chosen_seed']} "
           f"(was {old.attrs['chosen_seed']}); {costs['total']['jobs']} jobs, "
           f"{costs['total']['cpu_seconds'] / 60:.1f} CPU-min", file=sys.stderr)

@@ -5,7 +5,7 @@ import sys
 
 import xarray as xr
 
-from chainchaos.output import manuscript
+from chainchaos.output import kept, manuscript
 from chainchaos.output.io import atomic_output, read_chain, write_text
 from chainchaos.paper.claims.evaluation import evaluate_claims as measure_claims
 from chainchaos.paper.claims.quantities import taylor_sign_barrier
@@ -39,6 +39,8 @@ def evaluate_claims(inputs, outputs, params, wildcards) -> None:
     ensemble verdicts ``verdict_<scene>`` and the scene files by scene name (``code`` only triggers
     reruns); params: the config blocks ``claims`` and ``simulation``."""
     files = {k: v for k, v in inputs.items() if k != "code"}
+    # the kept full search when `all` uses it: a damaged one stops this job, naming it
+    kept.check_data(files["search_population"], "snakemake --cores 2 keep --config keep=search_full")
     products = {name: xr.load_dataset(files.pop(name)) for name in PRODUCTS}
     chain, ensemble, energy_scan, disorder, search, population = (products[name] for name in PRODUCTS)
     verdicts = {name[len(VERDICT_PREFIX):]: xr.load_dataset(files.pop(name))

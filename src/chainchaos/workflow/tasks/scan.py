@@ -7,6 +7,7 @@ from pathlib import Path
 
 import xarray as xr
 
+from chainchaos.output import kept
 from chainchaos.output.io import read_chain, write_netcdf, write_text
 from chainchaos.studies.scan import merge, thresholds
 
@@ -31,9 +32,10 @@ def merge_disorder(inputs, outputs, params, wildcards) -> None:
     """The disorder statistics' group files on the (model, realization, energy) grid, or the
     archived full disorder statistics (``scan.disorder.archive``) as they are."""
     if "archive" in inputs.keys():
+        kept.check_data(inputs["archive"], "snakemake --cores 2 keep --config keep=disorder_full")
         ds = xr.load_dataset(inputs["archive"])
         # where the numbers come from (ACDD's `source` names the software on every file)
-        ds.attrs["kept_file"] = f"{inputs['archive']} (the archived full disorder statistics, snakemake disorder_full)"
+        ds.attrs["kept_file"] = f"{inputs['archive']} (the archived full disorder statistics, snakemake keep --config keep=disorder_full)"
         print(f"disorder: {inputs['archive']}, {ds.sizes['realization']} realizations x {ds.sizes['energy']} "
               f"energies", file=sys.stderr)
         write_netcdf(ds, outputs["merged"])

@@ -7,6 +7,7 @@ import time
 import numpy as np
 import xarray as xr
 
+from chainchaos.output import kept
 from chainchaos.output.io import read_chain, write_netcdf
 from chainchaos.output.provenance import provenance_attrs
 from chainchaos.paper import statements
@@ -38,9 +39,11 @@ def search_parts(params: dict):
     return (*_plan(params), settings, Criteria.from_config(params.get("claims")), int(params["site"]))
 
 
-def write_search_product(ds, params: dict, selection: SelectionCriteria, path) -> None:
+def write_search_product(ds, params: dict, selection: SelectionCriteria, path, seal: bool = False) -> None:
+    """``ds`` with the search's provenance, written to ``path`` (``seal``: a kept file, with the
+    checksum of its data)."""
     ds.attrs.update(provenance_attrs({"search": params["search"], "selection": vars(selection)}))
-    write_netcdf(ds, path)
+    write_netcdf(ds, path, seal=seal)
 
 
 def as_list(value) -> list:
@@ -110,6 +113,8 @@ def plot_search(inputs, outputs, params, wildcards) -> None:
     from chainchaos.studies.search.plots import plot_search as draw
     from chainchaos.studies.search.plots import plot_search_joint
 
+    # the kept full search when `all` uses it: a damaged one stops this job, naming it
+    kept.check_data(inputs["search"], "snakemake --cores 2 keep --config keep=search_full")
     ds = xr.load_dataset(inputs["search"])
     dpi = int(params.get("dpi", 200))
     draw(ds, outputs["pdf"], outputs["png"], dpi)

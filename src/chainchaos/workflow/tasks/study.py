@@ -7,6 +7,7 @@ from pathlib import Path
 
 import xarray as xr
 
+from chainchaos.output import kept
 from chainchaos.output.io import write_netcdf
 
 
@@ -35,7 +36,7 @@ def study_group(inputs, outputs, params, wildcards) -> None:
                     seconds_per_orbit=elapsed / max(ds.sizes['orbit'], 1))
     print(f"[study {study.name} group {group}] {ds.sizes['orbit']} orbits in {elapsed:.1f} s; "
           f"invalid: {int((ds['valid'] == 0).sum())}", file=sys.stderr)
-    write_netcdf(ds, outputs["group"])
+    write_netcdf(ds, outputs["group"], seal=True)  # it carries its key: kept as it is (keep_study_group)
 
 
 def study_scene(inputs, outputs, params, wildcards) -> None:
@@ -47,6 +48,8 @@ def study_scene(inputs, outputs, params, wildcards) -> None:
     for model in study.models:
         for energy in study.energies:
             if scene_name(model, energy) == f"{wildcards['model']}_H{wildcards['energy']}":
+                for path in inputs["groups"]:  # a damaged kept group stops the job, naming it
+                    kept.check_data(path, f"snakemake --cores 2 keep --config keep={study.name}")
                 # the statistics of this model and energy only (each reads its own orbits)
                 merged = merge_groups(study, [xr.load_dataset(f) for f in inputs["groups"]])
                 ds = with_statistics(study, merged.sel(model=[model], energy=[energy]))
@@ -65,6 +68,8 @@ def study_statistics(inputs, outputs, params, wildcards) -> None:
     from chainchaos.studies.study.statistics import statistics
 
     study = _study(params)
+    for path in inputs["groups"]:  # a damaged kept group stops the job, naming it
+        kept.check_data(path, f"snakemake --cores 2 keep --config keep={study.name}")
     groups = [xr.load_dataset(f) for f in inputs["groups"]]
     merged = merge_groups(study, groups)
     stats = statistics(merged, float(study.spec["criteria"]["slope_window_decades"]))
