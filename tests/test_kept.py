@@ -290,14 +290,31 @@ def test_the_quick_scale_pins_the_archives_chain_unless_the_chain_changes(tmp_pa
                                "not used, computed at the configured scale"]
 
 
-def test_a_truncated_archive_stops_the_run_with_one_line(tmp_path):
+def test_a_truncated_archive_stops_only_the_jobs_that_read_it(tmp_path):
+    """The workflow still plans (one line names the file and its remedy); a target that does not
+    read the file is made; the job that reads it stops with that line, no traceback."""
     truncated = tmp_path / "search_full.nc"
     truncated.write_bytes(SEARCH_ARCHIVE.read_bytes()[:5000])
-    code, out = dry_run("all", "--config", f"results={tmp_path}", f"search={{archive: {truncated}}}")
-    assert code != 0
-    assert (f"kept file {truncated} cannot be read (NetCDF: HDF error); restore it with 'git checkout -- "
-            f"{truncated}', or delete it and remake it with 'snakemake --cores 2 search_full'") in out.splitlines()
+    remedy = (f"kept file {truncated} cannot be read (NetCDF: HDF error); restore it with 'git checkout -- "
+              f"{truncated}', or delete it and remake it with 'snakemake --cores 2 keep --config keep=search_full'")
+    config = ["--configfile", "config/quick.yaml", "--config", f"results={tmp_path}",
+              f"search={{archive: {truncated}}}"]
+    code, out = dry_run(*config, "--", "all")
+    assert code == 0, out[-4000:]
+    assert f"{remedy}; the jobs that read it stop" in out.splitlines()
     assert "OSError" not in out and "Traceback" not in out
+
+    def run(target):
+        done = subprocess.run([sys.executable, "-m", "snakemake", "--cores", "1", "--nolock", *config, "--", target],
+                              cwd=ROOT, capture_output=True, text=True, timeout=300)
+        return done.returncode, done.stdout + done.stderr
+
+    code, out = run(str(tmp_path / "ensemble" / "participation_stats.nc"))
+    assert code == 0, out[-4000:]
+    code, out = run(str(tmp_path / "chain" / "chain.nc"))
+    log = (tmp_path / "logs" / "select_chain" / "run.log").read_text()
+    assert code != 0 and log == f"select_chain: {remedy}\n", log
+    assert not (tmp_path / "chain" / "chain.nc").exists()
 
 
 # ---- bit identity of the kept disorder statistics ----------------------------------------------
@@ -306,7 +323,7 @@ def test_one_disorder_trajectory_recomputed_is_bit_identical_to_the_archive():
     """One trajectory of the kept disorder statistics (one model, realization and energy) at the
     archive's own settings (its kept_settings), run again by today's code: every scalar equal bit
     for bit. A failure means the code now computes other numbers: bump
-    runs.DISORDER_RESULT_VERSION and remake the archive (snakemake --cores 2 disorder_full)."""
+    runs.DISORDER_RESULT_VERSION and remake the archive (snakemake --cores 2 keep --config keep=disorder_full)."""
     ds = xr.load_dataset(DISORDER_ARCHIVE)
     settings, version = kept.read_key(DISORDER_ARCHIVE, "snakemake --cores 2 disorder_full")
     assert version == runs.DISORDER_RESULT_VERSION

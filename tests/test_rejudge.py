@@ -18,7 +18,7 @@ from chainchaos.run.orbits import OrbitSettings
 from chainchaos.studies.search import rejudge
 from chainchaos.studies.search import stages as search
 from chainchaos.studies.search.selection import SelectionCriteria
-from chainchaos.workflow.tasks.search import _stage_files
+from chainchaos.workflow.tasks.keep import _stage_files
 
 IDS = ["spread-level-H1.8-hertz", "eta-H4-fput"]
 SITE = 21

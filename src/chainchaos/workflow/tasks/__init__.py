@@ -19,10 +19,11 @@ import sys
 import traceback
 from collections.abc import Callable
 
-from chainchaos.errors import BuildError
+from chainchaos.errors import BuildError, KeptFileError
 
-#: Errors whose message tells the reader what to do (install TeX, ...): shown without a traceback.
-READER_ERRORS = (BuildError,)
+#: Errors whose message tells the reader what to do (install TeX, restore a kept file): shown
+#: without a traceback.
+READER_ERRORS = (BuildError, KeptFileError)
 
 
 def run(smk, task: Callable[[dict, dict, dict, dict], None]) -> None:
