@@ -104,7 +104,7 @@ def test_a_stage_file_of_another_rejudging_is_not_read(full, tmp_path):
     selection, plan, settings, c, ds = full
     kept = _spoiled(ds, int(np.flatnonzero(ds["scored"].values)[0]))
     path = tmp_path / "000.nc"
-    write_netcdf(rejudge.filter_group(kept, selection, plan, settings, c, IDS, 0, SITE), path)
+    write_netcdf(rejudge.filter_group(kept, selection, plan, settings, c, IDS, 0, SITE), path, seal=True)
     assert _stage_files([path], kept, list(reversed(IDS)))[0]["outcome"].shape[1] == len(statements.STATEMENTS)
     with pytest.raises(ParameterError, match=r"rejudge is \[\"eta-H4-fput\",\"spread-level-H1.8-hertz\"\] in the file"):
         _stage_files([path], kept, IDS[:1])

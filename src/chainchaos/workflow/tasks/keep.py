@@ -77,7 +77,7 @@ def _stage_files(paths, kept_search: xr.Dataset, ids) -> list[xr.Dataset]:
     by code of this result version (``rejudge.stage_settings``)."""
     from chainchaos.studies.search import rejudge
 
-    remake = "delete it and run keep=search_rejudge again"
+    remake = "snakemake --cores 2 keep --config keep=search_rejudge"
     settings = rejudge.stage_settings(kept_search, ids)
     for path in as_list(paths):
         why = kept.why_not_usable(path, settings, SEARCH_RESULT_VERSION, remake)
