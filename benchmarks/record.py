@@ -139,10 +139,10 @@ def pipeline(argv: list[str]) -> dict:
 
 
 def kept_study(argv: list[str]) -> dict:
-    """What a kept study cost (``snakemake keep_study``): per group its wall and CPU seconds (the
-    CPU from the group's Snakemake benchmark file when it is still in results/, else from the
-    group file) and the CPU time per orbit, lattice site and step. Read from the files: nothing
-    is run."""
+    """What a kept study cost (``snakemake --cores 2 keep --config keep=<study>``): per group its
+    wall and CPU seconds (the CPU from the group's Snakemake benchmark file, of the rule
+    keep_study_group, when it is still in results/, else from the group file) and the CPU time per
+    orbit, lattice site and step. Read from the files: nothing is run."""
     import csv
 
     import xarray as xr
@@ -151,7 +151,7 @@ def kept_study(argv: list[str]) -> dict:
 
     ap = argparse.ArgumentParser(prog="record.py kept_study")
     ap.add_argument("study")
-    ap.add_argument("--benchmarks", default=str(ROOT / "results" / "benchmarks" / "study_group"))
+    ap.add_argument("--benchmarks", default=str(ROOT / "results" / "benchmarks" / "keep_study_group"))
     a = ap.parse_args(argv)
     study = load_study(a.study)
     steps = study.settings.t_final / study.settings.dt

@@ -1,5 +1,6 @@
 """The full realization search at a small scale: its stages run as chunks, a killed run resumes
-without redoing a finished chunk, and `snakemake search_full` writes the archive that `all` pins."""
+without redoing a finished chunk, and `snakemake keep --config keep=search_full` writes the archive
+that `all` pins."""
 
 import os
 import signal

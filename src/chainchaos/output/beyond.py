@@ -123,7 +123,7 @@ def body(named: dict[str, xr.Dataset], figures: dict[str, list[str]], missing: t
         f"${tex_scientific(float(ds['energy_error_max'].max()))}$" for name, ds in named.items()) + ".\n")
     if missing:
         out.append("Not kept yet, so not shown: " + ", ".join(f"\\texttt{{{tex_text(m)}}}" for m in missing)
-                   + " (\\texttt{snakemake --cores 2 keep\\_study --config study=<name>}).\n")
+                   + " (\\texttt{snakemake --cores 2 keep --config keep=<name>}).\n")
     for study, names in figures.items():
         for figure in names:
             label = tex_text(study)

@@ -68,7 +68,10 @@ def _alpha(args) -> float:
 
 def _cmd_chain(args) -> None:
     from chainchaos.output.io import chain_dataset, read_radii, write_netcdf
-    from chainchaos.studies.search.selection import SelectionCriteria, select_realization
+    from chainchaos.studies.search.selection import (
+        SelectionCriteria,
+        select_realization,
+    )
     from chainchaos.system.chain import chain_from_radii, random_chain
 
     extra = {}
@@ -136,7 +139,9 @@ def build_parser() -> argparse.ArgumentParser:
     from chainchaos.engine.integrators import SCHEMES
     from chainchaos.observe.registry import OBSERVABLES
     from chainchaos.system.linear import CONVENTIONS
-    from chainchaos.system.models import BEAD_MODELS as MODELS  # the CLI reads bead chain files
+    from chainchaos.system.models import (
+        BEAD_MODELS as MODELS,  # the CLI reads bead chain files
+    )
 
     package = __import__("chainchaos")
     parser = argparse.ArgumentParser(prog="chainchaos", description=package.__doc__,
@@ -214,7 +219,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_bench)
 
     p = sub.add_parser("stamp-search-archive", help="key a full search kept before kept results recorded their settings",
-                       description="Write into an archived full search (snakemake search_full) the settings that "
+                       description="Write into an archived full search (snakemake keep --config keep=search_full) the settings that "
                                    "determine it and its result version (chainchaos.output.kept), read off what "
                                    "the file records and the config/config.yaml of the commit it records; its "
                                    "variables stay byte for byte. Refuses when the statements' code changed since "

@@ -195,8 +195,9 @@ def energy_grid(block: dict) -> np.ndarray:
 
 
 #: Scan kinds whose block extends another's: the full disorder statistics, kept in the repository
-#: (``scan.disorder.archive``, written by ``snakemake disorder_full``), are the disorder statistics
-#: with the keys of ``scan.disorder_full`` (more realizations and energies) in place of its own.
+#: (``scan.disorder.archive``, written by ``snakemake --cores 2 keep --config keep=disorder_full``),
+#: are the disorder statistics with the keys of ``scan.disorder_full`` (more realizations and
+#: energies) in place of its own.
 EXTENDS = {"disorder_full": "disorder"}
 
 

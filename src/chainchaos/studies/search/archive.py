@@ -1,10 +1,10 @@
 """The full realization search kept as data (config ``search.archive``, ``data/search/search_full.nc``).
 
-``snakemake search_full`` runs the search over many more chains than ``all`` does (config block
-``search_full``) and writes its merged result (:func:`stages.merge`) here, with what it cost
-(the jobs' wall and CPU seconds from their Snakemake benchmark files) and the commits and CPUs
-its stages ran on. ``all`` reads the chosen seed and the population of candidates from this file
-and never reruns the search.
+``snakemake --cores 2 keep --config keep=search_full`` runs the search over many more chains
+than ``all`` does (config block ``search_full``) and writes its merged result (:func:`stages.merge`)
+here, with what it cost (the jobs' wall and CPU seconds from their Snakemake benchmark files) and
+the commits and CPUs its stages ran on. ``all`` reads the chosen seed and the population of
+candidates from this file and never reruns the search.
 """
 
 import csv
@@ -39,9 +39,9 @@ def statements_data() -> list[dict]:
 
 def search_settings(params: dict) -> dict:
     """The settings that determine a search's answer (its key as a kept result,
-    ``chainchaos.output.kept``), from the parameters its rules get (workflow/rules/common.smk,
-    ``search_params``): ``search`` (the block with its orbit ``settings``), ``chain`` (with its
-    ``selection``), ``claims`` and ``site``.
+    ``chainchaos.output.kept``), from the parameters its rules get
+    (``chainchaos.workflow.plan.search_params``): ``search`` (the block with its orbit
+    ``settings``), ``chain`` (with its ``selection``), ``claims`` and ``site``.
 
     ``chain``: the linear rule and the seeds it scans (``SelectionCriteria``); ``search``: the
     sizes of the search (``SearchPlan``); ``orbit``: the orbits' integration and sampling
@@ -166,8 +166,8 @@ def stamp_search_archive(path, root=None) -> dict:
     """Key an archived full search made before kept results recorded their settings
     (``chainchaos.output.kept``): its settings from what the file records
     (:func:`recorded_search_params`) and result version 1, written into its global attributes
-    with every variable left byte for byte as it is. Re-runnable: a file already keyed is keyed
-    again with the same settings.
+    with the checksum of its data (``kept.stamp``), every variable left byte for byte as it is.
+    Re-runnable: a file already keyed is keyed again with the same settings.
 
     Refuses (``ValueError``) when the statements' code (:data:`STATEMENT_CODE`) changed since the
     commit the file records, when the file's statements (its variables ``statement``, ``scene``,

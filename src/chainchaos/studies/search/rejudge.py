@@ -18,7 +18,8 @@ scenes of the changed statements are integrated again:
 Every recomputed orbit also decides its scene's unchanged statements, which must equal the kept
 file's (filter outcomes; score fractions, verdicts and median measured values): a difference
 stops the merge (:class:`RejudgeMismatch`), since then the kept file is not what this code
-computes and only a full remake (``snakemake search_full``) is sound.
+computes and only a full remake (``snakemake --cores 2 keep --config keep=search_full``) is
+sound.
 
 The stage files are kept too (the re-judging may take more than a session), so each records its
 key (``output.kept``, :func:`stage_settings`): the kept search it re-judges and the statements

@@ -35,9 +35,9 @@ STUDIES = Path(__file__).resolve().parents[4] / "studies"
 
 
 def kept_group_path(name: str, group: int, root=None) -> Path:
-    """Where group ``group`` of study ``name`` is kept (``snakemake keep_study``):
-    ``<root>/<name>/groups/<group>.nc``, ``root`` by default ``data/studies`` beside the
-    ``studies/`` of :func:`studies_dir` (the workflow's config ``kept_studies``)."""
+    """Where group ``group`` of study ``name`` is kept (``snakemake --cores 2 keep --config
+    keep=<name>``): ``<root>/<name>/groups/<group>.nc``, ``root`` by default ``data/studies``
+    beside the ``studies/`` of :func:`studies_dir` (the workflow's config ``kept_studies``)."""
     root = Path(root) if root is not None else studies_dir().parent / "data" / "studies"
     return root / name / "groups" / f"{group:04d}.nc"
 
