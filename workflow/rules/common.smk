@@ -7,9 +7,9 @@ import re
 from pathlib import Path
 
 from chainchaos.engine.cache import kernel_sources
-from chainchaos.output.report_captions import figure_labels, figure_subcategory, panel_labels
+from chainchaos.output import report_captions
 from chainchaos.paper import panels, statements
-from chainchaos.studies.study.spec import kept_group_path, study_names
+from chainchaos.studies.study.spec import study_names
 from chainchaos.workflow import plan
 from chainchaos.workflow.tasks.chain import selection_criteria
 from chainchaos.workflow.tasks.figures import figure_outputs as figure_files
@@ -41,17 +41,7 @@ def kept_input(decision):
     return ancient(decision.path)
 
 
-# The categories of the HTML report (snakemake --report; captions in workflow/report/).
-REPORT_CATEGORIES = {
-    "run": "This run",
-    "figures": "Paper figures",
-    "claims": "Claims",
-    "scan": "Energy scan and disorder statistics",
-    "search": "Realization search",
-    "numerics": "Numerical accuracy",
-    "indicators": "Chaos indicators",
-    "studies": "Studies",
-}
+REPORT_CATEGORIES = report_captions.CATEGORIES
 
 
 # ---- scenes and figures (simulate.smk, figures.smk) --------------------------------------------
@@ -69,8 +59,12 @@ def figure_outputs(number):
                 path,
                 caption=f"../report/figures/{Path(name).stem}.rst",
                 category=REPORT_CATEGORIES["figures"],
-                subcategory=figure_subcategory(number),
-                labels=panel_labels(panel_id) if panel_id else figure_labels(number),
+                subcategory=report_captions.figure_subcategory(number),
+                labels=(
+                    report_captions.panel_labels(panel_id)
+                    if panel_id
+                    else report_captions.figure_labels(number)
+                ),
             )
         outputs[key] = path
     return outputs
@@ -166,10 +160,6 @@ def study_of(name):
 
 def study_figure_names(name):
     return plan.study_figure_names(study_of(name))
-
-
-def kept_group_file(name, group):
-    return str(kept_group_path(name, group, config["kept_studies"]))
 
 
 def study_group_file(name, group):

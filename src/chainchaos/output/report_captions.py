@@ -23,6 +23,19 @@ from chainchaos.system.models import MODELS, model_label
 ROOT = Path(__file__).resolve().parents[3]
 CAPTIONS = Path("workflow/report/figures")  # fig<N><x>.rst of each panel, fig<N>.rst of each composite
 
+#: The categories of the HTML report (snakemake --report), by kind of result; workflow/report/
+#: workflow.rst links to them by name.
+CATEGORIES = {
+    "run": "This run",
+    "figures": "Paper figures",
+    "claims": "Claims",
+    "scan": "Energy scan and disorder statistics",
+    "search": "Realization search",
+    "numerics": "Numerical accuracy",
+    "indicators": "Chaos indicators",
+    "studies": "Studies",
+}
+
 _MATH = re.compile(r"\$([^$]+)\$")
 
 
