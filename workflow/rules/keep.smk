@@ -28,7 +28,6 @@ if KEEP == "search_full":
             archive=SEARCH_ARCHIVE,
         params:
             **search_params("search_full"),  # the settings that key the archive
-            archive=SEARCH_ARCHIVE,
             benchmarks=result("benchmarks"),
         localrule: True
         log:
@@ -50,7 +49,6 @@ if KEEP == "disorder_full":
         params:
             scan=plan.scan_params("disorder_full", SCAN),
             N=config["chain"]["N"],
-            archive=SCAN["disorder"]["archive"],
             benchmarks=result("benchmarks"),
         localrule: True
         log:

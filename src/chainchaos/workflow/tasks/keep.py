@@ -26,9 +26,7 @@ def search_full(inputs, outputs, params, wildcards) -> None:
     """The full search's merged result, with its cost and provenance, kept at config search.archive
     and keyed by its settings (``archive.search_settings`` of the full search's parameters) and
     result version (``chainchaos.output.kept``)."""
-    target = params.get("archive")
-    require(bool(target), "search.archive", target,
-            "the path of the archived full search (e.g. data/search/search_full.nc)")
+    target = outputs["archive"]
     merged = Path(inputs["search"])
     stage_files = sorted(merged.parent.glob("*/*.nc")) + [merged.parent / "candidates.nc", merged]
     ds = archive.archive_dataset(xr.load_dataset(merged), archive.job_costs(Path(params["benchmarks"])),
@@ -43,9 +41,7 @@ def disorder_full(inputs, outputs, params, wildcards) -> None:
     """The full disorder statistics, with their cost and provenance, kept at config
     ``scan.disorder.archive`` and keyed by their settings (``runs.disorder_settings``) and result
     version (``chainchaos.output.kept``)."""
-    target = params.get("archive")
-    require(bool(target), "scan.disorder.archive", target,
-            "the path of the archived disorder statistics (e.g. data/disorder/disorder_full.nc)")
+    target = outputs["archive"]
     groups = merge.scan_groups([xr.load_dataset(f) for f in inputs["groups"]])
     ds = merge.merge_disorder(groups, params["scan"])
     costs = archive.job_costs(Path(params["benchmarks"]), "disorder_full", stages=("study_group",))
@@ -140,8 +136,8 @@ def search_rejudge(inputs, outputs, params, wildcards) -> None:
     }
     merged.attrs.update(provenance_attrs({"search": params["search"], "selection": vars(selection)}))
     merged.attrs.update(kept.kept_attrs(archive.search_settings(params), SEARCH_RESULT_VERSION))
-    write_netcdf(merged, params["archive"], seal=True)
-    print(f"{params['archive']}: re-judged {', '.join(ids)}; chose seed {merged.attrs['chosen_seed']} "
+    write_netcdf(merged, outputs["archive"], seal=True)
+    print(f"{outputs['archive']}: re-judged {', '.join(ids)}; chose seed {merged.attrs['chosen_seed']} "
           f"(was {old.attrs['chosen_seed']}); {costs['total']['jobs']} jobs, "
           f"{costs['total']['cpu_seconds'] / 60:.1f} CPU-min", file=sys.stderr)
 
