@@ -8,6 +8,7 @@ import xarray as xr
 
 from chainchaos import run_study
 from chainchaos.errors import StudyError
+from chainchaos.studies.study.spec import FIGURE_OBSERVABLES
 from chainchaos.observe import formulas
 from chainchaos.studies.study import statistics as st
 from chainchaos.studies.study.spec import load_study, study_names
@@ -122,6 +123,26 @@ def test_a_wrong_key_is_named_with_what_is_allowed(change, message):
     with pytest.raises(StudyError) as err:
         load_study({**TINY, **change})
     assert message in str(err.value)
+
+
+@pytest.mark.parametrize("figure", sorted(FIGURE_OBSERVABLES))
+def test_a_study_whose_figure_lacks_an_observable_is_refused_before_it_runs(figure):
+    """Each figure a study draws needs its series: without one, the study is refused at once,
+    naming the figure and the observable (the figure job would fail after all the work)."""
+    figures = {"compare_with": ["hertz100"], "figures": []} if figure == "comparison" else {"figures": [figure]}
+    load_study({**TINY, **figures})  # the default observables draw every figure
+    for missing in FIGURE_OBSERVABLES[figure]:
+        observables = [o for o in ("participation", "second_moment", "mlce") if o != missing]
+        with pytest.raises(StudyError) as err:
+            load_study({**TINY, **figures, "observables": observables})
+        assert f"study key figures = '{figure}'" in str(err.value) and f"draws {missing}" in str(err.value)
+
+
+def test_the_default_figures_need_the_default_observables_only():
+    """The issue's study: P and Lambda only, with the default figures, is refused for spreading."""
+    with pytest.raises(StudyError, match="spreading draws second_moment"):
+        load_study({**TINY, "observables": ["participation", "mlce"]})
+    load_study({**TINY, "observables": ["participation", "mlce"], "figures": ["chaos", "fractions"]})
 
 
 def test_a_study_extending_itself_is_named(tmp_path):

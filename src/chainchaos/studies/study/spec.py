@@ -47,10 +47,15 @@ def studies_dir() -> Path:
     has one, else the checkout's :data:`STUDIES`."""
     here = Path.cwd() / "studies"
     return here if here.is_dir() else STUDIES
+
+
 #: A study's standard figures (``studies.study.plots``), by name.
 FIGURES = ("spreading", "chaos", "fractions")
 #: Series every orbit keeps whatever the study asks: P judges delocalization, ln|v| chaos by Lambda.
 JUDGED = ("participation", "log_growth")
+#: The observables each figure draws beyond :data:`JUDGED` (``comparison``: beside other studies).
+FIGURE_OBSERVABLES = {"spreading": ("second_moment",), "chaos": ("mlce",), "fractions": (),
+                      "comparison": ("second_moment", "mlce")}
 
 
 def _defaults(schema: dict, block: dict) -> dict:
@@ -302,6 +307,15 @@ class Study:
                     raise ParameterError("observable", name, f"one of {allowed}")
 
 
+        def figures():
+            drawn = [*self.spec["figures"], *(["comparison"] if self.spec["compare_with"] else [])]
+            for figure in drawn:
+                missing = [name for name in FIGURE_OBSERVABLES[figure] if name not in self.observables]
+                if missing:
+                    raise ParameterError("figures", figure, f"a figure whose series the study computes: {figure} "
+                                         f"draws {', '.join(missing)}, absent from observables {self.observables} "
+                                         "(add it, or name the figures the study draws)")
+
         def laws():
             for fit in self.spec["laws"]["fits"]:
                 needed = "mlce" if fit["series"] == "abs_mlce" else fit["series"]
@@ -327,6 +341,7 @@ class Study:
 
         check("lattice.model", models)
         check("observables", observables)
+        check("figures", figures)
         check("laws.fits", laws)
         check("laws.walls.edge_energy", walls)
         check("lattice.N", lattice)
