@@ -299,3 +299,18 @@ def test_an_extra_deviation_vector_equal_to_the_first_stays_equal_on_kg():
     np.testing.assert_array_equal(b.xq[0], b.dq)
     np.testing.assert_array_equal(b.xp[0], b.dp)
     np.testing.assert_array_equal(b.x_growth[0], b.log_growth)
+
+
+def test_simulate_runs_the_kg_lattice_and_records_its_disorder_strength():
+    """The README's KG scene through chainchaos.simulate (it failed on the bead chain's alpha):
+    the scene file records W, P stays between one site and the lattice, and the energy is kept
+    to the scheme's error."""
+    from chainchaos import SceneParameters, kg_chain, simulate
+
+    ds = simulate(kg_chain(seed=1, W=4.0, N=64), SceneParameters(model="kg", energy=0.4, excited_site=32,
+                                                                  t_final=10.0, dt=0.1,
+                                                                  observables=("participation",)))
+    assert ds.attrs["W"] == 4.0 and "alpha" not in ds.attrs and ds.attrs["model"] == "kg"
+    P = ds["participation"].values
+    assert np.all((P >= 1.0) & (P <= 64.0))
+    assert ds.attrs["max_energy_error"] < 1e-6

@@ -31,6 +31,8 @@ _EXPORTS = {
     "Chain": ("chainchaos.system.chain", "Chain"),
     "chain_from_radii": ("chainchaos.system.chain", "chain_from_radii"),
     "random_chain": ("chainchaos.system.chain", "random_chain"),
+    "KGLattice": ("chainchaos.system.chain", "KGLattice"),
+    "kg_chain": ("chainchaos.system.chain", "kg_chain"),
     "normal_modes": ("chainchaos.system.linear", "normal_modes"),
     "mode_participation": ("chainchaos.system.linear", "mode_participation"),
     "participation_number": ("chainchaos.system.linear", "participation_number"),

@@ -107,6 +107,12 @@ def scene_batches(scenes: dict[str, SceneParameters], per_job: int, singles: int
     return batches
 
 
+def _disorder_attrs(chain) -> dict:
+    """The lattice's disorder strength as the scene file records it: a bead chain's alpha
+    (radii ratio), a KG lattice's W."""
+    return {"W": float(chain.W)} if hasattr(chain, "W") else {"alpha": float(chain.alpha)}
+
+
 def simulate(chain, params: SceneParameters, progress=None) -> xr.Dataset:
     """Integrate one scene and return its Dataset (data contract: docs/conventions.md#scene-file).
 
@@ -196,7 +202,7 @@ def _dataset(chain, params, run: SampledRun, u0, H0) -> xr.Dataset:
         integrator=params.integrator, integrator_order=get_scheme(params.integrator).order,
         t_final=float(times[-1]), K4_sign=float(params.k4_sign), excited_site=int(params.excited_site),
         seed=-1 if chain.seed is None else int(chain.seed), deviation_seed=int(params.deviation_seed),
-        alpha=float(chain.alpha), observables=" ".join(params.observables),
+        **_disorder_attrs(chain), observables=" ".join(params.observables),
         final_energy_error=float(energy_error[-1]), max_energy_error=float(energy_error.max()),
     )
     return ds
