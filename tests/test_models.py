@@ -7,6 +7,8 @@ derivative of its force, its stiffness at rest is the chain's K2 (the common lin
 its parameters fit the engines' rows.
 """
 
+import os
+
 import numpy as np
 import pytest
 from numba import njit
@@ -100,3 +102,68 @@ def test_models_have_distinct_labels_and_colours():
 def test_an_unknown_model_is_refused_by_name():
     with pytest.raises(ParameterError, match="'morse'.*one of"):
         get_model("morse")
+
+
+# ---- a model of one's own: its kernels keyed by its identity, never stale -------------------------
+
+USER_MODEL = '''
+from numba import njit
+from chainchaos.system.models.base import Model
+C = {C}
+
+@njit(cache=True)
+def force(P, left, right):
+    D = left - right
+    return C * D * (P[0] - D * (P[1] - D * P[2]))
+
+@njit(cache=True)
+def force_stiffness(P, left, right):
+    D = left - right
+    return C * D * (P[0] - D * (P[1] - D * P[2])), C * (P[0] - D * (2.0 * P[1] - 3.0 * P[2] * D))
+
+@njit(cache=True)
+def potential(P, left, right):
+    y = right - left
+    return C * y * y * (0.5 * P[0] + y * (P[1] / 3.0 + 0.25 * P[2] * y))
+
+def parameters(chain):
+    return chain.K2, chain.K3, chain.K4
+
+MODEL = Model("mine", "Mine", "#000000", ("K2", "K3", "K4"), parameters, force, force_stiffness, potential)
+'''
+
+USER_RUN = '''
+import sys
+sys.path.insert(0, sys.argv[1])
+from chainchaos import SceneParameters, random_chain, simulate
+from chainchaos.system.models import MODELS
+for module in sys.argv[2:]:
+    MODELS["mine"] = __import__(module).MODEL
+    ds = simulate(random_chain(seed=879, alpha=5.0, N=16), SceneParameters(model="mine", energy=1.0,
+                  excited_site=8, t_final=5.0, dt=0.01, observables=("participation",)))
+    print(repr(float(ds["participation"][-1])))
+'''
+
+
+@pytest.mark.slow
+def test_a_model_of_one_s_own_gets_new_kernels_after_an_edit_and_shares_none_by_name(tmp_path):
+    """Numba's cache keys a compiled engine by its argument types, and a model's type is named by
+    the model's identity (name, kernels' modules, their sources): an edited kernel gives the numbers
+    of a fresh cache, not the old ones, and two models named alike from two modules differ."""
+    import subprocess
+    import sys
+
+    def run(*modules, cache="cache"):
+        env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / cache)}
+        done = subprocess.run([sys.executable, "-c", USER_RUN, str(tmp_path), *modules], env=env,
+                              capture_output=True, text=True, timeout=600, check=True)
+        return [float(x) for x in done.stdout.split()]
+
+    (tmp_path / "mine.py").write_text(USER_MODEL.format(C=1.0))
+    (before,) = run("mine")
+    (tmp_path / "mine.py").write_text(USER_MODEL.format(C=1.5))  # the kernels change, the name stays
+    (after,) = run("mine")
+    (fresh,) = run("mine", cache="fresh")
+    assert after == fresh and after != before
+    (tmp_path / "other.py").write_text(USER_MODEL.format(C=1.0))  # "mine" again, from another module
+    assert run("mine", "other") == [after, before]

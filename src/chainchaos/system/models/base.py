@@ -28,8 +28,11 @@ time (``bond_force`` and the other dispatchers below), so one engine source serv
 and each model gets its own machine code, without a branch on the model in the inner loop.
 """
 
+import hashlib
+import sys
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 from numba import njit, types
@@ -44,8 +47,22 @@ MAX_BOND_PARAMETERS = 3
 #: Rows of site parameters the engines carry: a site law may use up to this many.
 MAX_SITE_PARAMETERS = 2
 
-#: Every Model created, by name: what its Numba type compiles in (``_kernels``).
-_BY_NAME: dict[str, "Model"] = {}
+#: Every Model created, by identity (:attr:`Model.identity`): what its Numba type compiles in
+#: (``_kernels``).
+_BY_IDENTITY: dict[str, "Model"] = {}
+
+
+def _kernel_identity(name: str, kernels) -> str:
+    """``name@modules:digest``: the modules that define ``kernels`` (Numba dispatchers or plain
+    functions) and a SHA-256 of their source files. The Numba type of a model is named by it, so
+    that Numba's on-disk cache, which keys a compiled engine by its argument types, never hands one
+    model the kernels of another of the same name, nor of an earlier version of its own module."""
+    modules = sorted({getattr(getattr(k, "py_func", k), "__module__", None) or "" for k in kernels})
+    digest = hashlib.sha256()
+    for module in modules:
+        source = getattr(sys.modules.get(module), "__file__", None)
+        digest.update(module.encode() + b"\0" + (Path(source).read_bytes() if source else b""))
+    return f"{name}@{','.join(modules)}:{digest.hexdigest()[:16]}"
 
 
 @dataclass(frozen=True, eq=False)
@@ -80,12 +97,17 @@ class Model:
     description: str = ""  # the bond law, one line, for documentation
     site: SiteLaw | None = None  # the on-site potential; None: the beads feel only their bonds
     lattice: str = "beads"  # what ``parameters`` read: a bead Chain ("beads") or a KGLattice ("kg")
+    identity: str = field(init=False, repr=False, default="")  # name, kernels' modules and sources
 
     def __post_init__(self):
         require(0 < len(self.parameter_names) <= MAX_BOND_PARAMETERS, "parameter_names",
                 self.parameter_names, f"1 to {MAX_BOND_PARAMETERS} bond parameters")
         require(self.lattice in LATTICES, "lattice", self.lattice, f"one of {LATTICES}")
-        _BY_NAME[self.name] = self
+        kernels = [self.force, self.force_stiffness, self.potential, *filter(None, [self.opening])]
+        if self.site is not None:
+            kernels += [self.site.force, self.site.force_stiffness, self.site.potential]
+        object.__setattr__(self, "identity", _kernel_identity(self.name, kernels))
+        _BY_IDENTITY[self.identity] = self
 
     @property
     def has_site_law(self) -> bool:
@@ -126,11 +148,13 @@ LATTICES = ("beads", "kg")
 
 
 class ModelType(types.Type):
-    """The Numba type of a :class:`Model`: one per model name, carrying no data at run time."""
+    """The Numba type of a :class:`Model`: one per model identity (its name, and the modules and
+    sources of its kernels), carrying no data at run time."""
 
-    def __init__(self, name: str):
-        self.model_name = name
-        super().__init__(name=f"Model({name})")
+    def __init__(self, identity: str):
+        self.identity = identity
+        self.model_name = identity.partition("@")[0]
+        super().__init__(name=f"Model({identity})")
 
 
 register_model(ModelType)(models.OpaqueModel)
@@ -138,7 +162,7 @@ register_model(ModelType)(models.OpaqueModel)
 
 @typeof_impl.register(Model)
 def _typeof_model(value, context):
-    return ModelType(value.name)
+    return ModelType(value.identity)
 
 
 @unbox(ModelType)
@@ -147,7 +171,7 @@ def _unbox_model(typ, obj, c):
 
 
 def _kernels(model_type) -> Model:
-    return _BY_NAME[model_type.model_name]
+    return _BY_IDENTITY[model_type.identity]
 
 
 @njit(cache=True)
