@@ -32,9 +32,11 @@ search_full:
 """
 
 
-def _snakemake(config: Path, results: Path, *args):
+def _snakemake(config: Path, results: Path, *args, keep: bool = False):
+    """A run with the small config; ``keep``: the run that makes the kept full search."""
     return [sys.executable, "-m", "snakemake", "--cores", "1", "--nolock", *args, "--configfile",
-            "config/quick.yaml", str(config), "--config", f"results={results}", "keep=search_full"]
+            "config/quick.yaml", str(config), "--config", f"results={results}",
+            *(["keep=search_full"] if keep else [])]
 
 
 def _finished(results: Path) -> dict:
@@ -47,7 +49,7 @@ def test_a_killed_full_search_resumes_without_redoing_a_finished_chunk(tmp_path)
     results, archive = tmp_path / "results", tmp_path / "data" / "search_full.nc"
     config = tmp_path / "small.yaml"
     config.write_text(SMALL.format(archive=archive))
-    run = subprocess.Popen(_snakemake(config, results, "keep"), cwd=ROOT, stdout=subprocess.DEVNULL,
+    run = subprocess.Popen(_snakemake(config, results, "keep", keep=True), cwd=ROOT, stdout=subprocess.DEVNULL,
                            stderr=subprocess.DEVNULL, start_new_session=True)
     filters = results / "search_full" / "filter"
     deadline = time.monotonic() + 600
@@ -59,7 +61,7 @@ def test_a_killed_full_search_resumes_without_redoing_a_finished_chunk(tmp_path)
     before = _finished(results)
     assert len([p for p in before if p.parent.name == "filter"]) >= 2 and not archive.exists()
 
-    done = subprocess.run(_snakemake(config, results, "keep", "--rerun-incomplete"), cwd=ROOT,
+    done = subprocess.run(_snakemake(config, results, "keep", "--rerun-incomplete", keep=True), cwd=ROOT,
                           capture_output=True, text=True, timeout=900)
     assert done.returncode == 0, (done.stdout + done.stderr)[-4000:]
     after = _finished(results)

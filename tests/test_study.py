@@ -138,11 +138,13 @@ def test_a_study_whose_figure_lacks_an_observable_is_refused_before_it_runs(figu
         assert f"study key figures = '{figure}'" in str(err.value) and f"draws {missing}" in str(err.value)
 
 
-def test_the_default_figures_need_the_default_observables_only():
-    """The issue's study: P and Lambda only, with the default figures, is refused for spreading."""
+def test_the_default_figures_follow_the_observables():
+    """The issue's study, P and Lambda only with the default figures, draws chaos and fractions
+    (spreading needs m2); naming spreading with those observables is refused."""
+    assert load_study({**TINY, "observables": ["participation", "mlce"]}).spec["figures"] == ["chaos", "fractions"]
+    assert load_study(TINY).spec["figures"] == ["spreading", "chaos", "fractions"]
     with pytest.raises(StudyError, match="spreading draws second_moment"):
-        load_study({**TINY, "observables": ["participation", "mlce"]})
-    load_study({**TINY, "observables": ["participation", "mlce"], "figures": ["chaos", "fractions"]})
+        load_study({**TINY, "observables": ["participation", "mlce"], "figures": ["spreading", "chaos"]})
 
 
 def test_a_study_extending_itself_is_named(tmp_path):
@@ -271,7 +273,7 @@ def test_run_study_reads_a_kept_group_with_its_settings_and_computes_the_others(
     study = study_spec.load_study("kept")
     group = run_group(study, 0)
     group["participation"] = group["participation"] * 2  # marks the kept file's numbers
-    write_netcdf(group, study_spec.kept_group_path("kept", 0))
+    write_netcdf(group, study_spec.kept_group_path("kept", 0), seal=True)
     ds = run_study("kept")
     fresh = run_group(study, 0)["participation"].values[0]
     np.testing.assert_array_equal(ds["participation"].isel(model=0, energy=0, lane=0, realization=0).values, 2 * fresh)

@@ -143,7 +143,11 @@ def load_study(source, root: Path | None = None) -> "Study":
     errors = schema_errors(raw, schema, "study key") or nonfinite_errors(raw, what="study key")
     if errors:
         raise StudyError(errors)
-    study = Study(name, _defaults(schema, raw))
+    spec = _defaults(schema, raw)
+    if "figures" not in raw:  # by default, the standard figures whose series the study computes
+        spec["figures"] = [figure for figure in FIGURES
+                           if all(name in spec["observables"] for name in FIGURE_OBSERVABLES[figure])]
+    study = Study(name, spec)
     study.check()
     return study
 
