@@ -211,7 +211,7 @@ def study_figure_inputs(name):
 def named_study():
     if not NAMED_STUDY:
         raise ValueError(
-            f"this target needs a study: --config study=<name>, one of {study_names()}"
+            f"the target study needs a study: --config study=<name>, one of {study_names()}"
         )
     return NAMED_STUDY
 
