@@ -96,19 +96,27 @@ def _unreadable(path, err: Exception, remake: str, where: str = "") -> KeptFileE
     return KeptFileError(f"kept file {path} cannot be read ({reason}{where}); {_remedy(path, remake)}")
 
 
+def read_header(path, remake: str) -> tuple[dict, dict]:
+    """A kept file's global attributes and dimension sizes, from its header alone.
+
+    Raises :class:`KeptFileError` (one line: the file, why, how to restore it or ``remake`` it)
+    when the header cannot be read."""
+    import netCDF4
+
+    try:
+        with netCDF4.Dataset(path) as nc:
+            return {name: nc.getncattr(name) for name in nc.ncattrs()}, {k: len(d) for k, d in nc.dimensions.items()}
+    except _READ_ERRORS as err:
+        raise _unreadable(path, err, remake) from None
+
+
 def read_key(path, remake: str) -> tuple[dict, int]:
     """The settings and result version a kept file records.
 
     Raises :class:`KeptFileError` (one line: the file, what is wrong, how to restore it or
     ``remake`` it) when the file cannot be read, records no settings, or its digest does not
     match its settings."""
-    import netCDF4
-
-    try:
-        with netCDF4.Dataset(path) as nc:
-            attrs = {name: nc.getncattr(name) for name in nc.ncattrs()}
-    except _READ_ERRORS as err:
-        raise _unreadable(path, err, remake) from None
+    attrs, _ = read_header(path, remake)
     missing = [key for key in (SETTINGS_ATTR, DIGEST_ATTR, VERSION_ATTR) if key not in attrs]
     if missing:
         raise KeptFileError(f"kept file {path} records no {' / '.join(missing)} (made before kept results were "

@@ -87,7 +87,7 @@ def use_kept(path, settings: dict, version: int, remake: str, keys=None) -> Kept
         return Kept(None)
     try:
         why = kept.why_not_usable(path, settings, version, remake, keys)
-        header = _header(path)
+        header = kept.read_header(path, remake)
     except KeptFileError as error:
         print(f"{error}; the jobs that read it stop", file=sys.stderr)
         return Kept(str(path), str(error))
@@ -95,14 +95,6 @@ def use_kept(path, settings: dict, version: int, remake: str, keys=None) -> Kept
         print(f"{why}; not used, computed at the configured scale", file=sys.stderr)
         return Kept(None, why)
     return Kept(str(path), None, *header)
-
-
-def _header(path) -> tuple[dict, dict]:
-    """A NetCDF file's global attributes and dimension sizes, from its header alone."""
-    import netCDF4
-
-    with netCDF4.Dataset(path) as nc:
-        return {name: nc.getncattr(name) for name in nc.ncattrs()}, {k: len(d) for k, d in nc.dimensions.items()}
 
 
 # ---- the paper's scenes and figures --------------------------------------------------------------
