@@ -1,8 +1,9 @@
-"""chainchaos: chaos and Anderson localisation in disordered Hertzian and FPUT chains.
+"""chainchaos: chaos and Anderson localisation in disordered nonlinear chains.
 
-The physics core of the pipeline: disordered chains and their linear modes, the Hertz and FPUT
-bond models, symplectic splitting integrators applied together with their tangent map, and the
-observables of the paper, written as CF-style NetCDF through xarray.
+Disordered lattices and their linear modes; the Hertz, FPUT, Toda and harmonic bead chains, the
+Klein-Gordon lattice and models of your own; symplectic splitting integrators applied together
+with their tangent map; the chaos indicators and spreading observables, written as CF-style NetCDF
+through xarray; and the observables of the paper the pipeline reproduces.
 
 Importing the package sets two process-wide environment variables
 (chainchaos.engine.cache.configure_numba_cache), which Numba reads when it is first imported; a
@@ -45,6 +46,11 @@ _EXPORTS = {
     "run_study": ("chainchaos.studies.study", "run_study"),
     "load_study": ("chainchaos.studies.study.spec", "load_study"),
     "MODELS": ("chainchaos.system.models", "MODELS"),
+    "Model": ("chainchaos.system.models.base", "Model"),
+    "SiteLaw": ("chainchaos.system.models.base", "SiteLaw"),
+    "add_model": ("chainchaos.engine.model_checks", "add_model"),
+    "check_model": ("chainchaos.engine.model_checks", "check_model"),
+    "load_model": ("chainchaos.engine.model_checks", "load_model"),
     "SCHEMES": ("chainchaos.engine.integrators", "SCHEMES"),
     "OBSERVABLES": ("chainchaos.observe.registry", "REGISTRY"),
     "PANELS": ("chainchaos.paper.panels", "PANELS"),

@@ -10,6 +10,7 @@ from chainchaos.engine.cache import kernel_sources
 from chainchaos.output import report_captions
 from chainchaos.paper import panels, statements
 from chainchaos.studies.study.spec import study_names
+from chainchaos.system.models import PACKAGE_MODELS
 from chainchaos.workflow import plan
 from chainchaos.workflow.tasks.chain import selection_criteria
 from chainchaos.workflow.tasks.figures import figure_outputs as figure_files
@@ -71,8 +72,9 @@ def figure_outputs(number):
 
 
 def kernel_flags(models=None):
-    """The flags of compile_kernels for ``models`` (default: the paper's)."""
-    return [result("kernels", f"{m}.txt") for m in (models or panels.models())]
+    """The flags of compile_kernels for ``models`` (default: the paper's); a model of one's own
+    compiles in the first jobs that run it."""
+    return [result("kernels", f"{m}.txt") for m in (models or panels.models()) if m in PACKAGE_MODELS]
 
 
 def earlier_kernel_flags(wildcards):

@@ -91,6 +91,7 @@ for study_with_figures in FIGURE_STUDIES:
         params:
             study=study_with_figures,
             figures=asked_figures(study_with_figures),
+            models=plan.own_models(study_of(study_with_figures)),
             dpi=config["figures"]["dpi"],
         log:
             log_file("plot_study", study_with_figures),

@@ -12,6 +12,7 @@ import numpy as np
 import xarray as xr
 
 from chainchaos.engine.integrators import get_scheme
+from chainchaos.engine.model_checks import load_model
 from chainchaos.errors import require, require_finite_positive
 from chainchaos.observe.registry import (
     ALIGNMENT,
@@ -34,7 +35,10 @@ from chainchaos.system.models import MODELS, get_model
 @dataclass(kw_only=True)
 class SceneParameters(RunSettings):
     """A scene: a model at an energy, its excited bead (1-based), the observables its file holds
-    and its name, integrated and sampled by the ``RunSettings`` it extends."""
+    and its name, integrated and sampled by the ``RunSettings`` it extends.
+
+    ``model`` is a registered name, a ``Model`` of your own or ``"module:NAME"`` / ``"file.py:NAME"``
+    (``engine.model_checks.load_model``: checked and added); it is kept as the model's name."""
 
     model: str
     energy: float
@@ -44,6 +48,7 @@ class SceneParameters(RunSettings):
 
     def __post_init__(self):
         super().__post_init__()
+        self.model = load_model(self.model).name
         require_finite_positive(self, "energy")
         if self.observables is None:
             self.observables = model_observables(self.model)

@@ -25,6 +25,7 @@ given double radii (exact integer arithmetic, chainchaos.engine.exactmath): the 
 import copy
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import ClassVar
 
 import numpy as np
 
@@ -66,6 +67,8 @@ class Chain:
     mass (N,), A, delta, K2, K3 and K4 (N+1 bonds) are correctly rounded (module docstring), each
     bond parameter computed on its first use (the linear rule of the realization search reads K2
     alone, of ten thousand chains); K4 carries the sign ``k4_sign``."""
+
+    kind: ClassVar[str] = "beads"  # the lattice kind of the bead models (models.base.LATTICES)
 
     radius: np.ndarray
     alpha: float
@@ -286,6 +289,8 @@ class KGLattice:
     with fixed ends u_0 = u_{N+1} = 0. ``mass`` (N,) is 1 on every site, ``K2`` (N+1,) the
     harmonic coupling 1/W on every bond (the harmonic bond law's parameter), ``eps`` (N,) the
     on-site linear stiffness (the site law's parameter), ``site_stiffness`` its linear limit."""
+
+    kind: ClassVar[str] = "kg"  # the lattice kind of the KG models (models.base.LATTICES)
 
     eps: np.ndarray
     W: float

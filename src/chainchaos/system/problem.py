@@ -18,8 +18,8 @@ import numpy as np
 
 from chainchaos.engine.integrators import get_scheme
 from chainchaos.errors import require
-from chainchaos.system.chain import KGLattice
 from chainchaos.system.models import get_model, total_energy
+from chainchaos.system.models.base import LATTICES
 
 #: The engines a problem runs on (:meth:`Problem.engine`).
 ENGINES = ("auto", "batch", "single")
@@ -52,9 +52,8 @@ class Problem:
         object.__setattr__(self, "chains", tuple(self.chains))
         get_scheme(self.integrator)
         require(len(self.chains) >= 1, "chains", len(self.chains), "at least one chain")
-        kinds = {"kg" if isinstance(c, KGLattice) else "beads" for c in self.chains}
-        require(kinds == {self.model.lattice}, "chains", sorted(kinds),
-                f"{self.model.lattice!r} lattices for model {self.model.name!r}")
+        wrong = sorted({type(c).__name__ for c in self.chains if getattr(c, "kind", None) != self.model.lattice})
+        require(not wrong, "chains", wrong, f"for model {self.model.name!r}, {LATTICES[self.model.lattice]}")
         Ns = sorted({c.N for c in self.chains})
         require(len(Ns) == 1, "N", Ns, "one N per problem")
         if self.sites is not None:

@@ -1,5 +1,6 @@
-"""Command line: ``chainchaos chain | ensemble | simulate | bench | stamp-search-archive`` and
-``chainchaos --version`` (also ``python -m chainchaos``)."""
+"""Command line: ``chainchaos chain | ensemble | simulate | check-model | bench`` and
+``chainchaos --version`` (also ``python -m chainchaos``); ``stamp-search-archive``, a maintenance
+command of the kept search, is left out of the help."""
 
 import argparse
 import json
@@ -97,22 +98,53 @@ def _cmd_ensemble(args) -> None:
     print(args.out)
 
 
+def _lattice(args, model):
+    """The lattice ``model`` runs on, from the options: a bead chain file (``--chain``), or a KG
+    lattice drawn from ``--seed``, ``--W`` and ``--N``."""
+    from chainchaos.output.io import read_chain
+    from chainchaos.system.chain import kg_chain
+    from chainchaos.system.models.base import LATTICES
+
+    if model.lattice == "kg":
+        if args.chain is not None:
+            raise ParameterError("chain", args.chain, f"no chain file for model {model.name!r}, which runs on "
+                                                      f"{LATTICES['kg']}: give --seed, --W and --N")
+        if args.W is None:
+            raise ParameterError("W", None, f"the disorder strength W of model {model.name!r}'s KG lattice")
+        return kg_chain(args.seed, args.W, args.N)
+    if args.chain is None:
+        raise ParameterError("chain", None, f"a chain file for model {model.name!r} (write one with "
+                                            "'chainchaos chain')")
+    if args.W is not None:
+        raise ParameterError("W", args.W, f"only for a model on a KG lattice, not {model.name!r}")
+    return _read("--chain", read_chain, args.chain)
+
+
 def _cmd_simulate(args) -> None:
-    from chainchaos.output.io import read_chain, write_netcdf
+    from chainchaos.engine.model_checks import load_model
+    from chainchaos.output.io import write_netcdf
     from chainchaos.run.progress import ProgressReporter
     from chainchaos.run.scenes import SceneParameters, simulate
 
+    model = load_model(args.model)
+    chain = _lattice(args, model)
     observables = None if "all" in args.observables else tuple(args.observables)
-    params = SceneParameters(model=args.model, energy=args.energy, t_final=args.t_final, dt=args.dt,
+    params = SceneParameters(model=model.name, energy=args.energy, t_final=args.t_final, dt=args.dt,
                              integrator=args.integrator, observables=observables,
                              excited_site=args.site, k4_sign=args.k4_sign, deviation_seed=args.deviation_seed,
                              samples_per_decade=args.samples_per_decade,
                              max_energy_error=args.max_energy_error, exponents=args.exponents,
                              gali_order=args.gali_order)
-    chain = _read("--chain", read_chain, args.chain)
     ds = simulate(chain, params, progress=ProgressReporter(params.name, params.t_final))
     write_netcdf(ds, args.out)
     print(args.out)
+
+
+def _cmd_check_model(args) -> None:
+    from chainchaos.engine.model_checks import CHECKS, load_model
+
+    model = load_model(args.model)  # runs every check; refuses with the failed one named
+    print(f"model {model.name!r} ({model.identity}) passes: {', '.join(CHECKS)}")
 
 
 def _cmd_bench(args) -> None:
@@ -139,15 +171,16 @@ def build_parser() -> argparse.ArgumentParser:
     from chainchaos.engine.integrators import SCHEMES
     from chainchaos.observe.registry import OBSERVABLES
     from chainchaos.system.linear import CONVENTIONS
-    from chainchaos.system.models import (
-        BEAD_MODELS as MODELS,  # the CLI reads bead chain files
-    )
+    from chainchaos.system.models import MODELS
 
     package = __import__("chainchaos")
-    parser = argparse.ArgumentParser(prog="chainchaos", description=package.__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        prog="chainchaos", description=package.__doc__.split("\n\n")[0],
+        epilog="Environment variables (Numba's cache, the SIMD width): docs/reference/environment.md. "
+               "The paper's pipeline: snakemake --cores 2 all (README.md).")
     parser.add_argument("--version", action="version", version=f"%(prog)s {package.__version__}")
-    sub = parser.add_subparsers(dest="command", required=True)
+    user_commands = "chain,ensemble,simulate,check-model,bench"
+    sub = parser.add_subparsers(dest="command", required=True, metavar=f"{{{user_commands}}}")
 
     p = sub.add_parser("chain", help="write a chain file (NetCDF)",
                        description="Write a chain file from --seed/--alpha, from --radii FILE (one radius "
@@ -183,13 +216,19 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", required=True, type=_output, help="output NetCDF file")
     p.set_defaults(func=_cmd_ensemble)
 
-    p = sub.add_parser("simulate", help="integrate one scene from a chain file",
+    models = ", ".join(MODELS)
+    p = sub.add_parser("simulate", help="integrate one scene of any model",
                        description="Integrate one scene (model, energy) and write its observables as NetCDF. "
-                                   "Progress goes to stderr.")
-    p.add_argument("--chain", required=True, help="chain file written by 'chainchaos chain'")
-    p.add_argument("--model", required=True, choices=sorted(MODELS))
+                                   "A bead model runs on a chain file (--chain), a Klein-Gordon model on the KG "
+                                   "lattice of --seed, --W and --N. Progress goes to stderr.")
+    p.add_argument("--model", required=True, metavar="MODEL",
+                   help=f"a registered model ({models}) or one of your own: module:NAME or file.py:NAME")
+    p.add_argument("--chain", help="bead models: chain file written by 'chainchaos chain'")
+    p.add_argument("--W", type=_positive_float, help="KG models: disorder strength W of the KG lattice")
+    p.add_argument("--seed", type=_integer(0), default=0, help="KG models: seed of the lattice (default 0)")
+    p.add_argument("--N", type=_integer(2), default=40, help="KG models: number of sites (default 40)")
     p.add_argument("--energy", required=True, type=_positive_float, help="total energy H")
-    p.add_argument("--t-final", required=True, type=_positive_float, help="final time (units 1/omega_max)")
+    p.add_argument("--t-final", required=True, type=_positive_float, help="final time, in the model's time unit (docs/conventions.md)")
     p.add_argument("--dt", type=_positive_float, default=5e-4, help="time step (default 5e-4, the paper's)")
     p.add_argument("--integrator", choices=sorted(SCHEMES), default="SRKN6b", help="splitting scheme")
     p.add_argument("--observables", nargs="+", default=["all"], choices=["all", *OBSERVABLES],
@@ -209,6 +248,13 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", required=True, type=_output, help="output NetCDF file")
     p.set_defaults(func=_cmd_simulate)
 
+    p = sub.add_parser("check-model", help="check a model of your own before running it",
+                       description="Run the checks a model passes before the engines run it (force = dV/dD, "
+                                   "stiffness, rest, the vector lanes: chainchaos.engine.model_checks.CHECKS) and "
+                                   "say which one fails.")
+    p.add_argument("model", help="module:NAME or file.py:NAME (or a registered name)")
+    p.set_defaults(func=_cmd_check_model)
+
     p = sub.add_parser("bench", help="nanoseconds per step of the kernel, with and without tangent dynamics")
     p.add_argument("--model", choices=sorted(MODELS), default="hertz")
     p.add_argument("--integrator", choices=sorted(SCHEMES), default="SRKN6b")
@@ -218,7 +264,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true", help="print JSON")
     p.set_defaults(func=_cmd_bench)
 
-    p = sub.add_parser("stamp-search-archive", help="key a full search kept before kept results recorded their settings",
+    p = sub.add_parser("stamp-search-archive",  # maintenance: not in the help's list
                        description="Write into an archived full search (snakemake keep --config keep=search_full) the settings that "
                                    "determine it and its result version (chainchaos.output.kept), read off what "
                                    "the file records and the config/config.yaml of the commit it records; its "

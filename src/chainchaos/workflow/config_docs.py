@@ -76,16 +76,17 @@ def load_yaml(text: str):
 
 def load_schema(path: Path = ROOT / SCHEMA) -> dict:
     """The schema at ``path`` with the registries' names filled in (a copy of its own for each
-    caller; the file is read once per process and version of it)."""
+    caller; the file is read once per process and version of it, the registries as they are now:
+    a model added since is allowed)."""
     path = Path(path).resolve()
-    return copy.deepcopy(_parsed_schema(path, path.stat().st_mtime_ns))
+    schema = copy.deepcopy(_parsed_schema(path, path.stat().st_mtime_ns))
+    _fill_registry_enums(schema, registries())
+    return schema
 
 
 @functools.cache
 def _parsed_schema(path: Path, version: int) -> dict:
-    schema = load_yaml(path.read_text())
-    _fill_registry_enums(schema, registries())
-    return schema
+    return load_yaml(path.read_text())
 
 
 def _children(schema: dict, path: str):

@@ -421,9 +421,16 @@ def search_minutes(search_plan, stage: str, t_final: float, dt: float, us_per_st
     return cluster_minutes(len(statement_scenes()) * orbits, end, dt, us_per_step)
 
 
+def own_models(study) -> list[list[str]]:
+    """[reference, directory] of each model of one's own that ``study`` names (``module:NAME``,
+    ``file.py:NAME``): what a job that only draws must load to know the model's label and colour."""
+    model = study.spec["lattice"]["model"]
+    return [[m, study.directory] for m in ([model] if isinstance(model, str) else model) if ":" in m]
+
+
 def study_spec(study) -> dict:
     """The keys of a study as its jobs see them (a changed key reruns them)."""
-    return {"name": study.name, **study.spec}
+    return {"name": study.name, "directory": study.directory, **study.spec}
 
 
 def group_spec(study) -> dict:
@@ -431,7 +438,7 @@ def group_spec(study) -> dict:
     changed figure, comparison or law reruns no group."""
     from chainchaos.studies.study.runs import numbers_spec
 
-    return {"name": study.name, "title": study.spec["title"], **numbers_spec(study)}
+    return {"name": study.name, "directory": study.directory, "title": study.spec["title"], **numbers_spec(study)}
 
 
 def rejudge_files(config: dict, search_full_plan, n_candidates: int, stage: str) -> list[str]:

@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
+from chainchaos.engine.model_checks import load_model
 from chainchaos.errors import ParameterError, StudyError
 from chainchaos.observe.registry import study_observables
 from chainchaos.run.orbits import ALIGNMENT_SERIES, Orbit
@@ -80,7 +81,7 @@ def _read(source, root: Path) -> tuple[str, dict]:
     from chainchaos.workflow.config_docs import load_yaml
 
     if isinstance(source, dict):
-        return str(source.get("name", "study")), {k: v for k, v in source.items() if k != "name"}
+        return str(source.get("name", "study")), {k: v for k, v in source.items() if k not in ("name", "directory")}
     path = Path(source)
     if path.suffix not in (".yaml", ".yml"):
         path = root / f"{source}.yaml"
@@ -111,6 +112,44 @@ def _merged(raw: dict, root: Path, seen: tuple = ()) -> dict:
     return out
 
 
+def _directory(source, root: Path) -> Path:
+    """Where a model file named by the study (``lattice.model: morse.py:MORSE``) is looked up
+    first: the study file's directory (``root`` for a study named; for a dict, its ``directory``
+    or the working directory)."""
+    if isinstance(source, dict):
+        return Path(source.get("directory") or Path.cwd())
+    path = Path(source)
+    return path.parent if path.suffix in (".yaml", ".yml") else root
+
+
+def _model_list(raw: dict) -> list:
+    model = (raw.get("lattice") or {}).get("model") if isinstance(raw.get("lattice"), dict) else None
+    return [model] if isinstance(model, str) else list(model) if isinstance(model, list) else []
+
+
+def _model_errors(raw: dict, directory: str) -> list[str]:
+    """The study's own models (``module:NAME`` or ``file.py:NAME``), loaded and checked
+    (``engine.model_checks.load_model``): one line per model that cannot be."""
+    errors = []
+    for model in _model_list(raw):
+        if isinstance(model, str) and ":" in model:
+            try:
+                load_model(model, directory)
+            except ParameterError as err:
+                errors.append(f"study key lattice.model = {model!r}: allowed is {err.allowed}")
+    return errors
+
+
+def _with_model_names(raw: dict, directory: str) -> dict:
+    """``raw`` with the study's own models named by their registered names, for the schema (whose
+    allowed models are the registry's)."""
+    if not any(isinstance(m, str) and ":" in m for m in _model_list(raw)):
+        return raw
+    names = [load_model(m, directory).name if isinstance(m, str) and ":" in m else m for m in _model_list(raw)]
+    model = raw["lattice"]["model"]
+    return {**raw, "lattice": {**raw["lattice"], "model": names[0] if isinstance(model, str) else names}}
+
+
 def load_study(source, root: Path | None = None) -> "Study":
     """The ``Study`` of ``source``, checked against the study schema.
 
@@ -118,7 +157,7 @@ def load_study(source, root: Path | None = None) -> "Study":
     ----------
     source : str, path or dict
         A name (``studies/<name>.yaml``), a path to a YAML file, or a dict of the file's keys
-        (with an optional ``name``).
+        (with an optional ``name``, and ``directory`` where a model file it names is).
     root : path, optional
         Where a study named without a path is looked up; default ``./studies`` when the working
         directory has one, else the checkout's ``studies/``.
@@ -139,25 +178,30 @@ def load_study(source, root: Path | None = None) -> "Study":
     root = studies_dir() if root is None else Path(root)
     name, raw = _read(source, root)
     raw = _merged(raw, root)
+    directory = str(_directory(source, root))
     schema = load_schema(SCHEMA)
-    errors = schema_errors(raw, schema, "study key") or nonfinite_errors(raw, what="study key")
+    errors = _model_errors(raw, directory)
+    errors = errors or schema_errors(_with_model_names(raw, directory), schema, "study key") or nonfinite_errors(
+        raw, what="study key")
     if errors:
         raise StudyError(errors)
     spec = _defaults(schema, raw)
     if "figures" not in raw:  # by default, the standard figures whose series the study computes
         spec["figures"] = [figure for figure in FIGURES
                            if all(name in spec["observables"] for name in FIGURE_OBSERVABLES[figure])]
-    study = Study(name, spec)
+    study = Study(name, spec, directory)
     study.check()
     return study
 
 
 @dataclass(frozen=True)
 class Study:
-    """A validated study: ``name`` and ``spec``, the file's keys with every default filled in."""
+    """A validated study: ``name`` and ``spec``, the file's keys with every default filled in;
+    ``directory``, where a model file it names is looked up first."""
 
     name: str
     spec: dict
+    directory: str = "."
 
     # ---- what the file says, resolved ------------------------------------------------------
 
@@ -165,10 +209,12 @@ class Study:
     def title(self) -> str:
         return self.spec.get("title") or f"study {self.name}"
 
-    @property
+    @cached_property
     def models(self) -> list[str]:
+        """The names of the study's models in the registry, its own models (``module:NAME``,
+        ``file.py:NAME``, looked up from :attr:`directory`) loaded and added."""
         model = self.spec["lattice"]["model"]
-        return [model] if isinstance(model, str) else list(model)
+        return [load_model(m, self.directory).name for m in ([model] if isinstance(model, str) else model)]
 
     @cached_property
     def energies(self) -> np.ndarray:
@@ -299,8 +345,6 @@ class Study:
 
         def models():
             for model in self.models:
-                if model not in MODELS:
-                    raise ParameterError("model", model, f"a model of the registry: {sorted(MODELS)}")
                 if chain_file and MODELS[model].lattice != "beads":
                     raise ParameterError("model", model, f"a bead model with a chain file: {sorted(BEAD_MODELS)}")
 

@@ -1,9 +1,10 @@
 """The models: a registry of :class:`~chainchaos.system.models.base.Model`, one module each.
 
-Adding a model is its module (name, label, colour, bond parameters, Numba kernels of its bond
-law and, optionally, of its site law: see ``base``) and one line in :data:`MODELS`; the engines,
-the initial-state solver, the energy, the configuration's allowed values and every label take it
-from here.
+A model of the package is its module (name, label, colour, bond parameters, Numba kernels of its
+bond law and, optionally, of its site law: see ``base``) and one line in :data:`MODELS`; the
+engines, the initial-state solver, the energy, the configuration's allowed values and every label
+take it from here. A model of your own, defined in your own module, joins the registry through
+its checks (``chainchaos.engine.model_checks.add_model``).
 """
 
 import numpy as np
@@ -30,11 +31,36 @@ MODELS: dict[str, Model] = {m.name: m for m in (
 BEAD_MODELS: dict[str, Model] = {name: m for name, m in MODELS.items() if m.lattice == "beads"}
 
 
+#: The names of the package's own models, which no model of one's own may take.
+PACKAGE_MODELS = tuple(MODELS)
+
+
+def require_free_name(model: Model) -> None:
+    """ParameterError unless ``model``'s name is free for it: not a package model's, nor another
+    module's model's. The same model from the same modules (an edited version) may take it back."""
+    require(isinstance(model, Model), "model", model, "a chainchaos Model")
+    earlier = MODELS.get(model.name)
+    if earlier is not None and earlier is not model:
+        require(model.name not in PACKAGE_MODELS and earlier.modules == model.modules, "model name", model.name,
+                f"a name not taken: {earlier.identity.split(':')[0]} has it (package models: {list(PACKAGE_MODELS)})")
+
+
+def add_to_registry(model: Model) -> None:
+    """Put ``model`` in :data:`MODELS` (and :data:`BEAD_MODELS`) under a free name
+    (:func:`require_free_name`), unchecked: the checks come first
+    (``chainchaos.engine.model_checks.add_model``)."""
+    require_free_name(model)
+    MODELS[model.name] = model
+    if model.lattice == "beads":
+        BEAD_MODELS[model.name] = model
+
+
 def get_model(name) -> Model:
     """The model called ``name`` (a Model passes through)."""
     if isinstance(name, Model):
         return name
-    require(name in MODELS, "model", name, f"one of {sorted(MODELS)}")
+    require(name in MODELS, "model", name, f"one of {sorted(MODELS)}, or a model of your own added with "
+                                           "chainchaos.add_model")
     return MODELS[name]
 
 
@@ -158,6 +184,7 @@ def open_bonds(model, chain, u: np.ndarray) -> np.ndarray:
 
 assert MAX_SITE_PARAMETERS == 2  # the site tuples of site_potentials and base.add_site_energy
 
-__all__ = ["BEAD_MODELS", "MAX_BOND_PARAMETERS", "MAX_SITE_PARAMETERS", "MODELS", "Model", "SiteLaw", "bond_forces",
+__all__ = ["BEAD_MODELS", "MAX_BOND_PARAMETERS", "MAX_SITE_PARAMETERS", "MODELS", "PACKAGE_MODELS", "Model", "SiteLaw",
+           "add_to_registry", "bond_forces", "require_free_name",
            "bond_potential_energy", "bond_potentials", "energy_density", "energy_kernel", "get_model", "model_label",
            "open_bonds", "site_potential_energy", "site_potentials", "total_energy"]

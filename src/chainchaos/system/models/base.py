@@ -102,12 +102,17 @@ class Model:
     def __post_init__(self):
         require(0 < len(self.parameter_names) <= MAX_BOND_PARAMETERS, "parameter_names",
                 self.parameter_names, f"1 to {MAX_BOND_PARAMETERS} bond parameters")
-        require(self.lattice in LATTICES, "lattice", self.lattice, f"one of {LATTICES}")
+        require(self.lattice in LATTICES, "lattice", self.lattice, f"one of {list(LATTICES)}")
         kernels = [self.force, self.force_stiffness, self.potential, *filter(None, [self.opening])]
         if self.site is not None:
             kernels += [self.site.force, self.site.force_stiffness, self.site.potential]
         object.__setattr__(self, "identity", _kernel_identity(self.name, kernels))
         _BY_IDENTITY[self.identity] = self
+
+    @property
+    def modules(self) -> str:
+        """The modules that define the model's kernels, as its identity names them."""
+        return self.identity.partition("@")[2].rpartition(":")[0]
 
     @property
     def has_site_law(self) -> bool:
@@ -143,8 +148,12 @@ class Model:
         return f"Model({self.name})"
 
 
-#: The kinds of lattice a model's parameters are read from (``Model.lattice``).
-LATTICES = ("beads", "kg")
+#: The kinds of lattice a model's parameters are read from (``Model.lattice``; a lattice class
+#: names its kind in ``kind``), and how to make one.
+LATTICES = {
+    "beads": "a bead Chain: chainchaos.random_chain(seed, alpha, N), chain_from_radii(radii) or a chain file",
+    "kg": "a KGLattice: chainchaos.kg_chain(seed, W, N)",
+}
 
 
 class ModelType(types.Type):

@@ -98,8 +98,11 @@ def plot_study(inputs, outputs, params, wildcards) -> None:
     from chainchaos.output.plotting.style import (
         save_figure,  # matplotlib: only in the plotting jobs
     )
+    from chainchaos.engine.model_checks import load_model
     from chainchaos.studies.study.plots import comparison_figure, study_figure
 
+    for reference, directory in params.get("models", []):  # one's own models: their labels and colours
+        load_model(reference, directory)
     named = {name: xr.load_dataset(path) for name, path in inputs.items()}
     stats = named[params["study"]]
     for figure in params["figures"]:
