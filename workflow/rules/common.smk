@@ -74,7 +74,9 @@ def figure_outputs(number):
 def kernel_flags(models=None):
     """The flags of compile_kernels for ``models`` (default: the paper's); a model of one's own
     compiles in the first jobs that run it."""
-    return [result("kernels", f"{m}.txt") for m in (models or panels.models()) if m in PACKAGE_MODELS]
+    return [
+        result("kernels", f"{m}.txt") for m in (models or panels.models()) if m in PACKAGE_MODELS
+    ]
 
 
 def earlier_kernel_flags(wildcards):
