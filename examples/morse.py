@@ -1,0 +1,50 @@
+"""A Morse bond between beads, as a model of your own (docs/tutorials/adding-a-model.md).
+
+    V(D) = K2 (1 - exp(-a D))^2 / (2 a^2),   f = dV/dD = K2 (1 - exp(-a D)) exp(-a D) / a,
+
+with D = u_{n-1} - u_n the bond's compression and K2 the chain's linear stiffness, so that the
+chain's linear limit (and its time unit, 1/omega_max) is the paper's; a sets the anharmonicity.
+Use it as ``SceneParameters(model=MORSE, ...)``, ``chainchaos.add_model(MORSE)``, or by where it is
+defined: ``model: morse.py:MORSE`` in a study file, ``--model examples/morse.py:MORSE`` on the
+command line.
+"""
+
+import numpy as np
+from numba import njit
+
+from chainchaos import Model
+
+A = 2.0  # the Morse range a, per unit of compression D
+# The batch engine's vectors have + - * (and max, np.sqrt, np.expm1): no unary minus, no division,
+# so the constants are computed here, once.
+MINUS_A, MINUS_INV_A, HALF_INV_A2 = -A, -1.0 / A, 0.5 / (A * A)
+
+
+@njit(cache=True)
+def force(P, left, right):
+    """f(D) of the bond, P = (K2,)."""
+    e = np.expm1((left - right) * MINUS_A)  # exp(-a D) - 1
+    return P[0] * MINUS_INV_A * e * (e + 1.0)
+
+
+@njit(cache=True)
+def force_stiffness(P, left, right):
+    """(f, k = df/dD) of the bond."""
+    e = np.expm1((left - right) * MINUS_A)
+    return P[0] * MINUS_INV_A * e * (e + 1.0), P[0] * (e + 1.0) * (e * 2.0 + 1.0)
+
+
+@njit(cache=True)
+def potential(P, left, right):
+    """V(D), zero at rest."""
+    e = np.expm1((left - right) * MINUS_A)
+    return P[0] * HALF_INV_A2 * e * e
+
+
+def parameters(chain):
+    """(K2,) of every bond: the chain's linear stiffness."""
+    return (chain.K2,)
+
+
+MORSE = Model("morse", "Morse", "#2e7d32", ("K2",), parameters, force, force_stiffness, potential,
+              description="V = K2 (1 - exp(-a D))^2 / (2 a^2), a = 2")
