@@ -279,3 +279,13 @@ def test_run_study_reads_a_kept_group_with_its_settings_and_computes_the_others(
     np.testing.assert_array_equal(ds["participation"].isel(model=0, energy=0, lane=0, realization=0).values, 2 * fresh)
     np.testing.assert_array_equal(ds["participation"].isel(model=0, energy=0, lane=0, realization=1).values,
                                   run_group(study, 1)["participation"].values[0])
+
+
+def test_run_study_reports_progress_at_every_decade_of_time_not_once_per_batch():
+    calls = []
+    run_study({"lattice": {"model": "fput", "N": 16, "realizations": 2}, "excitation": {"energies": [0.5]},
+               "integration": {"dt": 0.05, "t_final": 1000.0}}, progress=lambda done, total: calls.append((done, total)))
+    done = [d for d, _ in calls]
+    # one batch of 2 orbits: a report at the first sample, as t passes 10 and 100, and at the end
+    assert len(calls) >= 4 and all(t == 2 for _, t in calls)
+    assert done == sorted(done) and done[-1] == 2 and 0 < done[-2] < 2

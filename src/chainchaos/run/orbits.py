@@ -19,6 +19,7 @@ vectors, the second chaos indicator of the verdicts; with ``spectrum``, the Lyap
 ``deviation_seed + j`` (``RunSettings.extra_deviations``; docs/conventions.md#chaos-indicators).
 """
 
+import math
 from dataclasses import dataclass, field, fields
 
 import numpy as np
@@ -127,7 +128,10 @@ def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None, gali_
     model without gaps) and ``valid`` (the initial state exists, the run stayed finite and its
     energy error stayed <= ``max_energy_error``). ``gali_stop``: an orbit's GALI vectors stop once
     its ln GALI_k is below it (``driver.sample``); results do not depend on which orbits share a
-    batch. ``series``: the per-orbit series to record instead of :data:`SERIES` (name -> fill, as
+    batch. ``progress(done, total)`` is called at every decade of time and at the end of each
+    batch of orbits, ``done`` counting the orbits of the running batch by the fraction of its
+    steps made (so it may be fractional). ``series``: the per-orbit series to record instead of
+    :data:`SERIES` (name -> fill, as
     there; ``energy_error`` is always recorded, since validity reads it). ``window``: integrate
     only where the packets are (``run.window.Window``; None: the whole chain)."""
     require(window is None or not (settings.alignment or settings.spectrum), "window", window,
@@ -139,18 +143,32 @@ def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None, gali_
         index = [i for i, o in enumerate(orbits) if o.model == name]
         for start in range(0, len(index), int(settings.batch_size)):
             chunk = index[start:start + int(settings.batch_size)]
+            monitors = () if progress is None else (
+                _decades(progress, sum(r is not None for r in results), len(chunk), len(orbits)),)
             for i, r in zip(chunk, _integrate_model(name, [orbits[i] for i in chunk], settings, gali_stop, wanted,
-                                                        window)):
+                                                        window, monitors)):
                 results[i] = r
-            if progress is not None:
-                progress(sum(r is not None for r in results), len(orbits))
     unknown = sorted({o.model for o, r in zip(orbits, results) if r is None})
     require(not unknown, "model", unknown, f"one of {sorted(MODELS)}")
     return times, results
 
 
+def _decades(progress, before: int, batch: int, total: int):
+    """A ``driver.sample`` monitor calling ``progress(done, total)`` when the time passes a power
+    of ten and at the last sample, ``done`` = ``before`` + ``batch`` times the fraction of steps made."""
+
+    def monitor(samples, i: int) -> None:
+        steps = samples.steps
+        last = i == steps.size - 1
+        previous, now = samples.times[i - 1] if i else 0.0, samples.times[i]
+        if i > 0 and (last or previous <= 0 or math.floor(math.log10(now)) > math.floor(math.log10(previous))):
+            progress(before + batch * (1.0 if last else float(steps[i]) / float(steps[-1])), total)
+
+    return monitor
+
+
 def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, gali_stop, wanted,
-                     window) -> list[dict]:
+                     window, monitors=()) -> list[dict]:
     model = get_model(name)
     problem = settings.problem(model, [o.chain for o in orbits], tangent=True, track_gaps=model.has_gaps,
                                spectrum=settings.spectrum, alignment=settings.alignment)
@@ -168,7 +186,7 @@ def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, ga
             pass
         DQ0[:, j], DP0[:, j] = initial_deviation(N, settings.deviation_seed + o.lane)
         XQ0[:, :, j], XP0[:, :, j] = settings.extra_deviations(problem, o.lane)
-    samples = driver.sample(problem, Q0, P0, DQ0, DP0, sample_schedule(settings), kind=settings.engine,
+    samples = driver.sample(problem, Q0, P0, DQ0, DP0, sample_schedule(settings), monitors, kind=settings.engine,
                             xq0=XQ0 if K else None, xp0=XP0 if K else None,
                             gali_stop=gali_stop if settings.alignment else None, window=window)
 

@@ -24,7 +24,7 @@ def progress(label: str):
     start = time.perf_counter()
 
     def report(done, total):
-        print(f"[{label}] {done}/{total} orbits, {time.perf_counter() - start:.1f} s", file=sys.stderr, flush=True)
+        print(f"[{label}] {done:.4g}/{total} orbits, {time.perf_counter() - start:.1f} s", file=sys.stderr, flush=True)
 
     return report
 

@@ -26,7 +26,7 @@ def study_group(inputs, outputs, params, wildcards) -> None:
     start = time.perf_counter()
 
     def progress(done, total):
-        print(f"[study {study.name} group {group}/{study.n_groups}] {done}/{total} orbits, "
+        print(f"[study {study.name} group {group}/{study.n_groups}] {done:.4g}/{total} orbits, "
               f"{time.perf_counter() - start:.1f} s", file=sys.stderr, flush=True)
 
     cpu = time.process_time()
