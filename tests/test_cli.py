@@ -127,3 +127,24 @@ def test_bench(workdir):
     report = json.loads(done.stdout)
     assert report["model"] == "fput" and report["n_steps"] == 200 and report["repeats"] == 2
     assert report["ns_per_step_tangent"] > 0 and report["ns_per_step_no_tangent"] > 0
+
+
+def test_simulate_shows_and_uses_the_defaults_of_scene_parameters():
+    """The command's defaults are read from SceneParameters' fields, so its help and the generated
+    command-line page state the real ones."""
+    from dataclasses import MISSING, fields
+
+    from chainchaos.workflow.cli import build_parser
+
+    parser = build_parser()
+    simulate = next(a for a in parser._actions if a.dest == "command").choices["simulate"]
+    field_of = {"site": "excited_site"}
+    defaults = {f.name: f.default for f in fields(SceneParameters) if f.default is not MISSING}
+    checked = 0
+    for action in simulate._actions:
+        name = field_of.get(action.dest, action.dest)
+        if name in defaults and action.default is not None and name not in ("observables", "name"):
+            assert action.default == defaults[name], action.dest
+            assert "%(default)s" in action.help, action.dest  # the help prints the value itself
+            checked += 1
+    assert checked >= 7

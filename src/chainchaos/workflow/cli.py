@@ -168,9 +168,18 @@ def _cmd_stamp_search_archive(args) -> None:
     print(f"{args.archive}: kept_settings_digest {digest(settings)}")
 
 
+def scene_defaults() -> dict:
+    """The defaults of ``SceneParameters``' fields: those ``chainchaos simulate`` shows and uses."""
+    from dataclasses import MISSING, fields
+
+    from chainchaos.run.scenes import SceneParameters
+
+    return {f.name: f.default for f in fields(SceneParameters) if f.default is not MISSING}
+
+
 def build_parser() -> argparse.ArgumentParser:
     from chainchaos.engine.integrators import SCHEMES
-    from chainchaos.observe.registry import OBSERVABLES
+    from chainchaos.observe.registry import OBSERVABLES, model_observables
     from chainchaos.system.linear import CONVENTIONS
     from chainchaos.system.models import MODELS
 
@@ -218,6 +227,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_ensemble)
 
     models = ", ".join(MODELS)
+    scene = scene_defaults()
     p = sub.add_parser("simulate", help="integrate one scene of any model",
                        description="Integrate one scene (model, energy) and write its observables as NetCDF. "
                                    "A bead model runs on a chain file (--chain), a Klein-Gordon model on the KG "
@@ -230,22 +240,27 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--N", type=_integer(2), default=40, help="KG models: number of sites (default 40)")
     p.add_argument("--energy", required=True, type=_positive_float, help="total energy H")
     p.add_argument("--t-final", required=True, type=_positive_float, help="final time, in the model's time unit (docs/conventions.md)")
-    p.add_argument("--dt", type=_positive_float, default=5e-4, help="time step (default 5e-4, the paper's)")
-    p.add_argument("--integrator", choices=sorted(SCHEMES), default="SRKN6b", help="splitting scheme")
+    p.add_argument("--dt", type=_positive_float, default=5e-4, help="time step (default %(default)s, the paper's)")
+    p.add_argument("--integrator", choices=sorted(SCHEMES), default=scene["integrator"],
+                   help="splitting scheme (default %(default)s)")
     p.add_argument("--observables", nargs="+", default=["all"], choices=["all", *OBSERVABLES],
-                   metavar="NAME", help=f"observables to compute: {', '.join(OBSERVABLES)} (default all: "
-                                        f"those the model has, the gap observables only for hertz, but the "
-                                        f"chaos indicators beyond the mLCE, which are asked for by name)")
-    p.add_argument("--exponents", type=_integer(0), default=0,
-                   help="Lyapunov exponents of lyapunov_spectrum and ks_entropy (default 0: all 2N)")
-    p.add_argument("--gali-order", type=_integer(2), default=2, help="k of GALI_k for log_gali (default 2)")
-    p.add_argument("--site", type=_integer(1), default=21, help="excited bead, 1..N (default 21)")
-    p.add_argument("--k4-sign", type=float, choices=[1.0, -1.0], default=1.0,
-                   help="sign of K4: +1 the paper's, -1 the Taylor expansion of Hertz (default +1)")
-    p.add_argument("--deviation-seed", type=_integer(0), default=0, help="seed of the initial deviation vector")
-    p.add_argument("--samples-per-decade", type=_integer(1), default=40, help="log-spaced samples per decade")
-    p.add_argument("--max-energy-error", type=_positive_float, default=1e-2,
-                   help="stop when the relative energy error exceeds this (default 1e-2)")
+                   metavar="NAME", help=f"observables to compute: {', '.join(OBSERVABLES)} (default all: the "
+                                        f"model's own, e.g. for hertz {', '.join(model_observables('hertz'))}; the "
+                                        f"others when named)")
+    p.add_argument("--exponents", type=_integer(0), default=scene["exponents"],
+                   help="Lyapunov exponents of lyapunov_spectrum and ks_entropy (default %(default)s: all 2N)")
+    p.add_argument("--gali-order", type=_integer(2), default=scene["gali_order"],
+                   help="k of GALI_k for log_gali (default %(default)s)")
+    p.add_argument("--site", type=_integer(1), default=scene["excited_site"],
+                   help="excited bead or site, 1..N (default %(default)s)")
+    p.add_argument("--k4-sign", type=float, choices=[1.0, -1.0], default=scene["k4_sign"],
+                   help="sign of K4: +1 the paper's, -1 the Taylor expansion of Hertz (default %(default)s)")
+    p.add_argument("--deviation-seed", type=_integer(0), default=scene["deviation_seed"],
+                   help="seed of the initial deviation vector (default %(default)s)")
+    p.add_argument("--samples-per-decade", type=_integer(1), default=scene["samples_per_decade"],
+                   help="log-spaced samples per decade (default %(default)s)")
+    p.add_argument("--max-energy-error", type=_positive_float, default=scene["max_energy_error"],
+                   help="stop when the relative energy error exceeds this (default %(default)s)")
     p.add_argument("--out", required=True, type=_output, help="output NetCDF file")
     p.set_defaults(func=_cmd_simulate)
 
