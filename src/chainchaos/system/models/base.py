@@ -67,7 +67,23 @@ def _kernel_identity(name: str, kernels) -> str:
 
 @dataclass(frozen=True, eq=False)
 class SiteLaw:
-    """An on-site potential w(u) of every bead: its parameters per site and its Numba kernels."""
+    """An on-site potential w(u) of every bead: its parameters per site and its Numba kernels.
+
+    Parameters
+    ----------
+    parameter_names : tuple of str
+        Names of the site parameters (at most :data:`MAX_SITE_PARAMETERS`), e.g. ``("eps",)``.
+    parameters : callable
+        ``parameters(lattice)``: one array of length N per name.
+    force : callable
+        Numba kernel ``force(S, u)``: w'(u) of a site with parameters S at displacement u.
+    force_stiffness : callable
+        Numba kernel ``force_stiffness(S, u)``: (w'(u), w''(u)).
+    potential : callable
+        Numba kernel ``potential(S, u)``: w(u), zero at u = 0.
+    description : str, optional
+        The law in one line, for documentation.
+    """
 
     parameter_names: tuple[str, ...]  # the rows of ``parameters(chain)``
     parameters: Callable  # chain -> tuple of arrays (N,), one per parameter name
@@ -83,7 +99,51 @@ class SiteLaw:
 
 @dataclass(frozen=True, eq=False)
 class Model:
-    """A bond model: its identity, its parameters per bond and its Numba bond-law kernels."""
+    """A model: its name, its parameters per bond and the Numba kernels of its bond law (and of
+    its site law, if any).
+
+    Parameters
+    ----------
+    name : str
+        The key in configs, file names and the registry ``MODELS``.
+    label : str
+        How figures and tables name it.
+    colour : str
+        The colour of its curves (a matplotlib colour).
+    parameter_names : tuple of str
+        Names of the bond parameters (at most :data:`MAX_BOND_PARAMETERS`).
+    parameters : callable
+        ``parameters(lattice)``: one array of length N + 1 (one value per bond) per name.
+    force : callable
+        Numba kernel ``force(P, left, right)``: the force f(D) of a bond with parameters P between
+        displacements left = u_{n-1} and right = u_n (compression D = left - right).
+    force_stiffness : callable
+        Numba kernel ``force_stiffness(P, left, right)``: (f, k = df/dD).
+    potential : callable
+        Numba kernel ``potential(P, left, right)``: V(D), zero at rest.
+    opening : callable, optional
+        Numba kernel ``opening(P, left, right)``, negative where the bond is open; None (the
+        default) for bonds that never open.
+    description : str, optional
+        The bond law in one line, for documentation.
+    site : SiteLaw, optional
+        The on-site potential; None (the default): the beads feel only their bonds.
+    lattice : {"beads", "kg"}, optional
+        The kind of lattice ``parameters`` read (:data:`LATTICES`): a bead ``Chain`` (default) or
+        a ``KGLattice``.
+
+    Attributes
+    ----------
+    identity : str
+        ``name@modules:digest``: the name, the modules that define the kernels and a digest of
+        their sources. The model's Numba type is named by it, so an edited kernel recompiles and
+        two models of one name never share compiled code.
+
+    Notes
+    -----
+    ``force`` and ``force_stiffness`` also run on the batch engine's vectors: they may use only
+    ``+ - *``, ``max``, ``np.sqrt`` and ``np.expm1`` (``chainchaos.engine.model_checks``).
+    """
 
     name: str  # the key in configs, file names and the registry
     label: str  # for figures and tables
