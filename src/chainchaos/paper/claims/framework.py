@@ -159,9 +159,10 @@ class Check:
         return bool(np.all(result))
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class ClaimRow:
-    """One claim of the catalogue: a statement of the paper and how to test it."""
+    """One claim of the catalogue: a statement of the paper and how to test it (keyword-only:
+    every row of the catalogue names what it sets)."""
 
     id: str
     where: str                      # place in the paper, e.g. "Fig. 4(c), Sec. III B"
