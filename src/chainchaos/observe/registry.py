@@ -6,6 +6,9 @@ from the sampled run (a :class:`SampledRun`, whose shared intermediates are comp
 attributes and its axis label. ``simulate`` runs only what the requested observables need and
 writes each one's variable from here; ``panels.KIND_OBSERVABLES`` (the panel table) says which
 panels read which. Adding an observable is an entry here (and a panel kind that reads it).
+An indicator's ``reference`` names the paper that defines it, and :data:`NEED_REFERENCES` the
+method behind a need (the tangent map): docs/reference/citing.md lists them
+(``chainchaos.output.citing``).
 Entries with ``selectable=False`` are written along with another (``companions``), never asked
 for by name. The orbit sets of the scans, the search and the verdicts (``chainchaos.run.orbits``)
 record their per-orbit series from here too. Quantities are dimensionless (docs/conventions.md#observables).
@@ -25,6 +28,22 @@ TANGENT, GAPS, MODES = "tangent", "gaps", "modes"
 #: Needs of the chaos indicators beyond the mLCE: deviation vectors kept orthonormal (the
 #: Lyapunov spectrum) or only normalised (SALI and GALI); both need the tangent map.
 SPECTRUM, ALIGNMENT = "spectrum", "alignment"
+
+#: The chaos indicators' papers: the Lyapunov exponents', SALI's and GALI's as docs/conventions.md
+#: cites them; the deviation vector distribution's and the tangent map method's (below) with the
+#: authors, titles and numbers of their arXiv records (1307.0116, 1006.0154).
+LYAPUNOV = ("Benettin, Galgani, Giorgilli & Strelcyn, Meccanica 15, 9 and 21 (1980): the Lyapunov "
+            "characteristic exponents and their computation")
+SALI_PAPER = "Skokos, J. Phys. A 34, 10029 (2001): the smaller alignment index SALI"
+GALI_PAPER = "Skokos, Bountis & Antonopoulos, Physica D 231, 30 (2007): the generalized alignment index GALI_k"
+DVD_PAPER = ("Skokos, Gkolias & Flach, \"Nonequilibrium chaos of disordered nonlinear waves\", Phys. Rev. Lett. "
+             "111, 064101 (2013): the deviation vector distribution")
+#: The method behind each need of an observable that has one: what a user of the observable
+#: cites beside the observable's own reference.
+NEED_REFERENCES: dict[str, str] = {
+    TANGENT: ("Skokos & Gerlach, \"Numerical integration of variational equations\", arXiv:1006.0154 (2010): "
+              "the tangent map method"),
+}
 
 
 class SampledRun:
@@ -89,6 +108,13 @@ class Observable:
     companions: tuple[str, ...] = ()  # written whenever this one is
     selectable: bool = True
     by_default: bool = True  # among a model's observables when a scene names none (costly ones are not)
+    reference: str = ""  # the paper that defines it (the chaos indicators), for docs/reference/citing.md
+
+    @property
+    def references(self) -> tuple[str, ...]:
+        """What a user of this observable cites: its own paper, then the methods of its needs."""
+        own = (self.reference,) if self.reference else ()
+        return own + tuple(NEED_REFERENCES[need] for need in sorted(self.needs) if need in NEED_REFERENCES)
 
 
 def _registry(*entries: Observable) -> dict[str, Observable]:
@@ -112,27 +138,29 @@ REGISTRY: dict[str, Observable] = _registry(
                r"$E_{\rm edge}/H$", lambda run: obs.edge_energy(run.energy_density), by_default=False),
     Observable("mlce", ("time",), "finite-time maximum Lyapunov characteristic exponent Lambda(t)",
                r"$\Lambda$ [$\omega_{\max}$]", lambda run: obs.finite_time_mlce(run.log_growth, run.times),
-               frozenset({TANGENT}), companions=("initial_deviation",)),
+               frozenset({TANGENT}), companions=("initial_deviation",), reference=LYAPUNOV),
     Observable("log_growth", ("time",), "logarithmic growth ln(|v(t)|/|v(0)|) = Lambda(t) t of the deviation vector",
                r"$\ln(|v|/|v_0|)$", lambda run: run.log_growth, frozenset({TANGENT}),
-               companions=("initial_deviation",)),
+               companions=("initial_deviation",), reference=LYAPUNOV),
     Observable("lyapunov_spectrum", ("time", "exponent"), "finite-time Lyapunov exponents lambda_i(t)",
                r"$\lambda_i$ [$\omega_{\max}$]", lambda run: run.spectrum, frozenset({TANGENT, SPECTRUM}),
-               companions=("initial_deviation",), by_default=False),
+               companions=("initial_deviation",), by_default=False, reference=LYAPUNOV),
     Observable("ks_entropy", ("time",), "Kolmogorov-Sinai entropy estimate: sum of the positive exponents",
                r"$h_{\rm KS}$ [$\omega_{\max}$]", lambda run: obs.ks_entropy(run.spectrum),
-               frozenset({TANGENT, SPECTRUM}), companions=("initial_deviation",), by_default=False),
+               frozenset({TANGENT, SPECTRUM}), companions=("initial_deviation",), by_default=False,
+               reference=LYAPUNOV),
     Observable("sali", ("time",), "smaller alignment index SALI of the mLCE vector and a second deviation vector",
                "SALI", lambda run: run.sali, frozenset({TANGENT, ALIGNMENT}), companions=("initial_deviation",),
-               by_default=False),
+               by_default=False, reference=SALI_PAPER),
     Observable("log_gali", ("time",), "natural logarithm of the generalized alignment index GALI_k",
                r"$\ln {\rm GALI}_k$", lambda run: run.log_gali, frozenset({TANGENT, ALIGNMENT}),
-               companions=("initial_deviation",), attrs=lambda run: {"k": np.int32(run.gali_order)}, by_default=False),
+               companions=("initial_deviation",), attrs=lambda run: {"k": np.int32(run.gali_order)}, by_default=False,
+               reference=GALI_PAPER),
     Observable("dvd", ("time", "site"), "deviation vector density w_n", r"$w_n$", lambda run: run.dvd,
-               frozenset({TANGENT}), companions=("initial_deviation",)),
+               frozenset({TANGENT}), companions=("initial_deviation",), reference=DVD_PAPER),
     Observable("dvd_participation", ("time",), "participation number of the deviation vector density P_D",
                r"$P_{\rm D}$", lambda run: participation_number(run.dvd, axis=-1), frozenset({TANGENT}),
-               companions=("initial_deviation",)),
+               companions=("initial_deviation",), reference=DVD_PAPER),
     Observable("initial_deviation", ("component",), "initial deviation vector (du_1..du_N, dp_1..dp_N)",
                "component", lambda run: run.deviation0, frozenset({TANGENT}), selectable=False),
     Observable("gap_open", ("time", "bond"), "bond open (delta_n + u_{n-1} - u_n < 0)", "open",
