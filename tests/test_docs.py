@@ -2,7 +2,9 @@
 every docstring of the API reference parses, every generated page renders and every executed
 example runs; an example that raises fails the build. Needs the docs extra."""
 
+import html
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -51,6 +53,22 @@ def test_the_site_builds_strict(built):
         assert record.name in performance, record.name
     # the executed examples ran and printed
     assert "Data variables" in (site / "tutorials/first-orbit/index.html").read_text()
+    # the figures are drawn, and the code shown is what a user pastes, without the build's scaffolding
+    for page in ("index.html", "tutorials/first-orbit/index.html", "tutorials/ensemble/index.html"):
+        text = (site / page).read_text()
+        assert "https://matplotlib.org" in text, f"{page}: no figure"  # a matplotlib SVG's metadata
+        shown = html.unescape(re.sub(r"<[^>]+>", "", text))  # the text of the page, code included
+        assert "plt.show()" in shown, page
+        assert not [s for s in ("StringIO", "getvalue", "markdown-exec: hide") if s in shown], page
+    # what to cite: every scheme's reference and every indicator's, from the registries
+    from chainchaos.output import citing
+
+    citing_page = html.unescape(re.sub(r"<[^>]+>", "", (site / "reference/citing/index.html").read_text()))
+    for reference in [*citing.scheme_references().values(), *citing.indicator_references().values(),
+                      *citing.method_references()]:
+        assert reference in citing_page, reference
+    assert "@misc{chainchaos," in citing_page
+    assert "CHAINCHAOS_SIMD_LANES" in (site / "reference/environment/index.html").read_text()
     print(f"mkdocs build --strict: {seconds:.1f} s")
 
 
