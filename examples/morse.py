@@ -46,5 +46,6 @@ def parameters(chain):
     return (chain.K2,)
 
 
-MORSE = Model("morse", "Morse", "#2e7d32", ("K2",), parameters, force, force_stiffness, potential,
+MORSE = Model(name="morse", label="Morse", colour="#2e7d32", parameter_names=("K2",), parameters=parameters,
+              force=force, force_stiffness=force_stiffness, potential=potential,
               description="V = K2 (1 - exp(-a D))^2 / (2 a^2), a = 2")

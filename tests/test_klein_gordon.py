@@ -37,11 +37,13 @@ W, N = 4.0, 16
 LATTICE = kg_chain(7, W, N)
 
 # A Hertz chain with the KG site law added: site parameters eps_n from the bead chain's own size.
-HERTZ_SITE = Model("hertz_with_kg_site", "Hertz + KG site", "#000000", ("A", "delta"), hertz.parameters,
-                   hertz.force, hertz.force_stiffness, hertz.potential, hertz.opening,
-                   site=klein_gordon.SiteLaw(("eps",), lambda chain: (np.linspace(0.5, 1.5, chain.N),),
-                                             klein_gordon.quartic_force, klein_gordon.quartic_force_stiffness,
-                                             klein_gordon.quartic_potential))
+HERTZ_SITE = Model(
+    name="hertz_with_kg_site", label="Hertz + KG site", colour="#000000", parameter_names=("A", "delta"),
+    parameters=hertz.parameters, force=hertz.force, force_stiffness=hertz.force_stiffness,
+    potential=hertz.potential, opening=hertz.opening,
+    site=klein_gordon.SiteLaw(parameter_names=("eps",), parameters=lambda chain: (np.linspace(0.5, 1.5, chain.N),),
+                              force=klein_gordon.quartic_force, force_stiffness=klein_gordon.quartic_force_stiffness,
+                              potential=klein_gordon.quartic_potential))
 
 
 def tridiagonal(lattice: KGLattice) -> np.ndarray:

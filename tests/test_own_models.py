@@ -126,7 +126,8 @@ def parameters(chain):
     return (chain.K2,)
 
 
-MORSE = Model("{NAME}", "Morse", "#2e7d32", ("K2",), parameters, force, force_stiffness, potential)
+MORSE = Model(name="{NAME}", label="Morse", colour="#2e7d32", parameter_names=("K2",), parameters=parameters,
+              force=force, force_stiffness=force_stiffness, potential=potential)
 '''
 
 
@@ -152,7 +153,8 @@ def test_a_model_that_breaks_a_rule_is_refused_with_the_check_named(tmp_path, ch
 
 
 def _law(force, stiffness, potential, name):
-    return Model(name, name, "#000000", ("K2",), lambda c: (c.K2,), force, stiffness, potential)
+    return Model(name=name, label=name, colour="#000000", parameter_names=("K2",), parameters=lambda c: (c.K2,),
+                 force=force, force_stiffness=stiffness, potential=potential)
 
 
 def test_a_kernel_without_a_vector_version_is_refused_by_the_lanes_check_naming_the_operation():

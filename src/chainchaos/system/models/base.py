@@ -65,7 +65,7 @@ def _kernel_identity(name: str, kernels) -> str:
     return f"{name}@{','.join(modules)}:{digest.hexdigest()[:16]}"
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, kw_only=True)
 class SiteLaw:
     """An on-site potential w(u) of every bead: its parameters per site and its Numba kernels.
 
@@ -97,7 +97,7 @@ class SiteLaw:
                 self.parameter_names, f"1 to {MAX_SITE_PARAMETERS} site parameters")
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, kw_only=True)
 class Model:
     """A model: its name, its parameters per bond and the Numba kernels of its bond law (and of
     its site law, if any).

@@ -48,5 +48,14 @@ def parameters(chain):
     return chain.K2, chain.K3, chain.K4
 
 
-MODEL = Model("fput", "FPUT", "#1565c0", ("K2", "K3", "K4"), parameters, force, force_stiffness, potential,
-              description="f = K2 D - K3 D^2 + K4 D^3")
+MODEL = Model(
+    name="fput",
+    label="FPUT",
+    colour="#1565c0",
+    parameter_names=("K2", "K3", "K4"),
+    parameters=parameters,
+    force=force,
+    force_stiffness=force_stiffness,
+    potential=potential,
+    description="f = K2 D - K3 D^2 + K4 D^3",
+)

@@ -30,5 +30,7 @@ def parameters(chain):
     return (chain.K2,)
 
 
-MODEL = Model("harmonic", "harmonic", "#616161", ("K2",), parameters, force, force_stiffness, potential,
-              description="f = K2 D")
+MODEL = Model(
+    name="harmonic", label="harmonic", colour="#616161", parameter_names=("K2",), parameters=parameters,
+    force=force, force_stiffness=force_stiffness, potential=potential, description="f = K2 D"
+)

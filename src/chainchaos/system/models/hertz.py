@@ -58,5 +58,15 @@ def parameters(chain):
     return chain.A, chain.delta
 
 
-MODEL = Model("hertz", "Hertz", "#c62828", ("A", "delta"), parameters, force, force_stiffness, potential,
-              opening, "f = A [delta + D]_+^(3/2)")
+MODEL = Model(
+    name="hertz",
+    label="Hertz",
+    colour="#c62828",
+    parameter_names=("A", "delta"),
+    parameters=parameters,
+    force=force,
+    force_stiffness=force_stiffness,
+    potential=potential,
+    opening=opening,
+    description="f = A [delta + D]_+^(3/2)",
+)

@@ -67,14 +67,22 @@ def site_parameters(lattice):
     return (lattice.eps,)
 
 
-QUARTIC = SiteLaw(("eps",), site_parameters, quartic_force, quartic_force_stiffness, quartic_potential,
-                  "w = eps u^2/2 + u^4/4")
-LINEAR = SiteLaw(("eps",), site_parameters, linear_force, linear_force_stiffness, linear_potential,
-                 "w = eps u^2/2")
+QUARTIC = SiteLaw(
+    parameter_names=("eps",), parameters=site_parameters, force=quartic_force,
+    force_stiffness=quartic_force_stiffness, potential=quartic_potential, description="w = eps u^2/2 + u^4/4"
+)
+LINEAR = SiteLaw(
+    parameter_names=("eps",), parameters=site_parameters, force=linear_force,
+    force_stiffness=linear_force_stiffness, potential=linear_potential, description="w = eps u^2/2"
+)
 
-MODEL = Model("kg", "KG", "#6a1b9a", ("K2",), bond_parameters, harmonic.force, harmonic.force_stiffness,
-              harmonic.potential, description="f = D / W, on-site w = eps u^2/2 + u^4/4", site=QUARTIC,
-              lattice="kg")
-LINEAR_MODEL = Model("kg_linear", "linear KG", "#ce93d8", ("K2",), bond_parameters, harmonic.force,
-                     harmonic.force_stiffness, harmonic.potential, description="f = D / W, on-site w = eps u^2/2",
-                     site=LINEAR, lattice="kg")
+MODEL = Model(
+    name="kg", label="KG", colour="#6a1b9a", parameter_names=("K2",), parameters=bond_parameters,
+    force=harmonic.force, force_stiffness=harmonic.force_stiffness, potential=harmonic.potential,
+    description="f = D / W, on-site w = eps u^2/2 + u^4/4", site=QUARTIC, lattice="kg"
+)
+LINEAR_MODEL = Model(
+    name="kg_linear", label="linear KG", colour="#ce93d8", parameter_names=("K2",),
+    parameters=bond_parameters, force=harmonic.force, force_stiffness=harmonic.force_stiffness,
+    potential=harmonic.potential, description="f = D / W, on-site w = eps u^2/2", site=LINEAR, lattice="kg"
+)

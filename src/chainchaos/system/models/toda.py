@@ -60,5 +60,14 @@ def parameters(chain):
     return chain.K2, beta, chain.K2 / beta
 
 
-MODEL = Model("toda", "Toda", "#2e7d32", ("K2", "beta", "K2/beta"), parameters, force, force_stiffness,
-              potential, description="f = (K2/beta) (e^(beta D) - 1), beta = -2 K3/K2")
+MODEL = Model(
+    name="toda",
+    label="Toda",
+    colour="#2e7d32",
+    parameter_names=("K2", "beta", "K2/beta"),
+    parameters=parameters,
+    force=force,
+    force_stiffness=force_stiffness,
+    potential=potential,
+    description="f = (K2/beta) (e^(beta D) - 1), beta = -2 K3/K2",
+)
