@@ -137,7 +137,7 @@ def test_python_dash_m_runs_the_command():
     assert done.stdout.strip() == f"chainchaos {chainchaos.__version__}"
     done = subprocess.run([sys.executable, "-m", "chainchaos"], capture_output=True, text=True, cwd=ROOT,
                           check=False)
-    assert done.returncode == 2 and "required: command" in done.stderr
+    assert done.returncode == 2 and "arguments are required: {chain,ensemble,simulate" in done.stderr
 
 
 def test_dir_shows_the_lazy_public_names_without_importing_them():

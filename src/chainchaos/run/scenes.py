@@ -42,7 +42,7 @@ class SceneParameters(RunSettings):
 
     model: str
     energy: float
-    observables: tuple | None = None  # None: every observable of the model (model_observables)
+    observables: tuple | None = None  # None: the model's default ones (registry.model_observables)
     excited_site: int = 21
     name: str = ""
 
