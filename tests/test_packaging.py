@@ -188,6 +188,18 @@ LIBRARY_SNIPPET = textwrap.dedent("""
     error = float(abs(ds.energy_error).max())
     assert 0 < error < 1e-8, error
     assert ds.time.values[-1] == 10.0 and 1 <= float(ds.participation[-1]) <= 20
+    # outside a checkout: no project, and what needs one says so; the package's own data is there
+    from chainchaos.project import package_checkout, project_root
+    from chainchaos.studies.study.spec import SCHEMA, load_study
+    assert package_checkout() is None and project_root() is None and SCHEMA.is_file()
+    try:
+        load_study("hertz100")
+    except FileNotFoundError as err:
+        assert "CHAINCHAOS_PROJECT" in str(err), err
+    else:
+        raise AssertionError("a study named without a path found outside a checkout")
+    load_study({"lattice": {"model": "fput", "N": 8, "realizations": 1}, "excitation": {"energies": [0.5]},
+                "integration": {"t_final": 1.0, "dt": 0.1}})  # a study given whole needs no project
     print(chainchaos.__version__, error)
 """)
 

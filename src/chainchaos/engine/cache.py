@@ -19,13 +19,7 @@ import hashlib
 import os
 from pathlib import Path
 
-PACKAGE = Path(__file__).resolve().parents[1]
-
-
-def project_root() -> Path | None:
-    """The checkout that holds this package (``src/chainchaos``), or None for an installed wheel."""
-    root = PACKAGE.parents[1]
-    return root if (root / "pyproject.toml").is_file() else None
+from chainchaos.project import PACKAGE, package_checkout
 
 
 #: The environment variable that overrides the SIMD width fitted to the CPU (chainchaos.engine.simd).
@@ -67,6 +61,6 @@ def configure_numba_cache() -> None:
     os.environ.setdefault("NUMBA_DISABLE_INTEL_SVML", "1")
     if os.environ.get("NUMBA_CACHE_DIR"):
         return
-    root = project_root()
+    root = package_checkout()
     base = root / ".numba_cache" if root else Path.home() / ".cache" / "chainchaos" / "numba"
     os.environ["NUMBA_CACHE_DIR"] = str(base / kernel_key())

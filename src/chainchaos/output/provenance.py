@@ -11,7 +11,8 @@ import subprocess
 from functools import lru_cache
 from pathlib import Path
 
-from chainchaos.engine.cache import project_root, sqrt_choice
+from chainchaos.engine.cache import sqrt_choice
+from chainchaos.project import package_checkout
 
 #: x86 vector extensions reported, in this order, when the CPU has them (/proc/cpuinfo "flags").
 VECTOR_FLAGS = ("sse2", "sse4_1", "sse4_2", "avx", "avx2", "fma", "avx512f", "avx512dq", "avx512cd",
@@ -33,7 +34,7 @@ EMULATED_AVX2 = {
 
 def git_commit() -> str:
     """The checkout's commit, with ``-dirty`` when tracked files differ, or ``unknown``."""
-    root = project_root()
+    root = package_checkout()
     if root is None:
         return "unknown"
     try:

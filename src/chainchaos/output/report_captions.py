@@ -18,9 +18,9 @@ import sys
 from pathlib import Path
 
 from chainchaos.paper import panels, statements
+from chainchaos.project import project_root
 from chainchaos.system.models import MODELS, model_label
 
-ROOT = Path(__file__).resolve().parents[3]
 CAPTIONS = Path("workflow/report/figures")  # fig<N><x>.rst of each panel, fig<N>.rst of each composite
 
 #: The categories of the HTML report (snakemake --report), by kind of result; workflow/report/
@@ -151,18 +151,19 @@ def main(argv=None) -> int:
     parser.add_argument("--check", action="store_true", help="only compare; exit 1 if a file differs")
     args = parser.parse_args(argv)
     stale = []
+    root = project_root("python -m chainchaos.output.report_captions")
     generated = templates()
     for path, text in generated.items():
-        target = ROOT / path
+        target = root / path
         if target.is_file() and target.read_text() == text:
             continue
         stale.append(str(path))
         if not args.check:
             target.parent.mkdir(parents=True, exist_ok=True)
             target.write_text(text)
-    for target in sorted((ROOT / CAPTIONS).glob("*.rst")):  # of a panel no longer in the table
-        if target.relative_to(ROOT) not in generated:
-            stale.append(str(target.relative_to(ROOT)))
+    for target in sorted((root / CAPTIONS).glob("*.rst")):  # of a panel no longer in the table
+        if target.relative_to(root) not in generated:
+            stale.append(str(target.relative_to(root)))
             if not args.check:
                 target.unlink()
     if stale:

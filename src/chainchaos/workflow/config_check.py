@@ -16,8 +16,10 @@ import math
 from pathlib import Path
 
 from chainchaos.errors import ConfigError, ParameterError
+from chainchaos.project import project_root
 
-SCHEMA = Path(__file__).resolve().parents[3] / "config" / "schema.yaml"
+#: The pipeline's config schema, in the project directory (``chainchaos.project.project_root``).
+SCHEMA = Path("config") / "schema.yaml"
 
 
 def check_config(config: dict, schema: dict | None = None) -> None:
@@ -25,7 +27,8 @@ def check_config(config: dict, schema: dict | None = None) -> None:
     ``--config`` overrides); ``schema`` defaults to config/schema.yaml."""
     from chainchaos.workflow import config_docs
 
-    schema = config_docs.load_schema(SCHEMA) if schema is None else schema
+    if schema is None:
+        schema = config_docs.load_schema(project_root("the pipeline's config check") / SCHEMA)
     # each layer reads the keys as the layers before it promise them
     errors = schema_errors(config, schema) or nonfinite_errors(config) or consistency_errors(config)
     if errors:

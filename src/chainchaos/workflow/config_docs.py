@@ -15,10 +15,13 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[3]
+from chainchaos.project import PACKAGE, project_root
+
+#: The pipeline's config schema and its README, in the project directory.
 SCHEMA = Path("config/schema.yaml")
 README = Path("config/README.md")
-STUDY_SCHEMA = Path("src/chainchaos/studies/study/schema.yaml")
+#: The study schema, package data; its README in the project directory.
+STUDY_SCHEMA = PACKAGE / "studies" / "study" / "schema.yaml"
 STUDY_README = Path("studies/README.md")
 
 # JSON-schema keywords shown as constraints, with how each reads.
@@ -74,11 +77,11 @@ def load_yaml(text: str):
     return yaml.load(text, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
 
 
-def load_schema(path: Path = ROOT / SCHEMA) -> dict:
-    """The schema at ``path`` with the registries' names filled in (a copy of its own for each
-    caller; the file is read once per process and version of it, the registries as they are now:
-    a model added since is allowed)."""
-    path = Path(path).resolve()
+def load_schema(path: Path | None = None) -> dict:
+    """The schema at ``path`` (default: the project's config schema, :data:`SCHEMA`) with the
+    registries' names filled in (a copy of its own for each caller; the file is read once per
+    process and version of it, the registries as they are now: a model added since is allowed)."""
+    path = Path(path if path is not None else project_root("the config schema") / SCHEMA).resolve()
     schema = copy.deepcopy(_parsed_schema(path, path.stat().st_mtime_ns))
     _fill_registry_enums(schema, registries())
     return schema
@@ -228,15 +231,16 @@ def main(argv=None) -> int:
     parser.add_argument("--check", action="store_true", help="only compare; exit 1 if a file differs")
     args = parser.parse_args(argv)
     status = 0
+    root = project_root("python -m chainchaos.workflow.config_docs")
     for schema_path, readme, header in ((SCHEMA, README, HEADER), (STUDY_SCHEMA, STUDY_README, STUDY_HEADER)):
-        schema = load_schema(ROOT / schema_path)
+        schema = load_schema(root / schema_path)
         missing = undescribed(schema)
         if missing:
             print(f"{schema_path}: keys without a description: " + ", ".join(missing), file=sys.stderr)
             status = 1
             continue
         text = render(schema, header)
-        target = ROOT / readme
+        target = root / readme
         if target.is_file() and target.read_text() == text:
             continue
         if args.check:

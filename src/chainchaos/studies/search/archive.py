@@ -175,10 +175,10 @@ def stamp_search_archive(path, root=None) -> dict:
     then say what the file was not made with. The engines' code is not compared here: the result
     version and the bit-identity tests speak for it. ``root``: the git checkout (default: the
     package's). Returns the settings written."""
-    from chainchaos.engine.cache import project_root
     from chainchaos.output import kept
+    from chainchaos.project import package_checkout
 
-    root = Path(root or project_root())
+    root = Path(root or package_checkout())
     with xr.open_dataset(path) as ds:
         attrs = dict(ds.attrs)
         recorded = [(str(st), str(sc), str(k)) for st, sc, k in

@@ -85,7 +85,8 @@ def run_study(source, progress=None) -> xr.Dataset:
     for g in range(study.n_groups):
         path = kept_group_path(study.name, g)
         remake = f"snakemake --cores 2 keep --config keep={study.name}"
-        if path.exists() and kept.why_not_usable(path, group_settings(study, g), STUDY_RESULT_VERSION, remake) is None:
+        if path is not None and path.exists() and kept.why_not_usable(path, group_settings(study, g), STUDY_RESULT_VERSION,
+                                                                       remake) is None:
             kept.check_data(path, remake)  # a kept group damaged inside its data: KeptFileError, naming it
             groups.append(xr.load_dataset(path))
         else:

@@ -22,6 +22,7 @@ import numpy as np
 from chainchaos.engine.model_checks import load_model
 from chainchaos.errors import ParameterError, StudyError
 from chainchaos.observe.registry import study_observables
+from chainchaos.project import project_root
 from chainchaos.run.orbits import ALIGNMENT_SERIES, Orbit
 from chainchaos.run.window import Window
 from chainchaos.studies.scan.runs import ScanSettings, energy_grid, select_excitation
@@ -31,23 +32,29 @@ from chainchaos.system.models import BEAD_MODELS, MODELS
 
 #: The schema of a study file (shipped with the package; its keys: ``studies/README.md``).
 SCHEMA = Path(__file__).resolve().with_name("schema.yaml")
-#: Where study files live: ``studies/`` at the repository root (of a checkout).
-STUDIES = Path(__file__).resolve().parents[4] / "studies"
 
 
-def kept_group_path(name: str, group: int, root=None) -> Path:
+def kept_group_path(name: str, group: int, root=None) -> Path | None:
     """Where group ``group`` of study ``name`` is kept (``snakemake --cores 2 keep --config
     keep=<name>``): ``<root>/<name>/groups/<group>.nc``, ``root`` by default ``data/studies``
-    beside the ``studies/`` of :func:`studies_dir` (the workflow's config ``kept_studies``)."""
-    root = Path(root) if root is not None else studies_dir().parent / "data" / "studies"
-    return root / name / "groups" / f"{group:04d}.nc"
+    beside the ``studies/`` of :func:`studies_dir` (the workflow's config ``kept_studies``); None
+    outside a project (an installed package: nothing is kept there)."""
+    if root is None:
+        here = Path.cwd() / "studies"
+        project = Path.cwd() if here.is_dir() else project_root()
+        if project is None:
+            return None
+        root = project / "data" / "studies"
+    return Path(root) / name / "groups" / f"{group:04d}.nc"
 
 
 def studies_dir() -> Path:
     """Where a study named without a path is looked up: ``./studies`` when the working directory
-    has one, else the checkout's :data:`STUDIES`."""
+    has one, else the project's (``chainchaos.project.project_root``)."""
     here = Path.cwd() / "studies"
-    return here if here.is_dir() else STUDIES
+    if here.is_dir():
+        return here
+    return project_root(f"a study named without a path ({Path.cwd()} has no studies/)") / "studies"
 
 
 #: A study's standard figures (``studies.study.plots``), by name.
@@ -74,7 +81,7 @@ def _defaults(schema: dict, block: dict) -> dict:
     return out
 
 
-def _read(source, root: Path) -> tuple[str, dict]:
+def _read(source, root: Path | None) -> tuple[str, dict]:
     """(name, raw dict) of a study named, given by path or given as a dict."""
     import yaml
 
@@ -84,6 +91,7 @@ def _read(source, root: Path) -> tuple[str, dict]:
         return str(source.get("name", "study")), {k: v for k, v in source.items() if k not in ("name", "directory")}
     path = Path(source)
     if path.suffix not in (".yaml", ".yml"):
+        root = studies_dir() if root is None else root
         path = root / f"{source}.yaml"
     if not path.is_file():
         raise StudyError([f"study {str(source)!r}: no file {path}; studies here: {study_names(root)}"])
@@ -96,7 +104,7 @@ def _read(source, root: Path) -> tuple[str, dict]:
     return path.stem, raw
 
 
-def _merged(raw: dict, root: Path, seen: tuple = ()) -> dict:
+def _merged(raw: dict, root: Path | None, seen: tuple = ()) -> dict:
     """``raw`` over the study it extends: its blocks' keys replace the other's, block by block."""
     parent = raw.get("extends")
     if not parent:
@@ -112,14 +120,16 @@ def _merged(raw: dict, root: Path, seen: tuple = ()) -> dict:
     return out
 
 
-def _directory(source, root: Path) -> Path:
+def _directory(source, root: Path | None) -> Path:
     """Where a model file named by the study (``lattice.model: morse.py:MORSE``) is looked up
     first: the study file's directory (``root`` for a study named; for a dict, its ``directory``
     or the working directory)."""
     if isinstance(source, dict):
         return Path(source.get("directory") or Path.cwd())
     path = Path(source)
-    return path.parent if path.suffix in (".yaml", ".yml") else root
+    if path.suffix in (".yaml", ".yml"):
+        return path.parent
+    return studies_dir() if root is None else root
 
 
 def _model_list(raw: dict) -> list:
@@ -175,7 +185,7 @@ def load_study(source, root: Path | None = None) -> "Study":
     from chainchaos.workflow.config_check import nonfinite_errors, schema_errors
     from chainchaos.workflow.config_docs import load_schema
 
-    root = studies_dir() if root is None else Path(root)
+    root = None if root is None else Path(root)  # looked up only for a study named, or one it extends
     name, raw = _read(source, root)
     raw = _merged(raw, root)
     directory = str(_directory(source, root))
