@@ -97,18 +97,51 @@ def _alignment(engine, samples: Samples, i: int, lanes) -> None:
 
 def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq0=None, xp0=None,
            gali_stop: float | None = None, window=None) -> Samples:
-    """Integrate the lanes of ``problem`` from q0, p0, dq0, dp0 ((N, B) each) on the engine of
-    ``kind`` (``Problem.engine``) and record them at the step indices ``steps`` (increasing, from
-    0); call every monitor after every sample. ``xq0, xp0`` (K, N, B) are the problem's extra
-    deviation vectors (``Problem.extra_vectors``: the spectrum's, then GALI's), unit vectors.
+    """Integrate the lanes of ``problem`` and record them at the step indices ``steps``.
 
-    ``gali_stop``: a lane whose ln GALI_k falls below this value at a sample is decided (chaotic by
-    GALI_k): its GALI vectors stop there (``Batch.stop_vectors``; the work is saved once a whole
-    SIMD block has stopped) and its later ln GALI_k and SALI are NaN. The orbit, its mLCE vector
-    and every lane's record up to its crossing are the same as without the stop.
+    Parameters
+    ----------
+    problem : Problem
+        The model, one lattice per lane (B lanes of N sites), the scheme and step.
+    q0, p0 : numpy.ndarray, shape (N, B)
+        Initial displacements and momenta, one column per lane.
+    dq0, dp0 : numpy.ndarray, shape (N, B)
+        Initial deviation vector of each lane (ignored without the problem's tangent map).
+    steps : array_like of int
+        Step indices of the samples, increasing from 0 (``RunSettings.sample_steps``).
+    monitors : sequence of callable, optional
+        Each called as ``monitor(samples, i)`` after sample i (``EnergyGuard``, ``progress``).
+    kind : {"auto", "batch", "single"}, optional
+        The engine (``Problem.engine``): the SIMD batch engine, the single-trajectory one lane by
+        lane, or the one that costs less (default).
+    xq0, xp0 : numpy.ndarray, shape (K, N, B), optional
+        The problem's extra deviation vectors (``Problem.extra_vectors``: the spectrum's, then
+        GALI's), unit vectors.
+    gali_stop : float, optional
+        A lane whose ln GALI_k falls below this value at a sample is decided (chaotic by GALI_k):
+        its GALI vectors stop there (``Batch.stop_vectors``; the work is saved once a whole SIMD
+        block has stopped) and its later ln GALI_k and SALI are NaN. The orbit, its mLCE vector
+        and every lane's record up to its crossing are the same as without the stop.
+    window : Window, optional
+        Integrate only the sites the packets have reached (``run.window.WindowedEngine``; the
+        deviation vectors start inside the first window).
 
-    ``window``: a ``run.window.Window``, to integrate only the sites the packets have reached
-    (``run.window.WindowedEngine``; the deviation vectors start inside the first window)."""
+    Returns
+    -------
+    Samples
+        The lanes' states, ln|v|, energy errors and gap counts at every sample, lane first.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from chainchaos import Problem, random_chain, sample
+    >>> problem = Problem("fput", [random_chain(1, 5.0, 16), random_chain(2, 5.0, 16)], dt=0.01)
+    >>> q0 = np.zeros((16, 2)); q0[7] = 0.1            # bead 8 displaced in both lanes
+    >>> p0, dq0 = np.zeros((16, 2)), np.full((16, 2), 0.25)
+    >>> record = sample(problem, q0, p0, dq0, p0, steps=[0, 100, 1000])
+    >>> record.times.tolist(), bool(record.energy_error.max() < 1e-8)
+    ([0.0, 1.0, 10.0], True)
+    """
     if window is None:
         engine = problem.engine(q0, p0, dq0, dp0, kind, xq0, xp0)
     else:

@@ -35,10 +35,33 @@ from chainchaos.system.models import MODELS, get_model
 @dataclass(kw_only=True)
 class SceneParameters(RunSettings):
     """A scene: a model at an energy, its excited bead (1-based), the observables its file holds
-    and its name, integrated and sampled by the ``RunSettings`` it extends.
+    and its name, integrated and sampled by the ``RunSettings`` it extends (every field of
+    ``RunSettings`` is also a keyword here: ``t_final`` and ``dt`` are required).
 
-    ``model`` is a registered name, a ``Model`` of your own or ``"module:NAME"`` / ``"file.py:NAME"``
-    (``engine.model_checks.load_model``: checked and added); it is kept as the model's name."""
+    Parameters
+    ----------
+    model : str or Model
+        A registered name, a ``Model`` of your own, or ``"module:NAME"`` / ``"file.py:NAME"``
+        (``chainchaos.load_model``: checked and added); kept as the model's name.
+    energy : float
+        Total energy H of the excitation (> 0), in the model's energy unit.
+    observables : tuple of str, optional
+        Names among ``OBSERVABLES`` the scene's file holds; default the model's own
+        (``registry.model_observables``). The relative energy error is always recorded.
+    excited_site : int, optional
+        The displaced bead or site, 1-based (default 21).
+    name : str, optional
+        The scene's name (default ``<model>_H<energy>``).
+    **settings
+        The keywords of :class:`~chainchaos.run.settings.RunSettings`.
+
+    Examples
+    --------
+    >>> from chainchaos import SceneParameters
+    >>> params = SceneParameters(model="hertz", energy=1.8, t_final=100.0, dt=0.01)
+    >>> params.name, params.integrator, params.excited_site
+    ('hertz_H1.8', 'SRKN6b', 21)
+    """
 
     model: str
     energy: float
@@ -123,8 +146,9 @@ def simulate(chain, params: SceneParameters, progress=None) -> xr.Dataset:
 
     Parameters
     ----------
-    chain : Chain
-        The chain, e.g. from ``random_chain`` or read from a chain file.
+    chain : Chain or KGLattice
+        The lattice of the model's kind: a bead chain (``random_chain``, ``chain_from_radii``, a
+        chain file) or a KG lattice (``kg_chain``).
     params : SceneParameters
         Model, energy, excited bead, observables, scheme, step, length and sampling.
     progress : callable, optional
@@ -141,6 +165,19 @@ def simulate(chain, params: SceneParameters, progress=None) -> xr.Dataset:
     SimulationError
         Naming the scene, the time and the value, when the state becomes non-finite or the
         relative energy error exceeds ``params.max_energy_error``.
+    ParameterError
+        For a lattice of the wrong kind for the model, or a bad parameter (named).
+
+    Examples
+    --------
+    >>> from chainchaos import SceneParameters, random_chain, simulate
+    >>> chain = random_chain(seed=879, alpha=5.0, N=40)
+    >>> scene = simulate(chain, SceneParameters(model="hertz", energy=1.8, t_final=10.0, dt=0.01,
+    ...                                         observables=("participation", "mlce")))
+    >>> sorted(scene.data_vars)
+    ['energy_error', 'initial_deviation', 'mlce', 'participation']
+    >>> bool(scene.attrs["max_energy_error"] < 1e-6)
+    True
     """
     return simulate_scenes(chain, [params], progress)[0]
 

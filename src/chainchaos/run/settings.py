@@ -22,7 +22,33 @@ class RunSettings:
     """The scheme and step, the run's length, the sampling schedule (``samples_per_decade``
     log-spaced samples from ``t_first_sample``, ``sample_steps``), the
     steps between finiteness checks and deviation-vector renormalisations, the sign of the FPUT
-    quartic term, the seed of the initial deviation vector and the energy-error bound."""
+    quartic term, the seed of the initial deviation vector and the energy-error bound.
+
+    Parameters
+    ----------
+    t_final : float
+        Final time, in the model's time unit (> 0).
+    dt : float
+        Time step (> 0, at most ``t_final``).
+    integrator : str, optional
+        A splitting scheme of ``SCHEMES`` (default ``"SRKN6b"``).
+    samples_per_decade : int, optional
+        Log-spaced samples per decade of time (default 40).
+    t_first_sample : float, optional
+        Time of the first sample after t = 0 (default 0.1, or dt if larger).
+    check_every : int, optional
+        Steps between finiteness checks and deviation-vector renormalisations (default 1000).
+    k4_sign : float, optional
+        Sign of the FPUT quartic coefficient: +1 (default) or -1.
+    deviation_seed : int, optional
+        Seed of the initial deviation vector (default 0).
+    max_energy_error : float, optional
+        A run stops (SimulationError) when its relative energy error exceeds this (default 1e-2).
+    exponents : int, optional
+        Lyapunov exponents where an observable needs the spectrum (default 0: all 2N).
+    gali_order : int, optional
+        k of GALI_k where an observable needs SALI or GALI (default 2).
+    """
 
     t_final: float
     dt: float

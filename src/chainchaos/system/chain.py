@@ -66,7 +66,41 @@ class Chain:
 
     mass (N,), A, delta, K2, K3 and K4 (N+1 bonds) are correctly rounded (module docstring), each
     bond parameter computed on its first use (the linear rule of the realization search reads K2
-    alone, of ten thousand chains); K4 carries the sign ``k4_sign``."""
+    alone, of ten thousand chains); K4 carries the sign ``k4_sign``. Made by :func:`random_chain`,
+    :func:`chain_from_radii` or read from a chain file (``chainchaos.output.io.read_chain``).
+
+    Parameters
+    ----------
+    radius : array_like, shape (N,)
+        Reduced bead radii r_n > 0 (units of R_ref), N >= 2.
+    alpha : float
+        Disorder strength, max R / min R of the draw (>= 1), recorded with the chain.
+    seed : int, optional
+        Seed of the draw (None: radii given, not drawn).
+    wall_radius : float, optional
+        Reduced radius of the two wall beads (default 1).
+    k4_sign : float, optional
+        Sign of the FPUT quartic coefficient K4: +1 (the paper's, default) or -1 (the Taylor
+        expansion of the Hertz law).
+
+    Attributes
+    ----------
+    N : int
+        Number of moving beads.
+    mass : numpy.ndarray, shape (N,)
+        Bead masses m_n = r_n^3 (units of the reference bead's mass).
+    A, delta, K2, K3, K4 : numpy.ndarray, shape (N + 1,)
+        Per bond: the Hertz contact coefficient, the static precompression and the FPUT
+        coefficients of the Taylor expansion of the Hertz law about it
+        (docs/conventions.md#bond-laws).
+
+    Examples
+    --------
+    >>> from chainchaos import random_chain
+    >>> chain = random_chain(seed=879, alpha=5.0, N=40)
+    >>> chain.N, chain.K2.shape
+    (40, (41,))
+    """
 
     kind: ClassVar[str] = "beads"  # the lattice kind of the bead models (models.base.LATTICES)
 
@@ -197,6 +231,13 @@ def chain_from_radii(radii, reference_radius: float | None = None, wall_radius: 
     Returns
     -------
     Chain
+
+    Examples
+    --------
+    >>> from chainchaos import chain_from_radii
+    >>> chain = chain_from_radii([2.0, 3.0, 4.5, 6.0], reference_radius=4.0)   # radii in mm
+    >>> chain.radius.tolist(), chain.alpha
+    ([0.5, 0.75, 1.125, 1.5], 3.0)
     """
     R = np.asarray(radii, dtype=float)
     require(R.ndim == 1 and R.size >= 2, "N", R.size, "N >= 2 radii")
@@ -288,7 +329,35 @@ class KGLattice:
 
     with fixed ends u_0 = u_{N+1} = 0. ``mass`` (N,) is 1 on every site, ``K2`` (N+1,) the
     harmonic coupling 1/W on every bond (the harmonic bond law's parameter), ``eps`` (N,) the
-    on-site linear stiffness (the site law's parameter), ``site_stiffness`` its linear limit."""
+    on-site linear stiffness (the site law's parameter), ``site_stiffness`` its linear limit.
+    Made by :func:`kg_chain`.
+
+    Parameters
+    ----------
+    eps : array_like, shape (N,)
+        On-site linear stiffnesses eps_l (finite), N >= 2.
+    W : float
+        Disorder strength (> 0); every bond's harmonic coupling is 1/W.
+    seed : int, optional
+        Seed of the draw (None: eps given, not drawn).
+
+    Attributes
+    ----------
+    N : int
+        Number of sites.
+    mass : numpy.ndarray, shape (N,)
+        1 on every site.
+    K2 : numpy.ndarray, shape (N + 1,)
+        1/W on every bond.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from chainchaos import KGLattice
+    >>> lattice = KGLattice(np.ones(8), W=4.0)   # an ordered KG chain of 8 sites
+    >>> lattice.N, float(lattice.K2[0])
+    (8, 0.25)
+    """
 
     kind: ClassVar[str] = "kg"  # the lattice kind of the KG models (models.base.LATTICES)
 
@@ -341,6 +410,13 @@ def kg_chain(seed: int, W: float, N: int) -> KGLattice:
     Returns
     -------
     KGLattice
+
+    Examples
+    --------
+    >>> from chainchaos import kg_chain
+    >>> lattice = kg_chain(seed=1, W=4.0, N=64)
+    >>> lattice.N, bool(0.5 <= lattice.eps.min() and lattice.eps.max() <= 1.5)
+    (64, True)
     """
     require(isinstance(seed, (int, np.integer)) and seed >= 0, "seed", seed, "an integer >= 0")
     require(isinstance(N, (int, np.integer)) and N >= 2, "N", N, "an integer >= 2")

@@ -145,6 +145,7 @@ def normal_modes(chain: Chain) -> tuple[np.ndarray, np.ndarray]:
     Parameters
     ----------
     chain : Chain or KGLattice
+        The lattice: its masses, bond stiffnesses K2 and (a KGLattice) on-site stiffnesses.
 
     Returns
     -------
@@ -152,6 +153,15 @@ def normal_modes(chain: Chain) -> tuple[np.ndarray, np.ndarray]:
         (N,) frequencies, increasing.
     U : numpy.ndarray
         (N, N) mode shapes, mode k in column k.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from chainchaos import normal_modes, random_chain
+    >>> chain = random_chain(seed=879, alpha=5.0, N=40)
+    >>> omega, U = normal_modes(chain)
+    >>> bool(np.allclose(U.T @ (chain.mass[:, None] * U), np.eye(40)))  # mass-orthonormal
+    True
     """
     K2 = chain.K2
     m = chain.mass

@@ -34,7 +34,44 @@ def check_step(dt: float, t_final: float | None = None) -> None:
 
 @dataclass(frozen=True, eq=False)
 class Problem:
-    """A model on one chain per lane, integrated by ``integrator`` at step ``dt``."""
+    """A model on one chain per lane, integrated by ``integrator`` at step ``dt``.
+
+    Parameters
+    ----------
+    model : str or Model
+        A model of the registry ``MODELS`` (or the Model itself).
+    chains : sequence of Chain or KGLattice
+        One lattice per lane, all of the model's kind and of one N.
+    integrator : str, optional
+        A splitting scheme of ``SCHEMES`` (default ``"SRKN6b"``).
+    dt : float, optional
+        Time step, in the model's time unit (default 5e-4).
+    tangent : bool, optional
+        Whether the tangent map runs beside the orbit (default True).
+    track_gaps : bool, optional
+        Whether open bonds are counted (only for a model whose bonds open; default False).
+    check_every : int, optional
+        Steps between finiteness checks and renormalisations of the deviation vectors (default 1000).
+    spectrum : int, optional
+        Lyapunov exponents: the mLCE vector and ``spectrum - 1`` more, kept orthonormal (default 1).
+    gali : int, optional
+        k of GALI_k: the mLCE vector and ``gali - 1`` more vectors (default 1: none).
+    sites : tuple of int, optional
+        ``(lo, hi)``: only beads lo..hi-1 move, the others held at rest (default: all move).
+
+    Raises
+    ------
+    ParameterError
+        For a value outside what is allowed (the message names it), e.g. a lattice of the wrong
+        kind for the model.
+
+    Examples
+    --------
+    >>> from chainchaos import Problem, random_chain
+    >>> problem = Problem("fput", [random_chain(seed, 5.0, 16) for seed in range(4)], dt=0.01)
+    >>> problem.lanes, problem.N
+    (4, 16)
+    """
 
     model: object
     chains: tuple

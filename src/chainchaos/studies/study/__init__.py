@@ -58,7 +58,7 @@ def run_study(source, progress=None) -> xr.Dataset:
     ...                 "excitation": {"energies": [0.5]},
     ...                 "integration": {"dt": 0.05, "t_final": 10.0}})
     >>> dict(ds["participation"].sizes)
-    {'model': 1, 'energy': 1, 'realization': 2, 'lane': 1, 'time': 22}
+    {'model': 1, 'energy': 1, 'realization': 2, 'lane': 1, 'time': 31}
 
     A group kept in the repository (``data/studies/<name>/groups/``, ``snakemake --cores 2 keep
     --config keep=<name>``) with this study's settings and the code's result version is read, not

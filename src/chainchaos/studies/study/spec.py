@@ -181,6 +181,20 @@ def load_study(source, root: Path | None = None) -> "Study":
     ------
     StudyError
         Listing every wrong key, each with its value and what is allowed.
+
+    Examples
+    --------
+    >>> from chainchaos import load_study
+    >>> study = load_study({"name": "small", "lattice": {"model": ["hertz", "fput"], "N": 16, "realizations": 4},
+    ...                     "excitation": {"energies": [0.5, 1.0]}, "integration": {"t_final": 100.0, "dt": 0.01}})
+    >>> study.models, study.energies.tolist(), study.realizations
+    (['hertz', 'fput'], [0.5, 1.0], 4)
+    >>> load_study({"lattice": {"model": "morse", "N": 16}, "excitation": {"energies": [0.5]},
+    ...             "integration": {"t_final": 100.0, "dt": 0.01}})  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    chainchaos.errors.StudyError: invalid study (keys: studies/README.md):
+      study key lattice.model = 'morse': allowed is ...
     """
     from chainchaos.workflow.config_check import nonfinite_errors, schema_errors
     from chainchaos.workflow.config_docs import load_schema
