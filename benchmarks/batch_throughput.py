@@ -4,7 +4,7 @@ tangent map (the scan's configuration: SRKN6b, Hertz with gap counting).
 
     python benchmarks/batch_throughput.py [--steps 20000] [--lanes B ...] [--json out.json]
 
-``--lanes`` defaults to one, two and eight SIMD blocks (``chainchaos.engine.simd.LANES`` trajectories
+``--lanes`` defaults to one, two and eight SIMD blocks (``chainchaos.kernels.simd.LANES`` trajectories
 each). The first line names the machine: CPU model, vector extensions, Numba's target, the width.
 
 Both engines integrate the same trajectories: B single-site excitations of the alpha = 5 chain of
@@ -21,7 +21,7 @@ force evaluation, and a vectorised loop of independent hardware square roots giv
 they take on this CPU. They print each Hertz time per trajectory-step as a ratio to that floor,
 and the bound it sets on the batch/single ratio. The square root of the kernels (the machine
 line's ``square root``) is chosen by ``CHAINCHAOS_SQRT`` (hardware or fma, the same bits;
-chainchaos.engine.sqrt): run the script once with each to see which is faster on a CPU.
+chainchaos.kernels.sqrt): run the script once with each to see which is faster on a CPU.
 """
 
 import argparse
@@ -34,11 +34,11 @@ import numpy as np
 from chainchaos import random_chain
 from chainchaos.engine.batch import Batch
 from chainchaos.engine.integrators import advance, get_scheme
-from chainchaos.engine.simd import LANES
+from chainchaos.engine.problem import Problem
+from chainchaos.kernels.simd import LANES
 from chainchaos.output.provenance import machine_line
 from chainchaos.system.initial import initial_deviation, initial_state
 from chainchaos.system.models import get_model
-from chainchaos.system.problem import Problem
 
 
 def states(model, chain, B, site=21):

@@ -14,7 +14,7 @@ and OpenBLAS pick the code they would pick on another x86-64 CPU:
     numpy_avx2, numba_haswell, blas_haswell
              avx512 with one of the three changes of avx2, to tell which library makes a difference
     sse4     a CPU without AVX and FMA (x86-64-v2), down to glibc's libm (GLIBC_TUNABLES); the
-             package assumes FMA for the C library's log10, pow and log (chainchaos.engine.exactmath)
+             package assumes FMA for the C library's log10, pow and log (chainchaos.kernels.exactmath)
 
 Each build gets its own Numba cache (``<workdir>/numba_cache/<build>/<kernel key>``), so kernels
 compiled for one target are never loaded by another. The snippet is run as
@@ -41,7 +41,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
-from chainchaos.engine.cache import kernel_key  # noqa: E402  (does not import numba)
+from chainchaos.kernels.cache import kernel_key  # noqa: E402  (does not import numba)
 from chainchaos.output.provenance import EMULATED_AVX2, cpu_model, cpu_vector_extensions  # noqa: E402
 
 BUILDS = {

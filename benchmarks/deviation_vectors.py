@@ -18,11 +18,11 @@ import time
 import numpy as np
 
 from chainchaos import random_chain
-from chainchaos.engine.simd import LANES
+from chainchaos.engine.problem import Problem
+from chainchaos.kernels.simd import LANES
 from chainchaos.output.provenance import machine_line
 from chainchaos.system.initial import initial_deviation, initial_state
 from chainchaos.system.models import get_model
-from chainchaos.system.problem import Problem
 
 
 def seconds_per_step(name, chain, k, kind, steps, repeats, dt=5e-3, check_every=1000):

@@ -33,10 +33,10 @@ import numpy as np
 from kernel_vs_c import BUILD, CFLAGS, HERE  # the same gcc flags and build folder
 
 from chainchaos.engine.integrators import get_scheme
-from chainchaos.engine.simd import LANES
+from chainchaos.engine.problem import Problem
+from chainchaos.kernels.simd import LANES
 from chainchaos.output.provenance import machine_line
 from chainchaos.system.chain import kg_chain
-from chainchaos.system.problem import Problem
 
 SOURCE = HERE / "c_reference" / "kg_chain.c"
 DT, W, CHECK_EVERY = 0.4, 4.0, 1000

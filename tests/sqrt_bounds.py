@@ -1,4 +1,4 @@
-"""The error bounds of ``chainchaos.engine.sqrt.fma_sqrt`` in exact rational arithmetic.
+"""The error bounds of ``chainchaos.kernels.sqrt.fma_sqrt`` in exact rational arithmetic.
 
 Everything the proof of docs/conventions.md#square-root relies on, computed with
 ``fractions.Fraction``, never in floating point:

@@ -6,10 +6,10 @@ import pytest
 from chainchaos import random_chain
 from chainchaos.engine.batch import SERIAL_REMAINDER, Batch
 from chainchaos.engine.integrators import SCHEMES, advance, get_scheme
-from chainchaos.engine.simd import LANES
+from chainchaos.engine.problem import Problem
+from chainchaos.kernels.simd import LANES
 from chainchaos.system.initial import initial_deviation, initial_state
 from chainchaos.system.models import BEAD_MODELS, get_model
-from chainchaos.system.problem import Problem
 
 N = 40
 

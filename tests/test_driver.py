@@ -1,5 +1,5 @@
 """The integration driver on its own: the sampling schedule, the monitors, the record and the
-choice of engine (chainchaos.run.driver, chainchaos.system.problem)."""
+choice of engine (chainchaos.run.driver, chainchaos.engine.problem)."""
 
 import io
 import math
@@ -8,14 +8,14 @@ import numpy as np
 import pytest
 
 from chainchaos.engine.batch import SERIAL_REMAINDER
-from chainchaos.engine.simd import LANES
+from chainchaos.engine.problem import Problem
 from chainchaos.errors import ParameterError, SimulationError
+from chainchaos.kernels.simd import LANES
 from chainchaos.run import driver
 from chainchaos.run.progress import ProgressReporter
 from chainchaos.system.chain import random_chain
 from chainchaos.system.initial import initial_deviation, initial_state
 from chainchaos.system.models import get_model, total_energy
-from chainchaos.system.problem import Problem
 
 
 @pytest.mark.parametrize("t_final, dt, per_decade, t_first", [(1e3, 0.01, 10, 0.1), (1e5, 5e-4, 40, 0.1),

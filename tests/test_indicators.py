@@ -7,16 +7,16 @@ rates of SALI and GALI_k, and the tangent map needs no correction where a Hertz 
 import numpy as np
 import pytest
 
-from chainchaos.engine import exactmath
-from chainchaos.engine.simd import LANES
+from chainchaos.engine.problem import Problem
 from chainchaos.errors import ParameterError
+from chainchaos.kernels import exactmath
+from chainchaos.kernels.simd import LANES
 from chainchaos.observe import formulas, reductions
 from chainchaos.run import driver
 from chainchaos.run.settings import RunSettings
 from chainchaos.system.chain import chain_from_radii, random_chain
 from chainchaos.system.initial import initial_deviation, initial_state
 from chainchaos.system.models import get_model
-from chainchaos.system.problem import Problem
 
 
 def _run(model, chain, q, p, t_final, dt, spectrum=1, gali=1, per_decade=5, t_first=1.0, seed=0, check_every=10):

@@ -15,6 +15,7 @@ from test_dynamics import integrate as engine_run
 
 from chainchaos.engine.batch import Batch
 from chainchaos.engine.integrators import SCHEMES, advance, get_scheme
+from chainchaos.engine.problem import Problem
 from chainchaos.errors import ParameterError
 from chainchaos.system.chain import KGLattice, kg_chain, random_chain
 from chainchaos.system.initial import initial_deviation, initial_state
@@ -30,7 +31,6 @@ from chainchaos.system.models import (
     total_energy,
 )
 from chainchaos.system.models.base import Model
-from chainchaos.system.problem import Problem
 
 KG, LINEAR = get_model("kg"), get_model("kg_linear")
 W, N = 4.0, 16

@@ -1,4 +1,4 @@
-"""Results do not depend on the SIMD width (chainchaos.engine.simd.LANES) or on which scenes share a batch.
+"""Results do not depend on the SIMD width (chainchaos.kernels.simd.LANES) or on which scenes share a batch.
 
 The width is fitted to the CPU (8 with AVX-512, 4 otherwise) and ``CHAINCHAOS_SIMD_LANES`` selects
 another; both engines are compiled for it. These are bit-for-bit reproducibility tests: the same
@@ -13,9 +13,14 @@ import numpy as np
 import pytest
 
 from chainchaos import random_chain
-from chainchaos.engine import simd
 from chainchaos.errors import ParameterError
-from chainchaos.run.scenes import SceneParameters, model_observables, simulate, simulate_scenes
+from chainchaos.kernels import simd
+from chainchaos.run.scenes import (
+    SceneParameters,
+    model_observables,
+    simulate,
+    simulate_scenes,
+)
 from chainchaos.system.models import BEAD_MODELS
 
 OTHER_WIDTH = 4 if simd.LANES == 8 else 8
@@ -25,10 +30,10 @@ _PROBE = """
 import sys
 import numpy as np
 from chainchaos import random_chain
-from chainchaos.engine import simd
+from chainchaos.kernels import simd
 from chainchaos.system.initial import initial_deviation, initial_state
 from chainchaos.system.models import BEAD_MODELS
-from chainchaos.system.problem import Problem
+from chainchaos.engine.problem import Problem
 
 chains = [random_chain(s, 5.0) for s in (879, 5346, 11, 12, 13)]
 out = [np.array([simd.LANES], dtype=float)]

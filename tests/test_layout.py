@@ -11,8 +11,8 @@ from pathlib import Path
 import chainchaos
 
 PACKAGE = Path(chainchaos.__file__).resolve().parent
-LAYERS = {"system", "engine", "observe", "run", "paper", "studies", "output", "workflow"}
-TOP_LEVEL_MODULES = {"__init__.py", "errors.py", "__main__.py"}  # __main__: python -m chainchaos
+LAYERS = {"kernels", "system", "engine", "observe", "run", "paper", "studies", "output", "workflow"}
+TOP_LEVEL_MODULES = {"__init__.py", "errors.py", "project.py", "__main__.py"}  # __main__: python -m chainchaos
 
 
 def module_name(path: Path) -> str:

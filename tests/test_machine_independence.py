@@ -1,5 +1,5 @@
 """The same numbers on every x86-64: correctly rounded chain parameters, a deterministic
-eigensolver and products (chainchaos.engine.exactmath, chainchaos.system.linear), and bit-for-bit checks.
+eigensolver and products (chainchaos.kernels.exactmath, chainchaos.system.linear), and bit-for-bit checks.
 
 The tests named ``*_bit_for_bit`` are reproducibility tests: the numbers they hold are this code's
 own output (written on an AMD Zen 5 with AVX-512), not independent reference values. They must come
@@ -24,9 +24,9 @@ import pytest
 from scipy.linalg import eigh_tridiagonal
 
 from chainchaos import Chain, chain_from_radii, random_chain
-from chainchaos.engine import exactmath
-from chainchaos.engine.cache import kernel_key
 from chainchaos.engine.integrators import advance, get_scheme
+from chainchaos.kernels import exactmath
+from chainchaos.kernels.cache import kernel_key
 from chainchaos.observe.registry import model_observables
 from chainchaos.output.io import chain_dataset
 from chainchaos.output.provenance import EMULATED_AVX2

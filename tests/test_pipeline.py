@@ -8,17 +8,15 @@ import re
 import shutil
 import subprocess
 import sys
-import types
 from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
-from conftest import QUICK_RUN_OUTPUT
 from matplotlib.image import imread
 
 from chainchaos.engine.batch import SERIAL_REMAINDER
-from chainchaos.engine.simd import LANES
+from chainchaos.kernels.simd import LANES
 from chainchaos.paper import panels, statements
 
 ROOT = Path(__file__).resolve().parents[1]

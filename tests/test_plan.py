@@ -41,7 +41,8 @@ def test_scene_jobs_follow_the_config_counts_and_cover_every_scene_once():
 
 
 def test_scene_jobs_do_not_depend_on_the_simd_width(monkeypatch):
-    from chainchaos.engine import batch, simd
+    from chainchaos.engine import batch
+    from chainchaos.kernels import simd
 
     cut = config()
     expected = plan.scene_jobs(cut)

@@ -1,10 +1,10 @@
-"""Explicit SIMD vectors (chainchaos.engine.simd): every lane gets exactly its scalar operation."""
+"""Explicit SIMD vectors (chainchaos.kernels.simd): every lane gets exactly its scalar operation."""
 
 import numpy as np
 import pytest
 from numba import njit
 
-from chainchaos.engine.simd import LANES, vbelow, vload, vnext, vprev, vstore
+from chainchaos.kernels.simd import LANES, vbelow, vload, vnext, vprev, vstore
 from chainchaos.system.chain import random_chain
 from chainchaos.system.models import MODELS
 from chainchaos.system.models.base import bond_force, bond_force_stiffness, bond_opening

@@ -1,4 +1,4 @@
-"""chainchaos.engine.sqrt.fma_sqrt against np.sqrt, bit for bit (docs/conventions.md#square-root).
+"""chainchaos.kernels.sqrt.fma_sqrt against np.sqrt, bit for bit (docs/conventions.md#square-root).
 
 (a) random: 2^30 (> 1e9) samples over the Hertz force's range (half uniformly random bit patterns
     between 2^-64 and 1e-2, i.e. uniform exponent and mantissa bits, half uniform on [0, 1e-3]) and
@@ -29,9 +29,9 @@ import pytest
 from numba import types
 from numba.extending import intrinsic
 
-from chainchaos.engine import sqrt as fma_module
-from chainchaos.engine.simd import LANES, vload, vstore
-from chainchaos.engine.sqrt import fma_sqrt as fmasqrt
+from chainchaos.kernels import sqrt as fma_module
+from chainchaos.kernels.simd import LANES, vload, vstore
+from chainchaos.kernels.sqrt import fma_sqrt as fmasqrt
 from chainchaos.output.provenance import EMULATED_AVX2
 
 HERE = Path(__file__).resolve().parent
@@ -348,13 +348,13 @@ def test_emulated_avx2(tmp_path):
     r = subprocess.run([sys.executable, "-m", "pytest", "-q", "-x", "-p", "no:cacheprovider", "-p", "no:xdist",
                         __file__, "-k", "not bounds"], env=env, capture_output=True, text=True, cwd=HERE)
     assert r.returncode == 0, r.stdout[-3000:] + r.stderr[-3000:]
-    lanes = subprocess.run([sys.executable, "-c", "from chainchaos.engine.simd import LANES; print(LANES)"],
+    lanes = subprocess.run([sys.executable, "-c", "from chainchaos.kernels.simd import LANES; print(LANES)"],
                            env=env, capture_output=True, text=True, check=True)
     assert lanes.stdout.strip() == "4"
 
 
 def test_the_bounds_of_the_proof_hold():
-    """The inequalities of the proof hold for the constants of chainchaos.engine.sqrt (exact
+    """The inequalities of the proof hold for the constants of chainchaos.kernels.sqrt (exact
     arithmetic): t = X Y^2 in [3/4, 27/32 + 1.3e-16], the relative errors a, b > 0 and the bias
     of the Newton step 0 < eta <= 2^-54 sqrt(X)."""
     import sqrt_bounds
@@ -366,8 +366,8 @@ def test_the_bounds_of_the_proof_hold():
 
 
 def test_the_choice_is_checked_and_keys_the_cache(monkeypatch):
-    from chainchaos.engine.cache import SQRT_VARIABLE, kernel_key
     from chainchaos.errors import ParameterError
+    from chainchaos.kernels.cache import SQRT_VARIABLE, kernel_key
 
     keys = {}
     for value in ("", "hardware", "fma"):

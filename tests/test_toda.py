@@ -11,10 +11,10 @@
 import numpy as np
 import pytest
 
+from chainchaos.engine.problem import Problem
 from chainchaos.system.chain import chain_from_radii, random_chain
 from chainchaos.system.initial import initial_state
 from chainchaos.system.models import fput, get_model, toda
-from chainchaos.system.problem import Problem
 
 TODA = get_model("toda")
 

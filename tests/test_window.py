@@ -10,13 +10,13 @@ packet's width, not N."""
 import numpy as np
 import pytest
 
+from chainchaos.engine.problem import Problem
 from chainchaos.errors import ParameterError, StudyError
 from chainchaos.run.driver import sample, sample_steps
 from chainchaos.run.window import Window, WindowedEngine, restricted_deviation
 from chainchaos.studies.study.spec import load_study
 from chainchaos.system.chain import kg_chain, random_chain
 from chainchaos.system.initial import Excitation, initial_deviation
-from chainchaos.system.problem import Problem
 
 CASES = {  # model: chains, excited site, energy, variable, scheme, dt, t_final
     "kg": ([kg_chain(s, 4.0, 256) for s in range(4)], 128, 0.4, "momentum", "ABA864", 0.2, 1e3),

@@ -6,7 +6,7 @@ with their tangent map; the chaos indicators and spreading observables, written 
 through xarray; and the observables of the paper the pipeline reproduces.
 
 Importing the package sets two process-wide environment variables
-(chainchaos.engine.cache.configure_numba_cache), which Numba reads when it is first imported; a
+(chainchaos.kernels.cache.configure_numba_cache), which Numba reads when it is first imported; a
 variable already set is left as it is:
 
 - ``NUMBA_DISABLE_INTEL_SVML=1``: Numba does not call Intel's SVML vector maths (used when
@@ -19,7 +19,7 @@ variable already set is left as it is:
 Other Numba code that the process runs afterwards sees them too.
 """
 
-from chainchaos.engine.cache import configure_numba_cache
+from chainchaos.kernels.cache import configure_numba_cache
 
 configure_numba_cache()
 
@@ -38,7 +38,7 @@ _EXPORTS = {
     "mode_participation": ("chainchaos.system.linear", "mode_participation"),
     "participation_number": ("chainchaos.system.linear", "participation_number"),
     "ensemble_participation": ("chainchaos.system.linear", "ensemble_participation"),
-    "Problem": ("chainchaos.system.problem", "Problem"),
+    "Problem": ("chainchaos.engine.problem", "Problem"),
     "RunSettings": ("chainchaos.run.settings", "RunSettings"),
     "SceneParameters": ("chainchaos.run.scenes", "SceneParameters"),
     "simulate": ("chainchaos.run.scenes", "simulate"),

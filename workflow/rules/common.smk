@@ -6,7 +6,7 @@ import os
 import re
 from pathlib import Path
 
-from chainchaos.engine.cache import kernel_sources
+from chainchaos.kernels.cache import kernel_sources
 from chainchaos.output import report_captions
 from chainchaos.paper import panels, statements
 from chainchaos.studies.study.spec import study_names

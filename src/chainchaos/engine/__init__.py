@@ -1,7 +1,7 @@
-"""The Numba engines: splitting schemes and the single-trajectory engine, the SIMD batch engine,
-explicit vectors, exactly rounded elementary functions, the energy-checked advance, the
-right-hand side for general ODE solvers, and the on-disk kernel cache.
+"""The Numba engines: the problem every algorithm starts from, splitting schemes and the
+single-trajectory engine, the SIMD batch engine, the energy-checked advance, the right-hand side
+for general ODE solvers, and the checks a model of one's own passes before they run it.
 
-This ``__init__`` imports nothing: ``chainchaos.engine.cache`` must set up Numba's cache before
-any module imports numba.
+This ``__init__`` imports nothing: importing a module of the engines loads Numba, which
+``chainchaos.kernels.cache`` must have configured first (``import chainchaos`` does).
 """

@@ -3,7 +3,7 @@
 ``integrators.advance`` integrates one trajectory, vectorised across its bonds: a vector of
 LANES bonds holds one trajectory's neighbouring bonds, and a chain of N = 40 fills six of them.
 Here the trajectories go in blocks of ``LANES`` (the SIMD width fitted to the CPU,
-``chainchaos.engine.simd``), one lane per trajectory: a drift, the forces and stiffnesses at the new
+``chainchaos.kernels.simd``), one lane per trajectory: a drift, the forces and stiffnesses at the new
 positions and a kick are one sweep over the bonds that keeps the neighbouring beads' vectors and
 the bonds' forces in registers, each bond's work spread over three iterations so that the square
 roots of the Hertz force overlap with the rest of the work; forces are stored only where the next
@@ -36,12 +36,24 @@ Speed: ``benchmarks/batch_throughput.py`` (figures in the README, per machine).
 import numpy as np
 from numba import literally, njit
 
-from chainchaos.engine.integrators import _aligned_zeros, _drift_vector, _renormalise, advance, gram_schmidt
-from chainchaos.engine.simd import LANES, vbelow, vload, vstore
+from chainchaos.engine.integrators import (
+    _aligned_zeros,
+    _drift_vector,
+    _renormalise,
+    advance,
+)
 from chainchaos.errors import require
+from chainchaos.kernels.exactmath import gram_schmidt
+from chainchaos.kernels.simd import LANES, vbelow, vload, vstore
 from chainchaos.system.models import MAX_BOND_PARAMETERS, MAX_SITE_PARAMETERS
-from chainchaos.system.models.base import (bond_force, bond_force_stiffness, bond_opening, check_sites, site_kick,
-                                           site_kick_deviation)
+from chainchaos.system.models.base import (
+    bond_force,
+    bond_force_stiffness,
+    bond_opening,
+    check_sites,
+    site_kick,
+    site_kick_deviation,
+)
 
 #: Up to this many lanes beyond whole blocks cost no more on the single-trajectory engine than in
 #: a padded block: a block takes the time of LANES / r single-engine trajectories, r the batch
@@ -250,7 +262,7 @@ def _normalise_vectors(N, Z, V, lane, extra, orthogonal, growth, W, lane_growth)
     """The extra deviation vectors of one lane at a check, gathered with the block's own vector
     (already normalised) into the rows of W (extra + 1, 2N), the first ``orthogonal`` of them
     orthonormalised against it and each other and the others normalised
-    (``integrators.gram_schmidt``), ln of their norms added to growth[:, lane]."""
+    (``kernels.exactmath.gram_schmidt``), ln of their norms added to growth[:, lane]."""
     for n in range(N):
         W[0, n] = Z[(n + 1) * ROW + _DQ + lane]
         W[0, N + n] = Z[n * ROW + _DP + lane]
@@ -428,7 +440,7 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
 
 
 class Batch:
-    """The lanes of a :class:`~chainchaos.system.problem.Problem` advanced together: the first lanes in
+    """The lanes of a :class:`~chainchaos.engine.problem.Problem` advanced together: the first lanes in
     SIMD blocks by ``advance_batch``, the last ``serial_lanes`` one after the other by the
     single-trajectory engine (``integrators.advance``), with the same numbers either way.
 

@@ -37,7 +37,7 @@ def run_chunks(model, q, p, dq, dp, inv_mass, mass, bonds, kicks, drifts, dt, n_
 
 
 class CheckedRun:
-    """Lane 0 of a :class:`~chainchaos.system.problem.Problem` advanced by :func:`run_chunks`
+    """Lane 0 of a :class:`~chainchaos.engine.problem.Problem` advanced by :func:`run_chunks`
     from the state q, p (and deviation dq, dp; zero without the tangent map), with its energy H0,
     the diagnostics (ln|v| accumulated, largest number of open gaps) and per-bond open-gap step
     counts of :func:`~chainchaos.engine.integrators.advance`. The state arrays are its own copies."""

@@ -20,11 +20,19 @@ from dataclasses import dataclass
 import numpy as np
 from numba import literally, njit
 
-from chainchaos.engine.exactmath import ln
-from chainchaos.engine.simd import LANES, vload, vnext, vprev, vstore
 from chainchaos.errors import require
-from chainchaos.system.models.base import (MAX_BOND_PARAMETERS, MAX_SITE_PARAMETERS, bond_force, bond_force_stiffness,
-                                           bond_opening, check_sites, site_kick, site_kick_deviation)
+from chainchaos.kernels.exactmath import ln
+from chainchaos.kernels.simd import LANES, vload, vnext, vprev, vstore
+from chainchaos.system.models.base import (
+    MAX_BOND_PARAMETERS,
+    MAX_SITE_PARAMETERS,
+    bond_force,
+    bond_force_stiffness,
+    bond_opening,
+    check_sites,
+    site_kick,
+    site_kick_deviation,
+)
 
 
 def inner(**options):
@@ -140,32 +148,6 @@ def _renormalise(dq, dp):
         dq[n] /= norm
         dp[n] /= norm
     return ln(norm)
-
-
-@njit(cache=True)
-def gram_schmidt(W, first, orthogonal, growth):
-    """Rows first..k-1 of W (k, 2N: a deviation vector per row, du_1..du_N then dp_1..dp_N) in
-    place: rows first..orthogonal-1 made orthogonal to every row before them (modified
-    Gram-Schmidt), then each of rows first..k-1 divided by its norm, ln of the norm added to
-    growth[row - first]; rows before ``first`` are taken as they are (unit and orthogonal).
-    Norms and dot products are summed bead by bead, du_n then dp_n, as in :func:`_renormalise`,
-    so a row equal to a vector the engine renormalises gets the same bits."""
-    N = W.shape[1] // 2
-    for j in range(first, W.shape[0]):
-        if j < orthogonal:
-            for i in range(j):
-                dot = 0.0
-                for n in range(N):
-                    dot += W[i, n] * W[j, n] + W[i, N + n] * W[j, N + n]
-                for m in range(2 * N):
-                    W[j, m] -= dot * W[i, m]
-        s = 0.0
-        for n in range(N):
-            s += W[j, n] * W[j, n] + W[j, N + n] * W[j, N + n]
-        norm = np.sqrt(s)
-        for m in range(2 * N):
-            W[j, m] /= norm
-        growth[j - first] += ln(norm)
 
 
 #: The rows of the single engine's work buffer, all indexed alike and padded to whole vectors:
@@ -388,10 +370,10 @@ def advance(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, ta
     Returns -1, or the number of steps done when a non-finite state stopped the run.
 
     The state and parameters are copied into one aligned work buffer (``ROWS``), padded to whole
-    SIMD vectors (``chainchaos.engine.simd``), and the steps run on explicit vectors across the bonds:
+    SIMD vectors (``chainchaos.kernels.simd``), and the steps run on explicit vectors across the bonds:
     no loop has a scalar remainder or needs a runtime check that two arrays do not overlap. The
     model's bond law and site law are compiled in (each model gets its own machine code); the cache directory is
-    keyed by the kernels' source (chainchaos.engine.cache), so an edit there recompiles this.
+    keyed by the kernels' source (chainchaos.kernels.cache), so an edit there recompiles this.
     """
     check_sites(model, sites)
     N = q.shape[0]

@@ -21,8 +21,8 @@ import numpy as np
 from numba import njit
 from numba.core.errors import TypingError
 
-from chainchaos.engine.simd import LANES, vload, vstore
 from chainchaos.errors import ParameterError
+from chainchaos.kernels.simd import LANES, vload, vstore
 from chainchaos.system.chain import kg_chain, random_chain
 from chainchaos.system.models import MODELS, add_to_registry, require_free_name
 from chainchaos.system.models.base import (
@@ -58,7 +58,7 @@ CHECKS = {
     "site force = dw/du": "a site law's force w' is the derivative of its potential w, and w'' that of w'",
     "force alone": "force(P, left, right) is the force of force_stiffness, to the bit",
     "lanes": "the kernels compile for the batch engine's vectors (only + - *, max, np.sqrt or "
-             "chainchaos.engine.sqrt.root, np.expm1) and give each lane its scalar result, to the bit",
+             "chainchaos.kernels.sqrt.root, np.expm1) and give each lane its scalar result, to the bit",
 }
 
 _SIZE = 4 * LANES  # bonds of the sample lattice: whole vectors

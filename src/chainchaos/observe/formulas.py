@@ -2,14 +2,14 @@
 
 Every function takes arrays whose last axis is the site (or bond, or mode) and returns the
 observable for every sample; all quantities are dimensionless. Logarithms and products go through
-chainchaos.engine.exactmath, so the values are the same on every CPU.
+chainchaos.kernels.exactmath, so the values are the same on every CPU.
 """
 
 import numpy as np
 from numba import njit
 
-from chainchaos.engine import exactmath
-from chainchaos.engine.integrators import gram_schmidt
+from chainchaos.kernels import exactmath
+from chainchaos.kernels.exactmath import gram_schmidt
 from chainchaos.system.linear import participation_number
 
 EULER_GAMMA = 0.5772156649015329
@@ -101,7 +101,7 @@ def ks_entropy(spectrum: np.ndarray) -> np.ndarray:
 def log_volume(W: np.ndarray) -> float:
     """ln of the k-dimensional volume of the parallelepiped spanned by the rows of W (k, 2N, each
     a deviation vector du then dp): sum_i ln R_ii of the QR factorisation of W^T by modified
-    Gram-Schmidt (``integrators.gram_schmidt``), (1/2) ln det(W W^T). For unit rows (normalised
+    Gram-Schmidt (``kernels.exactmath.gram_schmidt``), (1/2) ln det(W W^T). For unit rows (normalised
     deviation vectors) it is ln GALI_k (Skokos, Bountis & Antonopoulos, Physica D 231, 30 (2007)),
     the product of the singular values; the log form does not underflow where GALI_k goes far
     below the smallest double."""

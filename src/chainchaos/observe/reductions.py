@@ -21,8 +21,8 @@ values ``y`` and ignores t <= 0 where a logarithm is taken.
 
 import numpy as np
 
-from chainchaos.engine import exactmath
 from chainchaos.errors import require
+from chainchaos.kernels import exactmath
 from chainchaos.observe.formulas import finite_time_mlce
 
 

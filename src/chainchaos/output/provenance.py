@@ -1,7 +1,7 @@
 """Provenance recorded in every NetCDF file: package version, git commit, parameters, and the
 machine: CPU model, its vector extensions, Numba's code-generation target and library versions.
 
-The numbers of a file do not depend on the CPU (chainchaos.engine.exactmath): the machine is recorded so
+The numbers of a file do not depend on the CPU (chainchaos.kernels.exactmath): the machine is recorded so
 that a difference between two files can be traced to its build.
 """
 
@@ -11,7 +11,7 @@ import subprocess
 from functools import lru_cache
 from pathlib import Path
 
-from chainchaos.engine.cache import sqrt_choice
+from chainchaos.kernels.cache import sqrt_choice
 from chainchaos.project import package_checkout
 
 #: x86 vector extensions reported, in this order, when the CPU has them (/proc/cpuinfo "flags").
@@ -129,7 +129,7 @@ def machine_line(attrs: dict | None = None) -> str:
     :func:`machine_attrs` are ``attrs`` (a result file's provenance)."""
     width = ""
     if attrs is None:
-        from chainchaos.engine.simd import LANES
+        from chainchaos.kernels.simd import LANES
 
         attrs = {"cpu_model": cpu_model(), "cpu_vector_extensions": cpu_vector_extensions(),
                  "numba_target_cpu": numba_target_cpu(), "square_root": sqrt_choice()}

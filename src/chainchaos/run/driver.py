@@ -1,6 +1,6 @@
 """The integration driver: a problem's lanes advanced through a sampling schedule, with monitors.
 
-:func:`sample` starts the engine of a :class:`~chainchaos.system.problem.Problem` (the batch engine for
+:func:`sample` starts the engine of a :class:`~chainchaos.engine.problem.Problem` (the batch engine for
 several lanes, the single-trajectory one for one) from given states, advances it from sample to
 sample of a schedule of step indices, and records at every sample each lane's state and deviation
 vector, ln|v| (renormalised in the engine every ``check_every`` steps), the gap counts of the
@@ -16,8 +16,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from chainchaos.engine import exactmath
 from chainchaos.errors import SimulationError, require
+from chainchaos.kernels import exactmath
 from chainchaos.observe.formulas import log_volume, sali
 from chainchaos.observe.registry import SampledRun
 from chainchaos.system.models import open_bonds
@@ -28,7 +28,7 @@ def sample_steps(t_final: float, dt: float, per_decade: int, t_first: float) -> 
     ``per_decade`` per decade, which include every power of ten, rounded to the step grid.
 
     The times are t_j = 10^(e_0 + j / per_decade) with e_0 = floor(log10(max(t_first, dt))), up
-    to the first t_j >= t_final, from the C library's scalar log10 and pow (chainchaos.engine.exactmath),
+    to the first t_j >= t_final, from the C library's scalar log10 and pow (chainchaos.kernels.exactmath),
     not NumPy's vectorised ones, whose last bits depend on the CPU."""
     first = math.floor(math.log10(max(t_first, dt)))
     count = math.ceil((math.log10(t_final) - first) * per_decade) + 1

@@ -11,10 +11,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from chainchaos.engine.integrators import get_scheme
+from chainchaos.engine.problem import Problem, check_step
 from chainchaos.errors import require, require_finite_positive
 from chainchaos.run.driver import sample_steps
-from chainchaos.system.initial import extra_deviations, initial_deviation, orthonormalised
-from chainchaos.system.problem import Problem, check_step
+from chainchaos.system.initial import (
+    extra_deviations,
+    initial_deviation,
+    orthonormalised,
+)
 
 
 @dataclass(kw_only=True)

@@ -1,7 +1,7 @@
 """The one warm-up: compile (or load from the on-disk cache) every Numba kernel a run uses.
 
 The first call of a Numba function with new argument types compiles it, or loads it from the
-cache (``chainchaos.engine.cache``). The workflow's ``compile_kernels`` rule calls
+cache (``chainchaos.kernels.cache``). The workflow's ``compile_kernels`` rule calls
 :func:`warm_up` once before anything integrates, so that the jobs that fan out after it load the
 kernels instead of each compiling them; a timed run (``chainchaos.studies.numerics``) calls it
 first so that no timing includes a compilation.
@@ -12,12 +12,19 @@ import os
 import numpy as np
 
 from chainchaos.engine.checked import CheckedRun
+from chainchaos.engine.problem import Problem
 from chainchaos.engine.rhs import RightHandSide
-from chainchaos.observe.registry import ALIGNMENT, OBSERVABLES, REGISTRY, SPECTRUM, model_observables, variables
+from chainchaos.observe.registry import (
+    ALIGNMENT,
+    OBSERVABLES,
+    REGISTRY,
+    SPECTRUM,
+    model_observables,
+    variables,
+)
 from chainchaos.run.driver import sample, sample_steps
 from chainchaos.system.chain import kg_chain, random_chain
 from chainchaos.system.models import MODELS, get_model
-from chainchaos.system.problem import Problem
 
 
 def _sampled_runs(model, chain) -> None:

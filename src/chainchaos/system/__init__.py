@@ -1,3 +1,4 @@
-"""The physical system: disordered chains and their linear modes, the bond models (a registry),
-initial states, and the :class:`~chainchaos.system.problem.Problem` every algorithm starts from.
+"""The physical system: disordered chains and their linear modes, the bond models (a registry)
+and initial states. The :class:`~chainchaos.engine.problem.Problem` that integrates them is in
+``chainchaos.engine``.
 """

@@ -19,7 +19,7 @@ With the bond's mean h_n = 2 r_{n-1} r_n / (r_{n-1} + r_n), every bond parameter
     A = sqrt(h / 36),  delta = h^(-1/3),  K2 = h^(1/3) / 4,  K3 = -h^(2/3) / 16,  K4 = s h / 96,
 
 so each parameter, and the mass r^3, is computed as the double nearest to its exact value for the
-given double radii (exact integer arithmetic, chainchaos.engine.exactmath): the same on every machine.
+given double radii (exact integer arithmetic, chainchaos.kernels.exactmath): the same on every machine.
 """
 
 import copy
@@ -29,8 +29,8 @@ from typing import ClassVar
 
 import numpy as np
 
-from chainchaos.engine.exactmath import rational, root
 from chainchaos.errors import require
+from chainchaos.kernels.exactmath import rational, root
 
 F0 = 1.0 / 6.0
 GENERATOR = "numpy.random.default_rng (PCG64)"

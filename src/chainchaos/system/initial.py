@@ -7,9 +7,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from chainchaos.engine.exactmath import norm
-from chainchaos.engine.integrators import gram_schmidt
 from chainchaos.errors import ParameterError, require
+from chainchaos.kernels.exactmath import gram_schmidt, norm
 from chainchaos.system.models import total_energy
 
 U0_LIMIT = 1e6
@@ -164,7 +163,7 @@ def extra_deviations(N: int, seed: int, count: int, stream: int) -> tuple[np.nda
 
 def orthonormalised(first: np.ndarray, others: np.ndarray) -> np.ndarray:
     """``others`` (k, 2N) made orthogonal to the unit deviation vector ``first`` (2N,) and to each
-    other and normalised (``integrators.gram_schmidt``): the start of a Lyapunov spectrum, whose
+    other and normalised (``kernels.exactmath.gram_schmidt``): the start of a Lyapunov spectrum, whose
     first QR then measures the dynamics only."""
     W = np.vstack([first, others]).astype(float)
     gram_schmidt(W, 1, W.shape[0], np.zeros(W.shape[0]))

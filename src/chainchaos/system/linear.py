@@ -5,7 +5,7 @@ M = diag(m), is solved as the symmetric tridiagonal problem S V = omega^2 V with
 S = M^(-1/2) K M^(-1/2) and U = M^(-1/2) V, so that U^T M U = I.
 
 The eigensolver (:func:`tridiagonal_eigh`, the implicit QL algorithm) and the projections onto the
-modes (:func:`chainchaos.engine.exactmath.matmul`) are Numba loops of IEEE operations and square roots in a
+modes (:func:`chainchaos.kernels.exactmath.matmul`) are Numba loops of IEEE operations and square roots in a
 fixed order, not LAPACK/BLAS, whose kernels and hence last bits depend on the CPU.
 """
 
@@ -14,8 +14,8 @@ import math
 import numpy as np
 from numba import njit
 
-from chainchaos.engine.exactmath import matmul
 from chainchaos.errors import require
+from chainchaos.kernels.exactmath import matmul
 from chainchaos.system.chain import Chain, random_radii
 
 #: QL sweeps allowed per eigenvalue before the solver gives up (convergence is cubic: a few suffice).

@@ -25,11 +25,11 @@ import numpy as np
 from scipy import integrate
 
 from chainchaos.engine.checked import CheckedRun
+from chainchaos.engine.problem import Problem, check_step
 from chainchaos.engine.rhs import RightHandSide
 from chainchaos.errors import require
 from chainchaos.system.initial import initial_deviation, initial_state
 from chainchaos.system.models import get_model
-from chainchaos.system.problem import Problem, check_step
 
 IVP_METHODS = ("RK45", "DOP853")
 

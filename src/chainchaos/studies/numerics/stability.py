@@ -11,16 +11,16 @@ import time
 
 import numpy as np
 
-from chainchaos.engine import exactmath
 from chainchaos.engine.checked import CheckedRun
 from chainchaos.engine.integrators import get_scheme
+from chainchaos.engine.problem import Problem
 from chainchaos.errors import ParameterError, SimulationError
+from chainchaos.kernels import exactmath
 from chainchaos.run.driver import sample_steps
 from chainchaos.studies.numerics.runs import grid_steps, run_scheme
 from chainchaos.system.chain import chain_at_alpha, sonic_vacuum_chain
 from chainchaos.system.initial import excitation_energy, initial_state
 from chainchaos.system.linear import normal_modes
-from chainchaos.system.problem import Problem
 
 
 def harmonic_half_trace(scheme: str, x) -> np.ndarray:

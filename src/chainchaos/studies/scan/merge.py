@@ -10,7 +10,7 @@ The groups are the group files of the scan's study (``runs.scan_study``, run by
 import numpy as np
 import xarray as xr
 
-from chainchaos.engine import exactmath
+from chainchaos.kernels import exactmath
 from chainchaos.output.provenance import provenance_attrs
 from chainchaos.paper import panels
 from chainchaos.studies.scan.runs import (

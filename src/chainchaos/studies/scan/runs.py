@@ -44,8 +44,8 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
-from chainchaos.engine import exactmath
 from chainchaos.errors import require, require_finite_positive
+from chainchaos.kernels import exactmath
 from chainchaos.observe.reductions import (
     chaos_onset,
     final_average,

@@ -25,14 +25,14 @@ log10 t (Flach, Krimer & Skokos, PRL 102, 024101 (2009); Skokos, Gkolias & Flach
    log10(``participation_fraction`` N) (its core fills that much of the chain). A law whose run so
    cut is shorter than ``min_decades`` after ``t_min`` is not fitted (NaN): the chain is too short.
 
-Sums in index order and fdlibm's logarithms (``engine.exactmath``): the same bits on every CPU.
+Sums in index order and fdlibm's logarithms (``kernels.exactmath``): the same bits on every CPU.
 """
 
 import numpy as np
 import xarray as xr
 
-from chainchaos.engine import exactmath
 from chainchaos.errors import require
+from chainchaos.kernels import exactmath
 from chainchaos.studies.study.statistics import (
     log10,
     ordered_mean,

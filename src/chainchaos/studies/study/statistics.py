@@ -14,7 +14,7 @@ Over the realizations of every (model, energy), lane 0 (the unperturbed orbit), 
   realizations the fraction with Wilson 95% bands (``fraction_<flag>``, ``_lower``, ``_upper``)
   and the counts (``count_<flag>``, ``count_decided_<flag>``, ``count_undecided_<flag>``).
 
-Every sum is taken in index order and every logarithm is fdlibm's (``engine.exactmath``), so
+Every sum is taken in index order and every logarithm is fdlibm's (``kernels.exactmath``), so
 the statistics are the same bits on every CPU.
 """
 
@@ -23,7 +23,7 @@ import warnings
 import numpy as np
 import xarray as xr
 
-from chainchaos.engine import exactmath
+from chainchaos.kernels import exactmath
 from chainchaos.studies.scan.merge import wilson_interval
 
 QUANTILES = np.array([0.1, 0.25, 0.5, 0.75, 0.9])

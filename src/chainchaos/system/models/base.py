@@ -9,8 +9,8 @@ kernels of the bond law ``force(P, left, right)``, ``force_stiffness(P, left, ri
 k = df/dD), ``potential(P, left, right)`` (V, zero at rest) and, for a model whose bonds can
 open, ``opening(P, left, right)`` (negative where the bond is open). P is the tuple of the bond's
 parameters, ``left`` and ``right`` the displacements u_{b-1} and u_b: floats, or vectors of the
-batch engine (``chainchaos.engine.simd``), for which force and stiffness must use only + - *,
-``max``, ``np.sqrt`` (or ``chainchaos.engine.sqrt.root``) and ``np.expm1`` (each lane then gets
+batch engine (``chainchaos.kernels.simd``), for which force and stiffness must use only + - *,
+``max``, ``np.sqrt`` (or ``chainchaos.kernels.sqrt.root``) and ``np.expm1`` (each lane then gets
 exactly the scalar result).
 
 A model may also have a site law (:class:`SiteLaw`): an on-site potential w(u) of each bead, with
@@ -37,7 +37,14 @@ from pathlib import Path
 import numpy as np
 from numba import njit, types
 from numba.core.errors import TypingError
-from numba.extending import NativeValue, models, overload, register_model, typeof_impl, unbox
+from numba.extending import (
+    NativeValue,
+    models,
+    overload,
+    register_model,
+    typeof_impl,
+    unbox,
+)
 
 from chainchaos.errors import require
 

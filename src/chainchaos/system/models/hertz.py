@@ -10,7 +10,7 @@ rest, V >= 0). A bond with delta + D < 0 is open (a gap) and carries no force (d
 import numpy as np
 from numba import njit
 
-from chainchaos.engine.sqrt import root
+from chainchaos.kernels.sqrt import root
 from chainchaos.system.models.base import Model
 
 

@@ -31,8 +31,8 @@ from numba.core import cgutils, config
 from numba.core.codegen import get_host_cpu_features
 from numba.extending import intrinsic, models, overload, register_model
 
-from chainchaos.engine.cache import LANES_VARIABLE
 from chainchaos.errors import require
+from chainchaos.kernels.cache import LANES_VARIABLE
 
 ALLOWED_LANES = (2, 4, 8)
 

@@ -2,7 +2,7 @@
 integer operations and fused multiply-adds, with the same bits.
 
 ``root(x)`` is what the Hertz force and stiffness call, on a float64 or on a SIMD ``vector`` of
-``chainchaos.engine.simd``. ``CHAINCHAOS_SQRT`` selects, when the package is imported, how it
+``chainchaos.kernels.simd``. ``CHAINCHAOS_SQRT`` selects, when the package is imported, how it
 is computed:
 
 - ``hardware`` (default): ``np.sqrt``, i.e. the CPU's square-root instruction (vsqrtpd);
@@ -14,7 +14,7 @@ is computed:
 Both give the same numbers everywhere; only the time differs, and which one is faster depends on
 the CPU (its square-root unit against its FMA ports, which the rest of the kernel also uses):
 ``benchmarks/batch_throughput.py`` measures both on a machine. The choice changes the compiled
-kernels, so it is part of the Numba cache key (``chainchaos.engine.cache``).
+kernels, so it is part of the Numba cache key (``chainchaos.kernels.cache``).
 
 The sequence, per element (``int``: on the i64 view of the same register; after Markstein 1990
 and Cornea, Harrison & Tang 2002)::
@@ -36,9 +36,9 @@ from numba import njit, types
 from numba.core import cgutils
 from numba.extending import intrinsic
 
-from chainchaos.engine.cache import SQRT_VARIABLE, sqrt_choice
-from chainchaos.engine.simd import LANES, VectorType, vector
 from chainchaos.errors import require
+from chainchaos.kernels.cache import SQRT_VARIABLE, sqrt_choice
+from chainchaos.kernels.simd import LANES, VectorType, vector
 
 #: The ways ``root`` can be computed (``CHAINCHAOS_SQRT``).
 METHODS = ("hardware", "fma")

@@ -15,7 +15,7 @@ the replacements the package's data paths use:
    least-squares slope), as Numba loops that sum in index order, instead of BLAS and LAPACK.
 
 3. Elementwise logarithms and powers of arrays as Numba loops over scalars, never a vector
-   implementation (Numba uses Intel's SVML only when it is installed; chainchaos.engine.cache turns
+   implementation (Numba uses Intel's SVML only when it is installed; chainchaos.kernels.cache turns
    that off). :func:`log` is :func:`ln`, fdlibm's logarithm in IEEE operations only: the same bits
    on every IEEE-754 machine. :func:`log10` and :func:`exp10` call the C library's scalar
    ``log10`` and ``pow`` (glibc's libm, which Numba links, as CPython's ``math`` does: the results
@@ -265,3 +265,29 @@ def norm(x) -> float:
     x = np.asarray(x, dtype=np.float64)
     require(x.ndim == 1, "x", x.shape, "a vector")
     return math.sqrt(float(matmul(x, x)))
+
+
+@njit(cache=True)
+def gram_schmidt(W, first, orthogonal, growth):
+    """Rows first..k-1 of W (k, 2N: a deviation vector per row, du_1..du_N then dp_1..dp_N) in
+    place: rows first..orthogonal-1 made orthogonal to every row before them (modified
+    Gram-Schmidt), then each of rows first..k-1 divided by its norm, ln of the norm added to
+    growth[row - first]; rows before ``first`` are taken as they are (unit and orthogonal).
+    Norms and dot products are summed bead by bead, du_n then dp_n, as in the engines' ``integrators._renormalise``,
+    so a row equal to a vector the engine renormalises gets the same bits."""
+    N = W.shape[1] // 2
+    for j in range(first, W.shape[0]):
+        if j < orthogonal:
+            for i in range(j):
+                dot = 0.0
+                for n in range(N):
+                    dot += W[i, n] * W[j, n] + W[i, N + n] * W[j, N + n]
+                for m in range(2 * N):
+                    W[j, m] -= dot * W[i, m]
+        s = 0.0
+        for n in range(N):
+            s += W[j, n] * W[j, n] + W[j, N + n] * W[j, N + n]
+        norm = np.sqrt(s)
+        for m in range(2 * N):
+            W[j, m] /= norm
+        growth[j - first] += ln(norm)

@@ -187,7 +187,7 @@ class Problem:
         ``batch.SERIAL_REMAINDER`` lanes beyond them on the single engine); every kind gives the
         same numbers. Extra deviation vectors run on the batch engine only."""
         from chainchaos.engine.batch import SERIAL_REMAINDER, Batch
-        from chainchaos.engine.simd import LANES
+        from chainchaos.kernels.simd import LANES
 
         require(kind in ENGINES, "engine", kind, f"one of {ENGINES}")
         require(kind != "single" or not self.extra_vectors, "engine", kind,

@@ -11,7 +11,7 @@ wins.
 
 It also turns off Numba's use of Intel's SVML vector math library (used when the package
 ``intel-cmplr-lib-rt`` happens to be installed), whose results depend on the CPU: the kernels then
-call the C library's scalar routines on every machine (chainchaos.engine.exactmath). An explicit
+call the C library's scalar routines on every machine (chainchaos.kernels.exactmath). An explicit
 ``NUMBA_DISABLE_INTEL_SVML`` wins.
 """
 
@@ -21,20 +21,19 @@ from pathlib import Path
 
 from chainchaos.project import PACKAGE, package_checkout
 
-
-#: The environment variable that overrides the SIMD width fitted to the CPU (chainchaos.engine.simd).
+#: The environment variable that overrides the SIMD width fitted to the CPU (chainchaos.kernels.simd).
 LANES_VARIABLE = "CHAINCHAOS_SIMD_LANES"
-#: The environment variable that selects the Hertz kernels' square root (chainchaos.engine.sqrt).
+#: The environment variable that selects the Hertz kernels' square root (chainchaos.kernels.sqrt).
 SQRT_VARIABLE = "CHAINCHAOS_SQRT"
 
 #: Modules whose Numba functions are compiled into functions of other modules (patterns).
-SHARED_KERNEL_MODULES = ("system/models/*.py", "engine/integrators.py", "engine/simd.py", "engine/exactmath.py",
-                         "engine/sqrt.py")
+SHARED_KERNEL_MODULES = ("system/models/*.py", "engine/integrators.py", "kernels/simd.py", "kernels/exactmath.py",
+                         "kernels/sqrt.py")
 
 
 def sqrt_choice() -> str:
     """The square root the kernels are compiled with: ``CHAINCHAOS_SQRT`` if set, else
-    "hardware" (chainchaos.engine.sqrt checks the value)."""
+    "hardware" (chainchaos.kernels.sqrt checks the value)."""
     return os.environ.get(SQRT_VARIABLE, "").strip() or "hardware"
 
 
