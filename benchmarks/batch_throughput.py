@@ -36,7 +36,7 @@ from chainchaos.engine.batch import Batch
 from chainchaos.engine.integrators import advance, get_scheme
 from chainchaos.engine.problem import Problem
 from chainchaos.kernels.simd import LANES
-from chainchaos.output.provenance import machine_line
+from chainchaos.records.provenance import machine_line
 from chainchaos.system.initial import initial_deviation, initial_state
 from chainchaos.system.models import get_model
 

@@ -7,7 +7,7 @@ and OpenBLAS pick the code they would pick on another x86-64 CPU:
 
     native   nothing changed: this machine's choices
     avx512   OpenBLAS' SkylakeX kernels (an AVX-512 Intel CPU); NumPy and Numba as on this machine
-    avx2     chainchaos.output.provenance.EMULATED_AVX2: NumPy without its AVX-512 dispatch targets
+    avx2     chainchaos.records.provenance.EMULATED_AVX2: NumPy without its AVX-512 dispatch targets
              (NPY_DISABLE_CPU_FEATURES), Numba/LLVM code for Haswell with Haswell's features only
              (NUMBA_CPU_NAME, NUMBA_CPU_FEATURES), OpenBLAS' Haswell kernels (OPENBLAS_CORETYPE,
              honoured by NumPy's and SciPy's bundled OpenBLAS alike)
@@ -42,7 +42,11 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
 from chainchaos.kernels.cache import kernel_key  # noqa: E402  (does not import numba)
-from chainchaos.output.provenance import EMULATED_AVX2, cpu_model, cpu_vector_extensions  # noqa: E402
+from chainchaos.records.provenance import (  # noqa: E402
+    EMULATED_AVX2,
+    cpu_model,
+    cpu_vector_extensions,
+)
 
 BUILDS = {
     "native": {},
@@ -73,7 +77,7 @@ DEFAULT_SNIPPET = textwrap.dedent('''
     from pathlib import Path
 
     from chainchaos.observe.registry import model_observables
-    from chainchaos.output.io import chain_dataset, ensemble_dataset, write_netcdf
+    from chainchaos.records.io import chain_dataset, ensemble_dataset, write_netcdf
     from chainchaos.run.scenes import SceneParameters, simulate
     from chainchaos.system.chain import random_chain
 

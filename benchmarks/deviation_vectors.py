@@ -20,7 +20,7 @@ import numpy as np
 from chainchaos import random_chain
 from chainchaos.engine.problem import Problem
 from chainchaos.kernels.simd import LANES
-from chainchaos.output.provenance import machine_line
+from chainchaos.records.provenance import machine_line
 from chainchaos.system.initial import initial_deviation, initial_state
 from chainchaos.system.models import get_model
 

@@ -22,9 +22,9 @@ import numpy as np
 import yaml
 
 from chainchaos import random_chain
-from chainchaos.output.provenance import machine_line
 from chainchaos.paper.criteria import Criteria
 from chainchaos.paper.statements import statement_scenes
+from chainchaos.records.provenance import machine_line
 from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
 from chainchaos.studies.search.archive import chosen_seed
 

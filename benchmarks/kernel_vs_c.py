@@ -23,8 +23,13 @@ os.environ["NUMBA_NUM_THREADS"] = "1"  # single thread, before numba is imported
 import numpy as np  # noqa: E402
 
 from chainchaos.engine.integrators import SCHEMES  # noqa: E402
-from chainchaos.output.provenance import machine_line  # noqa: E402
-from chainchaos.studies.numerics.bench import CHECK_EVERY, DT, benchmark_problem, run_kernel  # noqa: E402
+from chainchaos.records.provenance import machine_line  # noqa: E402
+from chainchaos.studies.numerics.bench import (  # noqa: E402
+    CHECK_EVERY,
+    DT,
+    benchmark_problem,
+    run_kernel,
+)
 
 HERE = Path(__file__).resolve().parent
 SOURCE = HERE / "c_reference" / "srkn6b_chain.c"

@@ -35,7 +35,7 @@ from kernel_vs_c import BUILD, CFLAGS, HERE  # the same gcc flags and build fold
 from chainchaos.engine.integrators import get_scheme
 from chainchaos.engine.problem import Problem
 from chainchaos.kernels.simd import LANES
-from chainchaos.output.provenance import machine_line
+from chainchaos.records.provenance import machine_line
 from chainchaos.system.chain import kg_chain
 
 SOURCE = HERE / "c_reference" / "kg_chain.c"

@@ -22,7 +22,7 @@ from pathlib import Path
 
 import xarray as xr
 
-from chainchaos.output.provenance import machine_line
+from chainchaos.records.provenance import machine_line
 
 #: Parts of the pipeline, by the rules whose jobs they are, matched against "<rule>/<job>" (first
 #: match wins), in table order. The scans' orbits run in the jobs of their studies (study_group).

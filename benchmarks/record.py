@@ -210,7 +210,7 @@ BENCHMARKS = {"batch_throughput": batch_throughput, "pipeline": pipeline, "kept_
 def record(name: str, argv: list[str], note: str = "") -> Path:
     """Run benchmark ``name`` with ``argv`` and write its record; return the record's path."""
     from chainchaos.kernels.simd import LANES
-    from chainchaos.output.provenance import (
+    from chainchaos.records.provenance import (
         cpu_vector_extensions,
         numba_target_cpu,
         sqrt_choice,

@@ -33,9 +33,9 @@ import yaml
 
 from chainchaos import random_chain
 from chainchaos.observe.reductions import chaos_onset, gali_crossing, is_chaotic
-from chainchaos.output.provenance import machine_line
 from chainchaos.paper.criteria import Criteria
 from chainchaos.paper.statements import statement_scenes
+from chainchaos.records.provenance import machine_line
 from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
 from chainchaos.studies.search.archive import chosen_seed as archive_seed
 

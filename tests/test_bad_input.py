@@ -19,7 +19,7 @@ import yaml
 
 from chainchaos import random_chain
 from chainchaos.errors import ConfigError
-from chainchaos.output.io import chain_dataset, write_netcdf
+from chainchaos.records.io import chain_dataset, write_netcdf
 from chainchaos.workflow import cli, config_docs
 from chainchaos.workflow.config_check import check_config, typed_overrides
 

@@ -19,12 +19,12 @@ import yaml
 from conftest import QUICK_MANUSCRIPT
 
 from chainchaos import random_chain
-from chainchaos.output.io import chain_dataset, ensemble_dataset
 from chainchaos.paper import claims as cl
 from chainchaos.paper import panels
 from chainchaos.paper.claims import quantities as q
 from chainchaos.paper.claims import writers
 from chainchaos.paper.criteria import Criteria
+from chainchaos.records.io import chain_dataset, ensemble_dataset
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -324,7 +324,7 @@ def test_ensemble_measures_look_at_the_alphas_from_4_on():
 
 def test_chain_measures():
     from chainchaos import random_chain
-    from chainchaos.output.io import chain_dataset
+    from chainchaos.records.io import chain_dataset
 
     chain = chain_dataset(random_chain(879, 5.0))
     inp = inputs(chain=chain)

@@ -12,7 +12,7 @@ import xarray as xr
 
 from chainchaos import chain_from_radii, normal_modes, random_chain
 from chainchaos.observe.registry import ALIGNMENT, GAPS, OBSERVABLES, SPECTRUM, needing
-from chainchaos.output.io import read_chain
+from chainchaos.records.io import read_chain
 from chainchaos.run.scenes import SceneParameters, model_observables
 from chainchaos.system.models import BEAD_MODELS
 

@@ -1,5 +1,5 @@
 """Every kind of NetCDF product passes the IOOS compliance checker's CF suite without errors, and
-writing a file in those conventions (chainchaos.output.cf) keeps every value."""
+writing a file in those conventions (chainchaos.records.cf) keeps every value."""
 
 import fnmatch
 from pathlib import Path
@@ -10,8 +10,8 @@ import xarray as xr
 from compliance_checker.base import BaseCheck
 from compliance_checker.runner import CheckSuite
 
-from chainchaos.output import cf
-from chainchaos.output.io import write_netcdf
+from chainchaos.records import cf
+from chainchaos.records.io import write_netcdf
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -119,7 +119,7 @@ def test_the_archived_computations_pass_the_cf_checker(archive):
 
 
 def test_conventions_keep_the_values_and_the_dataset(tmp_path, monkeypatch):
-    """String, int64 and dimensionless-time coordinates written in the conventions of chainchaos.output.cf
+    """String, int64 and dimensionless-time coordinates written in the conventions of chainchaos.records.cf
     read back with the same values and index; the Dataset written is not changed."""
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")
     ds = xr.Dataset(

@@ -1,10 +1,10 @@
-"""The one formatter of numbers and model names (src/chainchaos/output/formatting.py)."""
+"""The one formatter of numbers and model names (src/chainchaos/records/formatting.py)."""
 
 import math
 
 import numpy as np
 
-from chainchaos.output.formatting import (
+from chainchaos.records.formatting import (
     plain_number,
     round_significant,
     tex_escape,

@@ -1,4 +1,4 @@
-"""Results kept as data, keyed by their settings (chainchaos.output.kept): the digest, the one-line
+"""Results kept as data, keyed by their settings (chainchaos.records.kept): the digest, the one-line
 reasons, `all` using an archive only when its key is the run's, and the disorder archive's numbers
 recomputed bit for bit."""
 
@@ -15,8 +15,8 @@ import xarray as xr
 import yaml
 
 from chainchaos.errors import KeptFileError
-from chainchaos.output import kept
-from chainchaos.output.io import write_netcdf
+from chainchaos.records import kept
+from chainchaos.records.io import write_netcdf
 from chainchaos.studies.scan import runs
 from chainchaos.studies.search import archive
 from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION

@@ -136,7 +136,7 @@ def test_a_study_that_names_no_law_gets_a_laws_file_without_laws(tmp_path):
     empty, and the file is written and read back like any other."""
     import xarray as xr
 
-    from chainchaos.output.io import write_netcdf
+    from chainchaos.records.io import write_netcdf
     from chainchaos.studies.study.laws import laws
 
     t = np.concatenate([[0.0], _times()[:41]])

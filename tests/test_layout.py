@@ -11,7 +11,7 @@ from pathlib import Path
 import chainchaos
 
 PACKAGE = Path(chainchaos.__file__).resolve().parent
-LAYERS = {"kernels", "system", "engine", "observe", "run", "paper", "studies", "output", "workflow"}
+LAYERS = {"kernels", "system", "engine", "observe", "records", "run", "paper", "studies", "output", "workflow"}
 TOP_LEVEL_MODULES = {"__init__.py", "errors.py", "project.py", "__main__.py"}  # __main__: python -m chainchaos
 
 

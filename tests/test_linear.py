@@ -5,8 +5,12 @@ import pytest
 
 from chainchaos import mode_participation, normal_modes, random_chain
 from chainchaos.observe.formulas import normalised_entropy, spectral_entropy
-from chainchaos.output.io import ensemble_dataset
-from chainchaos.studies.search.selection import SelectionCriteria, qualifies, select_realization
+from chainchaos.records.io import ensemble_dataset
+from chainchaos.studies.search.selection import (
+    SelectionCriteria,
+    qualifies,
+    select_realization,
+)
 from chainchaos.system.linear import modal_energies, mode_energy_density
 
 

@@ -1,6 +1,6 @@
 """The locked environment (requirements/lock.txt, requirements/README.md): it satisfies the ranges
 the library declares in pyproject.toml, every pin carries its hashes, and the run summary's line
-says whether the running environment is the locked one (chainchaos.output.environment)."""
+says whether the running environment is the locked one (chainchaos.records.environment)."""
 
 import re
 import tomllib
@@ -9,7 +9,7 @@ from pathlib import Path
 
 from packaging.requirements import Requirement
 
-from chainchaos.output.environment import lock_status, normalized
+from chainchaos.records.environment import lock_status, normalized
 
 ROOT = Path(__file__).resolve().parents[1]
 LOCK = ROOT / "requirements" / "lock.txt"

@@ -28,8 +28,8 @@ from chainchaos.engine.integrators import advance, get_scheme
 from chainchaos.kernels import exactmath
 from chainchaos.kernels.cache import kernel_key
 from chainchaos.observe.registry import model_observables
-from chainchaos.output.io import chain_dataset
-from chainchaos.output.provenance import EMULATED_AVX2
+from chainchaos.records.io import chain_dataset
+from chainchaos.records.provenance import EMULATED_AVX2
 from chainchaos.run.driver import sample_steps
 from chainchaos.run.scenes import SceneParameters, simulate
 from chainchaos.system.chain import sonic_vacuum_chain
@@ -335,7 +335,7 @@ def test_scene_data_bit_for_bit(model):
 
 def test_same_bits_in_an_emulated_avx2_build():
     """Rerun every other test of this file, the bit-for-bit ones included, with NumPy, Numba and
-    OpenBLAS choosing the code of an AVX2 CPU (chainchaos.output.provenance.EMULATED_AVX2), with a
+    OpenBLAS choosing the code of an AVX2 CPU (chainchaos.records.provenance.EMULATED_AVX2), with a
     Numba cache of its own."""
     if os.environ.get("NUMBA_CPU_NAME"):
         pytest.skip("already running in an emulated build")

@@ -8,7 +8,7 @@ import xarray as xr
 
 from chainchaos.engine.rhs import RightHandSide
 from chainchaos.errors import ParameterError, SimulationError
-from chainchaos.output.io import write_netcdf
+from chainchaos.records.io import write_netcdf
 from chainchaos.run.scenes import SceneParameters, simulate
 from chainchaos.studies.numerics import (
     energy_drift,

@@ -13,8 +13,8 @@ import netCDF4
 import pytest
 import yaml
 
-from chainchaos.output import kept
 from chainchaos.paper import panels
+from chainchaos.records import kept
 from chainchaos.workflow import plan
 
 ROOT = Path(__file__).resolve().parents[1]

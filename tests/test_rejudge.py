@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 from chainchaos.errors import ParameterError
-from chainchaos.output import kept as kept_files
-from chainchaos.output.io import write_netcdf
 from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
+from chainchaos.records import kept as kept_files
+from chainchaos.records.io import write_netcdf
 from chainchaos.run.orbits import OrbitSettings
 from chainchaos.studies.search import rejudge
 from chainchaos.studies.search import stages as search

@@ -6,8 +6,13 @@ import pytest
 import xarray as xr
 
 from chainchaos import random_chain
-from chainchaos.output.io import chain_dataset, write_netcdf
-from chainchaos.studies.scan.merge import merge_disorder, merge_energy_scan, scan_groups, wilson_interval
+from chainchaos.records.io import chain_dataset, write_netcdf
+from chainchaos.studies.scan.merge import (
+    merge_disorder,
+    merge_energy_scan,
+    scan_groups,
+    wilson_interval,
+)
 from chainchaos.studies.scan.runs import (
     ScanSettings,
     Trajectory,
@@ -17,9 +22,14 @@ from chainchaos.studies.scan.runs import (
     select_excitation,
     settings_for,
 )
+from chainchaos.studies.scan.thresholds import (
+    PAPER_THRESHOLDS,
+    thresholds_csv,
+    thresholds_table,
+    thresholds_tex,
+)
 from chainchaos.studies.study.runs import run_group
 from chainchaos.studies.study.spec import load_study
-from chainchaos.studies.scan.thresholds import PAPER_THRESHOLDS, thresholds_csv, thresholds_table, thresholds_tex
 from chainchaos.system.models import get_model
 
 CFG = {
@@ -72,7 +82,11 @@ def test_energy_grid_is_log_spaced_and_rounded():
 def test_selection_rule_picks_a_localized_high_mode_near_the_centre(chain):
     pick = select_excitation(chain, high_frequency_modes=14, centre_window=5)
     assert pick["mode"] > chain.N - 14 and abs(pick["site"] - (chain.N + 1) / 2) <= 5 and not pick["fallback"]
-    from chainchaos.system.linear import mode_energy_density, normal_modes, participation_number
+    from chainchaos.system.linear import (
+        mode_energy_density,
+        normal_modes,
+        participation_number,
+    )
 
     omega, U = normal_modes(chain)
     h = mode_energy_density(chain, omega, U)

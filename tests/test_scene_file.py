@@ -10,7 +10,7 @@ import xarray as xr
 
 from chainchaos.errors import ParameterError
 from chainchaos.observe.registry import OBSERVABLES
-from chainchaos.output.io import write_netcdf
+from chainchaos.records.io import write_netcdf
 from chainchaos.run.scenes import SceneParameters, scene_batches, simulate
 
 

@@ -32,7 +32,7 @@ from numba.extending import intrinsic
 from chainchaos.kernels import sqrt as fma_module
 from chainchaos.kernels.simd import LANES, vload, vstore
 from chainchaos.kernels.sqrt import fma_sqrt as fmasqrt
-from chainchaos.output.provenance import EMULATED_AVX2
+from chainchaos.records.provenance import EMULATED_AVX2
 
 HERE = Path(__file__).resolve().parent
 

@@ -8,10 +8,9 @@ import xarray as xr
 
 from chainchaos import run_study
 from chainchaos.errors import StudyError
-from chainchaos.studies.study.spec import FIGURE_OBSERVABLES
 from chainchaos.observe import formulas
 from chainchaos.studies.study import statistics as st
-from chainchaos.studies.study.spec import load_study, study_names
+from chainchaos.studies.study.spec import FIGURE_OBSERVABLES, load_study, study_names
 from chainchaos.system.initial import Excitation, initial_displacement
 from chainchaos.system.linear import modal_energies, normal_modes, participation_number
 from chainchaos.system.models import get_model, total_energy
@@ -261,7 +260,7 @@ def test_a_klein_gordon_study_runs_on_kg_lattices_with_the_energy_of_its_hamilto
 
 
 def test_run_study_reads_a_kept_group_with_its_settings_and_computes_the_others(tmp_path, monkeypatch):
-    from chainchaos.output.io import write_netcdf
+    from chainchaos.records.io import write_netcdf
     from chainchaos.studies.study import spec as study_spec
     from chainchaos.studies.study.runs import run_group
 

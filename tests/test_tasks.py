@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from chainchaos.output.io import ensemble_dataset
 from chainchaos.output.manuscript import GENERATED
+from chainchaos.records.io import ensemble_dataset
 from chainchaos.workflow.tasks import run
 from chainchaos.workflow.tasks.chain import compute_ensemble
 from chainchaos.workflow.tasks.simulate import simulate_scenes
@@ -155,7 +155,7 @@ def test_compute_ensemble_honours_every_key_of_the_ensemble_block(tmp_path):
 def test_simulate_scenes_writes_each_scene_of_its_batch_to_its_own_file(tmp_path):
     """A batch job's scenes, integrated together, each in the file of its name: the scene file
     of the scene run alone (chainchaos.run.scenes.simulate), to the bit."""
-    from chainchaos.output.io import chain_dataset, write_netcdf
+    from chainchaos.records.io import chain_dataset, write_netcdf
     from chainchaos.run.scenes import SceneParameters, simulate
     from chainchaos.system.chain import random_chain
 

@@ -7,7 +7,7 @@ import xarray as xr
 
 from chainchaos import Chain, random_chain
 from chainchaos.errors import ChainFileError, ParameterError, SimulationError
-from chainchaos.output.io import chain_dataset, read_chain, write_netcdf
+from chainchaos.records.io import chain_dataset, read_chain, write_netcdf
 from chainchaos.run.scenes import SceneParameters, simulate
 
 

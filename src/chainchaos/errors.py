@@ -45,7 +45,7 @@ class SimulationError(RuntimeError):
 
 
 class KeptFileError(RuntimeError):
-    """A result kept as data (chainchaos.output.kept) that cannot stand in for its computation and
+    """A result kept as data (chainchaos.records.kept) that cannot stand in for its computation and
     cannot be judged either: unreadable, truncated, or without the settings that key it. The
     message is one line: the file, what is wrong, how to restore or remake it."""
 

@@ -7,7 +7,7 @@ MANUSCRIPT_PDF = config.get("manuscript", {}).get("pdf", "manuscript/ms.pdf")
 
 # The code that measures and writes the claims: an input of evaluate_claims.
 CLAIMS_CODE = sorted(str(p) for p in Path("src/chainchaos/paper/claims").glob("*.py")) + [
-    "src/chainchaos/output/formatting.py",
+    "src/chainchaos/records/formatting.py",
     "src/chainchaos/workflow/tasks/manuscript.py",
 ]
 

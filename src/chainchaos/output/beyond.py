@@ -11,7 +11,7 @@ import re
 
 import xarray as xr
 
-from chainchaos.output.formatting import tex_parameter, tex_scientific
+from chainchaos.records.formatting import tex_parameter, tex_scientific
 
 #: How a law's series reads in the table.
 SYMBOLS = {"second_moment": r"$\langle\log_{10} m_2\rangle$", "participation": r"$\langle\log_{10} P\rangle$",

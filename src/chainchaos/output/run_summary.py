@@ -7,7 +7,7 @@ import io
 import math
 from collections import Counter
 
-from chainchaos.output.formatting import plain_number
+from chainchaos.records.formatting import plain_number
 
 
 def plain_time(t: float) -> str:
@@ -41,7 +41,7 @@ def summary_rows(chain, scene, energy_scan, disorder, claims_csv: str,
                  environment: str | None = None) -> list[tuple[str, str]]:
     """(what, value) rows: the chain and how it was chosen, the scenes' integration, the energy
     scan's and the disorder statistics' sizes and sources, the claims' verdicts and, when given,
-    whether the environment is the locked one (``chainchaos.output.environment.lock_status``)."""
+    whether the environment is the locked one (``chainchaos.records.environment.lock_status``)."""
     rows = _chain_rows(chain)
     s = scene.attrs
     rows.append(("scenes", f"{s['integrator']} at dt = {plain_number(s['dt'])}, to t = {plain_time(float(s['t_final']))}"))

@@ -25,7 +25,7 @@ from chainchaos.observe.registry import (
     needing,
     variables,
 )
-from chainchaos.output.provenance import provenance_attrs
+from chainchaos.records.provenance import provenance_attrs
 from chainchaos.run import driver
 from chainchaos.run.settings import RunSettings
 from chainchaos.system.initial import initial_deviation, initial_state

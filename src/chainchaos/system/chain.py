@@ -67,7 +67,7 @@ class Chain:
     mass (N,), A, delta, K2, K3 and K4 (N+1 bonds) are correctly rounded (module docstring), each
     bond parameter computed on its first use (the linear rule of the realization search reads K2
     alone, of ten thousand chains); K4 carries the sign ``k4_sign``. Made by :func:`random_chain`,
-    :func:`chain_from_radii` or read from a chain file (``chainchaos.output.io.read_chain``).
+    :func:`chain_from_radii` or read from a chain file (``chainchaos.records.io.read_chain``).
 
     Parameters
     ----------

@@ -68,7 +68,7 @@ def _alpha(args) -> float:
 
 
 def _cmd_chain(args) -> None:
-    from chainchaos.output.io import chain_dataset, read_radii, write_netcdf
+    from chainchaos.records.io import chain_dataset, read_radii, write_netcdf
     from chainchaos.studies.search.selection import (
         SelectionCriteria,
         select_realization,
@@ -92,7 +92,7 @@ def _cmd_chain(args) -> None:
 
 
 def _cmd_ensemble(args) -> None:
-    from chainchaos.output.io import ensemble_dataset, write_netcdf
+    from chainchaos.records.io import ensemble_dataset, write_netcdf
 
     write_netcdf(ensemble_dataset(args.alpha, args.realizations, args.N, args.first_seed, args.convention), args.out)
     print(args.out)
@@ -101,7 +101,7 @@ def _cmd_ensemble(args) -> None:
 def _lattice(args, model):
     """The lattice ``model`` runs on, from the options: a bead chain file (``--chain``), or a KG
     lattice drawn from ``--seed``, ``--W`` and ``--N``."""
-    from chainchaos.output.io import read_chain
+    from chainchaos.records.io import read_chain
     from chainchaos.system.chain import kg_chain
     from chainchaos.system.models.base import LATTICES
 
@@ -122,7 +122,7 @@ def _lattice(args, model):
 
 def _cmd_simulate(args) -> None:
     from chainchaos.engine.model_checks import load_model
-    from chainchaos.output.io import write_netcdf
+    from chainchaos.records.io import write_netcdf
     from chainchaos.run.progress import ProgressReporter
     from chainchaos.run.scenes import SceneParameters, simulate
 
@@ -158,7 +158,7 @@ def _cmd_bench(args) -> None:
 
 
 def _cmd_stamp_search_archive(args) -> None:
-    from chainchaos.output.kept import digest
+    from chainchaos.records.kept import digest
     from chainchaos.studies.search.archive import stamp_search_archive
 
     try:
@@ -282,7 +282,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("stamp-search-archive",  # maintenance: not in the help's list
                        description="Write into an archived full search (snakemake keep --config keep=search_full) the settings that "
-                                   "determine it and its result version (chainchaos.output.kept), read off what "
+                                   "determine it and its result version (chainchaos.records.kept), read off what "
                                    "the file records and the config/config.yaml of the commit it records; its "
                                    "variables stay byte for byte. Refuses when the statements' code changed since "
                                    "that commit (chainchaos.studies.search.archive.stamp_search_archive). "

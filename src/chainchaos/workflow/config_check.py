@@ -12,23 +12,22 @@ allowed:
 Every error of the first layer that finds any is reported, so one run names them all.
 """
 
-import math
-from pathlib import Path
 
 from chainchaos.errors import ConfigError, ParameterError
 from chainchaos.project import project_root
-
-#: The pipeline's config schema, in the project directory (``chainchaos.project.project_root``).
-SCHEMA = Path("config") / "schema.yaml"
+from chainchaos.records.schema import (
+    SCHEMA,
+    load_schema,
+    nonfinite_errors,
+    schema_errors,
+)
 
 
 def check_config(config: dict, schema: dict | None = None) -> None:
     """Raise ConfigError listing every wrong key of ``config`` (the merged config files and
     ``--config`` overrides); ``schema`` defaults to config/schema.yaml."""
-    from chainchaos.workflow import config_docs
-
     if schema is None:
-        schema = config_docs.load_schema(project_root("the pipeline's config check") / SCHEMA)
+        schema = load_schema(project_root("the pipeline's config check") / SCHEMA)
     # each layer reads the keys as the layers before it promise them
     errors = schema_errors(config, schema) or nonfinite_errors(config) or consistency_errors(config)
     if errors:
@@ -63,45 +62,6 @@ def typed_overrides(config: dict, overrides: dict) -> None:
     for key, value in overrides.items():
         if isinstance(value, dict) and isinstance(config.get(key), dict):
             walk(config[key], value)
-
-
-def _dotted(path) -> str:
-    text = ""
-    for part in path:
-        text += f"[{part}]" if isinstance(part, int) else (f".{part}" if text else str(part))
-    return text or "(top level)"
-
-
-def schema_errors(config: dict, schema: dict, what: str = "config key") -> list[str]:
-    """One message per violation of the JSON schema, each starting with ``what`` and the key."""
-    from jsonschema.validators import validator_for
-
-    from chainchaos.workflow.config_docs import allowed
-
-    validator = validator_for(schema)(schema)
-    messages = []
-    for error in sorted(validator.iter_errors(config), key=lambda e: [str(p) for p in e.absolute_path]):
-        key = _dotted(error.absolute_path)
-        if error.validator == "additionalProperties" and isinstance(error.instance, dict):
-            known = sorted(error.schema.get("properties", {}))
-            unknown = sorted(set(error.instance) - set(known))
-            messages.append(f"{what} {key}: unknown key(s) {unknown}; allowed are {known}")
-        elif error.validator == "required":
-            messages.append(f"{what} {key}: {error.message}")
-        else:
-            messages.append(f"{what} {key} = {error.instance!r}: allowed is {allowed(error.schema)}")
-    return messages
-
-
-def nonfinite_errors(config, path=(), what: str = "config key") -> list[str]:
-    """Messages for NaN and infinite numbers anywhere in ``config``."""
-    if isinstance(config, dict):
-        return [m for k, v in config.items() for m in nonfinite_errors(v, (*path, k), what)]
-    if isinstance(config, list):
-        return [m for i, v in enumerate(config) for m in nonfinite_errors(v, (*path, i), what)]
-    if isinstance(config, float) and not math.isfinite(config):
-        return [f"{what} {_dotted(path)} = {config!r}: allowed is a finite number"]
-    return []
 
 
 def _labelled(err: ParameterError, blocks: list[tuple[str, dict]]) -> str:

@@ -9,30 +9,18 @@ compare). Needs PyYAML (installed with Snakemake, the workflow extra).
 """
 
 import argparse
-import copy
-import functools
 import sys
 from dataclasses import dataclass
 from pathlib import Path
 
 from chainchaos.project import PACKAGE, project_root
+from chainchaos.records.schema import SCHEMA, _type, _value, load_schema
 
 #: The pipeline's config schema and its README, in the project directory.
-SCHEMA = Path("config/schema.yaml")
 README = Path("config/README.md")
 #: The study schema, package data; its README in the project directory.
 STUDY_SCHEMA = PACKAGE / "studies" / "study" / "schema.yaml"
 STUDY_README = Path("studies/README.md")
-
-# JSON-schema keywords shown as constraints, with how each reads.
-CONSTRAINTS = {
-    "minimum": ">= {}",
-    "exclusiveMinimum": "> {}",
-    "maximum": "<= {}",
-    "exclusiveMaximum": "< {}",
-    "minItems": "{} or more items",
-    "pattern": "matches `{}`",
-}
 
 
 @dataclass
@@ -41,55 +29,6 @@ class Key:
     schema: dict
     required: bool
     same_as: str = ""  # path of an earlier key with the very same schema (a YAML anchor)
-
-
-def registries() -> dict[str, list]:
-    """The names a key marked ``x-registry: <registry>`` in the schema may take: the models of
-    ``chainchaos.system.models`` and the schemes of ``chainchaos.engine.integrators``, so that a new model or
-    scheme is allowed without an edit to the schema."""
-    from chainchaos.engine.integrators import SCHEMES
-    from chainchaos.observe.registry import study_observables
-    from chainchaos.system.models import MODELS
-
-    return {"models": list(MODELS), "schemes": list(SCHEMES), "study_observables": study_observables()}
-
-
-def _fill_registry_enums(node, names: dict[str, list]) -> None:
-    """Give every schema node marked ``x-registry`` its registry's names as ``enum`` (with null
-    where the node's type allows it), in place: Snakemake's own validation, which reads the file,
-    ignores the marker, and check_config, which reads this, names the allowed values."""
-    if isinstance(node, dict):
-        if "x-registry" in node:
-            nullable = "null" in (node["type"] if isinstance(node.get("type"), list) else [node.get("type")])
-            node["enum"] = names[node["x-registry"]] + ([None] if nullable else [])
-        for value in node.values():
-            _fill_registry_enums(value, names)
-    elif isinstance(node, list):
-        for value in node:
-            _fill_registry_enums(value, names)
-
-
-def load_yaml(text: str):
-    """``text`` read by YAML's safe loader, libyaml's where PyYAML has it (the workflow reads its
-    schemas and study files about twenty times before the first job: ten times faster)."""
-    import yaml
-
-    return yaml.load(text, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
-
-
-def load_schema(path: Path | None = None) -> dict:
-    """The schema at ``path`` (default: the project's config schema, :data:`SCHEMA`) with the
-    registries' names filled in (a copy of its own for each caller; the file is read once per
-    process and version of it, the registries as they are now: a model added since is allowed)."""
-    path = Path(path if path is not None else project_root("the config schema") / SCHEMA).resolve()
-    schema = copy.deepcopy(_parsed_schema(path, path.stat().st_mtime_ns))
-    _fill_registry_enums(schema, registries())
-    return schema
-
-
-@functools.cache
-def _parsed_schema(path: Path, version: int) -> dict:
-    return load_yaml(path.read_text())
 
 
 def _children(schema: dict, path: str):
@@ -132,38 +71,6 @@ def keys(schema: dict) -> list[Key]:
 def undescribed(schema: dict) -> list[str]:
     """Paths of the keys that have no description."""
     return [k.path for k in keys(schema) if not k.same_as and not k.schema.get("description")]
-
-
-def _value(v) -> str:
-    if v is None:
-        return "empty"
-    if isinstance(v, bool):
-        return "true" if v else "false"
-    if isinstance(v, (dict, list)):
-        import json
-
-        return json.dumps(v)
-    return str(v)
-
-
-def _type(schema: dict) -> str:
-    types = schema.get("type", "")
-    types = [types] if isinstance(types, str) else list(types)
-    text = " or ".join("empty" if t == "null" else t for t in types if t)
-    if "enum" in schema:
-        text += ": " + ", ".join(f"`{_value(v)}`" for v in schema["enum"])
-    limits = [fmt.format(schema[k]) for k, fmt in CONSTRAINTS.items() if k in schema]
-    items = schema.get("items")
-    if isinstance(items, dict) and "properties" not in items:
-        text += f" of {_type(items)}"
-        return text + (f", {', '.join(limits)}" if limits else "")
-    return text + (f" ({', '.join(limits)})" if limits else "")
-
-
-def allowed(schema: dict) -> str:
-    """What a key with this schema allows, in words: its type, values and limits (the config
-    README's column, for error messages)."""
-    return _type(schema).replace("`", "'")
 
 
 def _cell(text: str) -> str:

@@ -20,8 +20,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from chainchaos.errors import KeptFileError
-from chainchaos.output import kept
 from chainchaos.paper import panels
+from chainchaos.records import kept
 from chainchaos.run.scenes import SceneParameters, scene_batches, scene_parameters
 
 #: The scans are studies too (``studies.scan.runs.scan_study``), named by their kind.
@@ -60,7 +60,7 @@ def use_kept(path, settings: dict, version: int, remake: str, keys=None) -> Kept
     """Whether the kept file ``path`` stands in for its computation with ``settings``.
 
     The only function that opens a file while the workflow is parsed: it reads the file's header
-    (its key, ``chainchaos.output.kept``, and its dimensions), never its data. A file whose
+    (its key, ``chainchaos.records.kept``, and its dimensions), never its data. A file whose
     settings (all of them, or the top-level ``keys``) and result version are this run's is used;
     one that differs is not, and one line on stderr says which key differs. A file whose header
     cannot be read is used all the same, so that only the jobs that read it stop, with the

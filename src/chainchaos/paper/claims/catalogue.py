@@ -32,10 +32,16 @@ adds a row for every statement of ``statements.STATEMENTS`` that no row here res
 :data:`STATEMENT_QUOTES`.
 """
 
-from chainchaos.output.formatting import tex_parameter
 from chainchaos.paper import panels, statements
 from chainchaos.paper import verdicts as _verdicts
-from chainchaos.paper.claims.framework import CHAOS_CRITERION_TEXT, ENERGY_SCAN, Check, ClaimRow, literal
+from chainchaos.paper.claims.framework import (
+    CHAOS_CRITERION_TEXT,
+    ENERGY_SCAN,
+    Check,
+    ClaimRow,
+    literal,
+)
+from chainchaos.records.formatting import tex_parameter
 from chainchaos.system.models import model_label
 
 T_PAPER = 1e5  # the paper's integration time: a statement about "the end" needs it

@@ -2,7 +2,6 @@
 
 import xarray as xr
 
-from chainchaos.output.formatting import tex_number, tex_parameter
 from chainchaos.paper.claims.catalogue import CATALOGUE, STATEMENT_ROWS
 from chainchaos.paper.claims.evidence import (
     REASONS,
@@ -26,6 +25,7 @@ from chainchaos.paper.claims.framework import (
 )
 from chainchaos.paper.claims.measures import MEASURES
 from chainchaos.paper.criteria import Criteria
+from chainchaos.records.formatting import tex_number, tex_parameter
 
 
 def _context(row: ClaimRow, inputs: Inputs, measurement=None) -> dict:

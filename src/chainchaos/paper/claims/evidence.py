@@ -6,10 +6,18 @@ differs (:data:`REASONS`, named by the catalogue's ``reason=(name, *args)``).
 import numpy as np
 
 from chainchaos.observe.reductions import within_factor
-from chainchaos.output.formatting import tex_math, tex_number, tex_parameter
 from chainchaos.paper import statements
 from chainchaos.paper import verdicts as _verdicts
-from chainchaos.paper.claims.framework import DIFFERS, FORMATS, REPRODUCED, UNDECIDED, UNTESTABLE, Inputs, Measurement
+from chainchaos.paper.claims.framework import (
+    DIFFERS,
+    FORMATS,
+    REPRODUCED,
+    UNDECIDED,
+    UNTESTABLE,
+    Inputs,
+    Measurement,
+)
+from chainchaos.records.formatting import tex_math, tex_number, tex_parameter
 from chainchaos.studies.scan.merge import probability_at
 
 

@@ -29,9 +29,14 @@ import numpy as np
 import xarray as xr
 
 from chainchaos.observe.reductions import within_factor
-from chainchaos.output.formatting import round_significant, tex_math, tex_number, tex_parameter
 from chainchaos.paper.claims.quantities import max_energy_error
 from chainchaos.paper.criteria import Criteria
+from chainchaos.records.formatting import (
+    round_significant,
+    tex_math,
+    tex_number,
+    tex_parameter,
+)
 
 VERDICTS = ("reproduced", "differs", "undecided", "not testable at this scale")
 REPRODUCED, DIFFERS, UNDECIDED, UNTESTABLE = VERDICTS

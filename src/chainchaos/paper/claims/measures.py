@@ -10,10 +10,16 @@ what to compute and with which of the criteria.
 
 import numpy as np
 
-from chainchaos.output.formatting import tex_number, tex_parameter
 from chainchaos.paper.claims import quantities as q
 from chainchaos.paper.claims.framework import Inputs, Measurement
-from chainchaos.studies.scan.thresholds import always_above, criterion_holds, first_energy, reads_gali, switches
+from chainchaos.records.formatting import tex_number, tex_parameter
+from chainchaos.studies.scan.thresholds import (
+    always_above,
+    criterion_holds,
+    first_energy,
+    reads_gali,
+    switches,
+)
 
 
 def _alphas_from(inputs: Inputs, alpha_min: float) -> list[float]:

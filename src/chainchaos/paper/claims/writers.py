@@ -7,10 +7,22 @@ from dataclasses import fields
 import numpy as np
 import xarray as xr
 
-from chainchaos.output.formatting import round_significant, tex_escape, tex_math, tex_number, tex_parameter
 from chainchaos.paper.claims import quantities as q
-from chainchaos.paper.claims.framework import DIFFERS, REPRODUCED, UNDECIDED, UNTESTABLE, Claim
+from chainchaos.paper.claims.framework import (
+    DIFFERS,
+    REPRODUCED,
+    UNDECIDED,
+    UNTESTABLE,
+    Claim,
+)
 from chainchaos.paper.criteria import Criteria
+from chainchaos.records.formatting import (
+    round_significant,
+    tex_escape,
+    tex_math,
+    tex_number,
+    tex_parameter,
+)
 from chainchaos.studies.scan.thresholds import thresholds_table
 from chainchaos.system.models import model_label
 

@@ -3,7 +3,7 @@ macros: the settings, and per scene lambda_1, h_KS and how well the exponents pa
 
 import numpy as np
 
-from chainchaos.output.formatting import tex_math, tex_number, tex_parameter
+from chainchaos.records.formatting import tex_math, tex_number, tex_parameter
 from chainchaos.system.models import model_label
 
 

@@ -16,7 +16,7 @@ import numpy as np
 import xarray as xr
 
 from chainchaos.errors import require
-from chainchaos.output.provenance import provenance_attrs
+from chainchaos.records.provenance import provenance_attrs
 from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
 
 

@@ -14,7 +14,7 @@ import xarray as xr
 
 from chainchaos.engine.integrators import get_scheme
 from chainchaos.errors import ParameterError
-from chainchaos.output.provenance import provenance_attrs
+from chainchaos.records.provenance import provenance_attrs
 from chainchaos.run.warmup import warm_up
 from chainchaos.studies.numerics.runs import run_scheme
 

@@ -286,7 +286,7 @@ def stability_scan(chain, alphas, energies, schemes, models=("hertz", "fput"), t
     Returns an xarray Dataset (times in units of 1/omega_max of the homogeneous chain)."""
     import xarray as xr
 
-    from chainchaos.output.provenance import provenance_attrs
+    from chainchaos.records.provenance import provenance_attrs
 
     say = progress or (lambda message: None)
     alphas, energies = [float(a) for a in alphas], [float(e) for e in energies]
@@ -342,7 +342,7 @@ def drift_dataset(result: dict, model: str, energy: float, scheme: str, dt: floa
     """The output of :func:`energy_drift` as an xarray Dataset."""
     import xarray as xr
 
-    from chainchaos.output.provenance import provenance_attrs
+    from chainchaos.records.provenance import provenance_attrs
 
     one = {"units": "1"}
     ds = xr.Dataset({
@@ -368,7 +368,7 @@ def taylor_dataset(rows: list[dict], chain, t_final: float, dt: float, scheme: s
     """The rows of :func:`taylor_sign_probe` as an xarray Dataset, with the barriers."""
     import xarray as xr
 
-    from chainchaos.output.provenance import provenance_attrs
+    from chainchaos.records.provenance import provenance_attrs
 
     one = {"units": "1"}
     taylor = chain.with_k4_sign(-1)

@@ -10,8 +10,8 @@ import math
 
 import numpy as np
 
-from chainchaos.output.formatting import plain_number, tex_escape, tex_scientific
-from chainchaos.output.io import write_text
+from chainchaos.records.formatting import plain_number, tex_escape, tex_scientific
+from chainchaos.records.io import write_text
 from chainchaos.studies.numerics.work_precision import STATUS, order_table
 from chainchaos.system.models import model_label
 

@@ -22,9 +22,14 @@ import xarray as xr
 
 from chainchaos.engine.integrators import SCHEMES, get_scheme
 from chainchaos.errors import require
-from chainchaos.output.provenance import provenance_attrs
+from chainchaos.records.provenance import provenance_attrs
 from chainchaos.run.warmup import warm_up
-from chainchaos.studies.numerics.runs import IVP_METHODS, phase_space_error, run_scheme, run_solve_ivp
+from chainchaos.studies.numerics.runs import (
+    IVP_METHODS,
+    phase_space_error,
+    run_scheme,
+    run_solve_ivp,
+)
 from chainchaos.system.models import get_model
 
 STATUS = {"ok": 0, "unstable": 1, "skipped": 2, "failed": 3}

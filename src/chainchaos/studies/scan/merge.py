@@ -11,8 +11,8 @@ import numpy as np
 import xarray as xr
 
 from chainchaos.kernels import exactmath
-from chainchaos.output.provenance import provenance_attrs
 from chainchaos.paper import panels
+from chainchaos.records.provenance import provenance_attrs
 from chainchaos.studies.scan.runs import (
     EXCITATION,
     REALIZATION,

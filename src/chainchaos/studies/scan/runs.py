@@ -63,7 +63,7 @@ from chainchaos.system.linear import (
 )
 
 #: Version of the numbers of the disorder statistics (the kept full statistics record it,
-#: chainchaos.output.kept): bump only when a change of code changes their numbers (the bit-identity
+#: chainchaos.records.kept): bump only when a change of code changes their numbers (the bit-identity
 #: test tests/test_kept.py tells).
 DISORDER_RESULT_VERSION = 1
 
@@ -220,7 +220,7 @@ SCHEDULING_KEYS = ("engine", "batch_size", "trajectories_per_job")
 
 def disorder_settings(scan_cfg: dict, N: int) -> dict:
     """The settings that determine the disorder statistics (their key as a kept result,
-    ``chainchaos.output.kept``): ``scan_cfg`` is the scan block as the jobs see it (for the full
+    ``chainchaos.records.kept``): ``scan_cfg`` is the scan block as the jobs see it (for the full
     statistics ``scan_config("disorder_full", ...)[1]``), ``N`` the chain's length.
 
     ``chain``: N, alpha, wall radius, first seed and realizations; ``excitation``: the rule that

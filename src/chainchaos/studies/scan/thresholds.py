@@ -5,7 +5,7 @@ above which it always holds, and their table (CSV, LaTeX) beside the paper's val
 import numpy as np
 import xarray as xr
 
-from chainchaos.output.formatting import plain_number
+from chainchaos.records.formatting import plain_number
 from chainchaos.system.models import model_label
 
 #: The paper's energies (section III): Hertz H = 0.5 the lowest it shows chaotic (localized chaos,

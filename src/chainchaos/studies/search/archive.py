@@ -39,7 +39,7 @@ def statements_data() -> list[dict]:
 
 def search_settings(params: dict) -> dict:
     """The settings that determine a search's answer (its key as a kept result,
-    ``chainchaos.output.kept``), from the parameters its rules get
+    ``chainchaos.records.kept``), from the parameters its rules get
     (``chainchaos.workflow.plan.search_params``): ``search`` (the block with its orbit
     ``settings``), ``chain`` (with its ``selection``), ``claims`` and ``site``.
 
@@ -164,7 +164,7 @@ def recorded_search_params(attrs: dict, config_at_commit: dict) -> dict:
 
 def stamp_search_archive(path, root=None) -> dict:
     """Key an archived full search made before kept results recorded their settings
-    (``chainchaos.output.kept``): its settings from what the file records
+    (``chainchaos.records.kept``): its settings from what the file records
     (:func:`recorded_search_params`) and result version 1, written into its global attributes
     with the checksum of its data (``kept.stamp``), every variable left byte for byte as it is.
     Re-runnable: a file already keyed is keyed again with the same settings.
@@ -175,8 +175,8 @@ def stamp_search_archive(path, root=None) -> dict:
     then say what the file was not made with. The engines' code is not compared here: the result
     version and the bit-identity tests speak for it. ``root``: the git checkout (default: the
     package's). Returns the settings written."""
-    from chainchaos.output import kept
     from chainchaos.project import package_checkout
+    from chainchaos.records import kept
 
     root = Path(root or package_checkout())
     with xr.open_dataset(path) as ds:

@@ -22,7 +22,7 @@ computes and only a full remake (``snakemake --cores 2 keep --config keep=search
 sound.
 
 The stage files are kept too (the re-judging may take more than a session), so each records its
-key (``output.kept``, :func:`stage_settings`): the kept search it re-judges and the statements
+key (``records.kept``, :func:`stage_settings`): the kept search it re-judges and the statements
 re-judged, with the search's result version. A stage file whose key is not the run's is not read.
 """
 
@@ -30,9 +30,9 @@ import numpy as np
 import xarray as xr
 
 from chainchaos.errors import require
-from chainchaos.output import kept as kept_files
 from chainchaos.paper import statements
 from chainchaos.paper.verdicts import STATEMENT_KINDS, scene_verdicts
+from chainchaos.records import kept as kept_files
 from chainchaos.studies.search import stages
 from chainchaos.studies.search.stages import (
     SEARCH_RESULT_VERSION,
@@ -96,7 +96,7 @@ def stage_settings(kept: xr.Dataset, ids) -> dict:
 
 
 def stage_key(kept: xr.Dataset, ids) -> dict:
-    """The global attributes that key a stage file (``output.kept.kept_attrs``)."""
+    """The global attributes that key a stage file (``records.kept.kept_attrs``)."""
     return kept_files.kept_attrs(stage_settings(kept, ids), SEARCH_RESULT_VERSION)
 
 

@@ -10,10 +10,10 @@ energy scan and the disorder statistics.
 import numpy as np
 import xarray as xr
 
-from chainchaos.output.formatting import tex_number, tex_parameter
 from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
 from chainchaos.paper.verdicts import HOLDS, NOT_READ, VERDICT_NAMES, verdict_code
+from chainchaos.records.formatting import tex_number, tex_parameter
 from chainchaos.studies.scan.merge import probability_at
 from chainchaos.studies.scan.thresholds import criterion_holds, first_energy
 from chainchaos.studies.search.joint import (

@@ -30,12 +30,24 @@ import xarray as xr
 from chainchaos.errors import require
 from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
-from chainchaos.paper.verdicts import HOLDS, LANE, STATEMENT, evaluate, scene_verdicts, verdict_variables
+from chainchaos.paper.verdicts import (
+    HOLDS,
+    LANE,
+    STATEMENT,
+    evaluate,
+    scene_verdicts,
+    verdict_variables,
+)
 from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
-from chainchaos.studies.search.selection import SelectionCriteria, candidate_row, qualifying, ranked
+from chainchaos.studies.search.selection import (
+    SelectionCriteria,
+    candidate_row,
+    qualifying,
+    ranked,
+)
 from chainchaos.system.chain import random_chain
 
-#: Version of the numbers a search computes (the kept full search records it, chainchaos.output.kept):
+#: Version of the numbers a search computes (the kept full search records it, chainchaos.records.kept):
 #: bump only when a change of code changes its numbers (a bit-identity test tells).
 SEARCH_RESULT_VERSION = 2  # 2: spread-level-H1.8-hertz and eta-H4-fput follow their sentences
 

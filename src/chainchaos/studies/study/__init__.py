@@ -48,7 +48,7 @@ def run_study(source, progress=None) -> xr.Dataset:
     ------
     KeptFileError
         For a kept group with this study's settings that cannot be read or whose data do not
-        match the checksum it records (``chainchaos.output.kept.check_data``): the message names
+        match the checksum it records (``chainchaos.records.kept.check_data``): the message names
         it and how to restore it.
 
     Examples
@@ -65,7 +65,7 @@ def run_study(source, progress=None) -> xr.Dataset:
     integrated again, so ``run_study("kg_weak_chaos")`` returns the kept Klein-Gordon archive in
     seconds.
     """
-    from chainchaos.output import kept
+    from chainchaos.records import kept
     from chainchaos.studies.study.runs import (
         STUDY_RESULT_VERSION,
         group_settings,

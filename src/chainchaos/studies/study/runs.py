@@ -15,8 +15,8 @@ import numpy as np
 import xarray as xr
 
 from chainchaos.observe.registry import REGISTRY
-from chainchaos.output import kept
-from chainchaos.output.provenance import provenance_attrs
+from chainchaos.records import kept
+from chainchaos.records.provenance import provenance_attrs
 from chainchaos.run.orbits import integrate
 from chainchaos.studies.scan.runs import (
     EXCITATION,
@@ -45,7 +45,7 @@ def time_comment(study) -> str:
         return TIME_COMMENT
     return f"bead models: {TIME_COMMENT}; Klein-Gordon models: {KG_TIME_COMMENT}"
 
-#: Version of the numbers a study group computes (kept groups record it, chainchaos.output.kept):
+#: Version of the numbers a study group computes (kept groups record it, chainchaos.records.kept):
 #: bump only when a change of code changes them (a bit-identity test tells).
 STUDY_RESULT_VERSION = 1
 #: Keys of a study that say how it is shown and read, not what its orbits compute.

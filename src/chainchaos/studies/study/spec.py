@@ -85,7 +85,7 @@ def _read(source, root: Path | None) -> tuple[str, dict]:
     """(name, raw dict) of a study named, given by path or given as a dict."""
     import yaml
 
-    from chainchaos.workflow.config_docs import load_yaml
+    from chainchaos.records.schema import load_yaml
 
     if isinstance(source, dict):
         return str(source.get("name", "study")), {k: v for k, v in source.items() if k not in ("name", "directory")}
@@ -196,8 +196,7 @@ def load_study(source, root: Path | None = None) -> "Study":
     chainchaos.errors.StudyError: invalid study (keys: studies/README.md):
       study key lattice.model = 'morse': allowed is ...
     """
-    from chainchaos.workflow.config_check import nonfinite_errors, schema_errors
-    from chainchaos.workflow.config_docs import load_schema
+    from chainchaos.records.schema import load_schema, nonfinite_errors, schema_errors
 
     root = None if root is None else Path(root)  # looked up only for a study named, or one it extends
     name, raw = _read(source, root)
@@ -293,7 +292,7 @@ class Study:
 
     @cached_property
     def file_chain(self):
-        from chainchaos.output.io import read_chain
+        from chainchaos.records.io import read_chain
 
         return read_chain(self.spec["lattice"]["chain_file"])
 

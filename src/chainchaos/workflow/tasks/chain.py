@@ -4,8 +4,8 @@ import sys
 
 import xarray as xr
 
-from chainchaos.output import kept
-from chainchaos.output.io import chain_dataset, ensemble_dataset, write_netcdf
+from chainchaos.records import kept
+from chainchaos.records.io import chain_dataset, ensemble_dataset, write_netcdf
 from chainchaos.studies.search import stages as search
 from chainchaos.studies.search.selection import SelectionCriteria, candidate_row
 from chainchaos.system.chain import random_chain

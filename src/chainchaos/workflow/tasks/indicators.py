@@ -5,8 +5,8 @@ from pathlib import Path
 
 import xarray as xr
 
-from chainchaos.output.io import read_chain, write_netcdf
 from chainchaos.paper import statements
+from chainchaos.records.io import read_chain, write_netcdf
 from chainchaos.run.orbits import OrbitSettings
 from chainchaos.studies.indicators.spectra import scene_spectra
 

@@ -1,5 +1,5 @@
 """Tasks of workflow/rules/keep.smk: the results kept in the repository (data/), each written with
-the key of the settings it was made with (chainchaos.output.kept)."""
+the key of the settings it was made with (chainchaos.records.kept)."""
 
 import sys
 from pathlib import Path
@@ -7,9 +7,9 @@ from pathlib import Path
 import xarray as xr
 
 from chainchaos.errors import require
-from chainchaos.output import kept
-from chainchaos.output.io import write_netcdf
-from chainchaos.output.provenance import provenance_attrs
+from chainchaos.records import kept
+from chainchaos.records.io import write_netcdf
+from chainchaos.records.provenance import provenance_attrs
 from chainchaos.studies.scan import merge, runs
 from chainchaos.studies.search import archive
 from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION
@@ -25,7 +25,7 @@ from chainchaos.workflow.tasks.study import study_group
 def search_full(inputs, outputs, params, wildcards) -> None:
     """The full search's merged result, with its cost and provenance, kept at config search.archive
     and keyed by its settings (``archive.search_settings`` of the full search's parameters) and
-    result version (``chainchaos.output.kept``)."""
+    result version (``chainchaos.records.kept``)."""
     target = outputs["archive"]
     merged = Path(inputs["search"])
     stage_files = sorted(merged.parent.glob("*/*.nc")) + [merged.parent / "candidates.nc", merged]
@@ -40,7 +40,7 @@ def search_full(inputs, outputs, params, wildcards) -> None:
 def disorder_full(inputs, outputs, params, wildcards) -> None:
     """The full disorder statistics, with their cost and provenance, kept at config
     ``scan.disorder.archive`` and keyed by their settings (``runs.disorder_settings``) and result
-    version (``chainchaos.output.kept``)."""
+    version (``chainchaos.records.kept``)."""
     target = outputs["archive"]
     groups = merge.scan_groups([xr.load_dataset(f) for f in inputs["groups"]])
     ds = merge.merge_disorder(groups, params["scan"])

@@ -5,8 +5,7 @@ import sys
 
 import xarray as xr
 
-from chainchaos.output import kept, manuscript
-from chainchaos.output.io import atomic_output, read_chain, write_text
+from chainchaos.output import manuscript
 from chainchaos.paper.claims.evaluation import evaluate_claims as measure_claims
 from chainchaos.paper.claims.quantities import taylor_sign_barrier
 from chainchaos.paper.claims.writers import (
@@ -21,6 +20,8 @@ from chainchaos.paper.claims.writers import (
     write_csv,
 )
 from chainchaos.paper.criteria import Criteria
+from chainchaos.records import kept
+from chainchaos.records.io import atomic_output, read_chain, write_text
 from chainchaos.studies.indicators.report import spectra_macros
 from chainchaos.studies.search import report as search_report
 
@@ -104,8 +105,8 @@ def beyond_the_paper(inputs, outputs, params, wildcards) -> None:
 def run_summary(inputs, outputs, params, wildcards) -> None:
     """What this run did, from its files (``output.run_summary``), as the report's table; with the
     optional input ``lock``, whether the running environment is the locked one."""
-    from chainchaos.output.environment import lock_status
     from chainchaos.output.run_summary import summary_csv, summary_rows
+    from chainchaos.records.environment import lock_status
 
     lock = inputs.get("lock")
     environment = lock_status(lock) if lock else None

@@ -6,8 +6,8 @@ from pathlib import Path
 
 import xarray as xr
 
-from chainchaos.output.io import read_chain, write_netcdf
 from chainchaos.paper import panels
+from chainchaos.records.io import read_chain, write_netcdf
 from chainchaos.run.progress import ProgressReporter
 from chainchaos.run.warmup import warm_up
 from chainchaos.studies.numerics.advice import step_advice

@@ -7,8 +7,8 @@ from pathlib import Path
 
 import xarray as xr
 
-from chainchaos.output import kept
-from chainchaos.output.io import read_chain, write_netcdf, write_text
+from chainchaos.records import kept
+from chainchaos.records.io import read_chain, write_netcdf, write_text
 from chainchaos.studies.scan import merge, thresholds
 
 

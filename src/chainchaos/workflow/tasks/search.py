@@ -7,12 +7,12 @@ import time
 import numpy as np
 import xarray as xr
 
-from chainchaos.output import kept
-from chainchaos.output.io import read_chain, write_netcdf
-from chainchaos.output.provenance import provenance_attrs
 from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
 from chainchaos.paper.verdicts import verdict_dataset
+from chainchaos.records import kept
+from chainchaos.records.io import read_chain, write_netcdf
+from chainchaos.records.provenance import provenance_attrs
 from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
 from chainchaos.studies.search import stages as search
 from chainchaos.studies.search.selection import SelectionCriteria

@@ -3,7 +3,7 @@
 import sys
 import time
 
-from chainchaos.output.io import read_chain, write_netcdf, write_text
+from chainchaos.records.io import read_chain, write_netcdf, write_text
 from chainchaos.run.progress import ProgressReporter
 from chainchaos.run.scenes import simulate_scenes as integrate_scenes
 from chainchaos.run.warmup import warm_up

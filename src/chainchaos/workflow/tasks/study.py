@@ -7,8 +7,8 @@ from pathlib import Path
 
 import xarray as xr
 
-from chainchaos.output import kept
-from chainchaos.output.io import write_netcdf
+from chainchaos.records import kept
+from chainchaos.records.io import write_netcdf
 
 
 def _study(params):
@@ -62,7 +62,7 @@ def study_statistics(inputs, outputs, params, wildcards) -> None:
     """The ensemble statistics of every model and energy of a study, and the power laws its file
     names fitted with bootstrap intervals (studies.study.laws; none named: no law), from one read
     of its groups."""
-    from chainchaos.output.provenance import provenance_attrs
+    from chainchaos.records.provenance import provenance_attrs
     from chainchaos.studies.study.laws import laws
     from chainchaos.studies.study.runs import merge_groups
     from chainchaos.studies.study.statistics import statistics
@@ -95,10 +95,10 @@ def plot_study(inputs, outputs, params, wildcards) -> None:
     """A study's figures, PDF and PNG each: those its key ``figures`` names and, with
     ``compare_with``, its ensemble means beside those of the studies it names (``inputs``: each
     study's statistics by name, the study's own first)."""
+    from chainchaos.engine.model_checks import load_model
     from chainchaos.output.plotting.style import (
         save_figure,  # matplotlib: only in the plotting jobs
     )
-    from chainchaos.engine.model_checks import load_model
     from chainchaos.studies.study.plots import comparison_figure, study_figure
 
     for reference, directory in params.get("models", []):  # one's own models: their labels and colours

@@ -1,5 +1,5 @@
 """The NetCDF conventions of every product, CF-1.11 and ACDD-1.3, applied where files are written
-(chainchaos.output.io.write_netcdf), so that each file passes ``compliance-checker --test=cf:1.11``.
+(chainchaos.records.io.write_netcdf), so that each file passes ``compliance-checker --test=cf:1.11``.
 
 Only the form of a file changes here, never a value of its data:
 

@@ -10,10 +10,14 @@ import numpy as np
 import xarray as xr
 
 from chainchaos.errors import ChainFileError
-from chainchaos.output import cf, kept
-from chainchaos.output.provenance import provenance_attrs
+from chainchaos.records import cf, kept
+from chainchaos.records.provenance import provenance_attrs
 from chainchaos.system.chain import GENERATOR, Chain
-from chainchaos.system.linear import mode_energy_density, normal_modes, participation_number
+from chainchaos.system.linear import (
+    mode_energy_density,
+    normal_modes,
+    participation_number,
+)
 
 CHAIN_VARIABLES = ("radius", "mass", "A", "delta", "K2", "K3", "K4", "frequency", "mode_shape",
                    "mode_participation")
@@ -39,7 +43,7 @@ def atomic_output(path):
 
 def write_netcdf(ds: xr.Dataset, path, seal: bool = False) -> Path:
     """Write ``ds`` to ``path`` atomically, zlib-compressed, in the CF and ACDD conventions of
-    chainchaos.output.cf (the same values; ``ds`` itself is not changed).
+    chainchaos.records.cf (the same values; ``ds`` itself is not changed).
 
     Parameters
     ----------
@@ -48,7 +52,7 @@ def write_netcdf(ds: xr.Dataset, path, seal: bool = False) -> Path:
     path : str or Path
         The file to write (replaced when it exists).
     seal : bool, optional
-        Also record the checksum of the data as written (``chainchaos.output.kept.DATA_ATTR``),
+        Also record the checksum of the data as written (``chainchaos.records.kept.DATA_ATTR``),
         before the file appears: for a kept file, whose key ``ds`` carries.
 
     Returns

@@ -16,7 +16,7 @@ question with the same code. So every kept file records three global attributes:
     numbers (a bit-identity test tells);
 ``kept_data_checksum``
     the SHA-256 of its data (:func:`data_checksum`), written once the data are (:func:`seal`, or
-    ``chainchaos.output.io.write_netcdf(..., seal=True)``): a file damaged inside its data, whose
+    ``chainchaos.records.io.write_netcdf(..., seal=True)``): a file damaged inside its data, whose
     header still reads, is caught by :func:`check_data` in the job that reads it.
 
 :func:`why_not_usable` compares a file with the settings a run would compute it with and the

@@ -142,7 +142,7 @@ def machine_line(attrs: dict | None = None) -> str:
 
 def provenance_attrs(parameters: dict) -> dict:
     """Package version, git commit, ``parameters`` as JSON and the machine (the CF and ACDD global
-    attributes are added where the file is written, chainchaos.output.cf)."""
+    attributes are added where the file is written, chainchaos.records.cf)."""
     from chainchaos import __version__
 
     return {
