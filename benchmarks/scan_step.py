@@ -6,7 +6,7 @@ Both are ``results/scan/energy_scan.nc`` files (e.g. the default step and a fine
 scan into another results directory with ``--config results=<dir>`` and a config layer that sets
 ``scan.energy_scan.dt``). Prints each file's step and largest energy error, then per model and
 criterion (delocalized, chaotic by Λ, chaotic by GALI_k) the energies whose verdict differs, and
-both files' threshold tables (``chainchaos.studies.scan.thresholds``). The claims table reads the
+both files' threshold tables (``chainchaos.paper.thresholds``). The claims table reads the
 scan only through those threshold statements; re-evaluate it on each scan to see whether a claim's
 verdict moves.
 """
@@ -16,7 +16,7 @@ import sys
 import numpy as np
 import xarray as xr
 
-from chainchaos.studies.scan.thresholds import thresholds_table
+from chainchaos.paper.thresholds import thresholds_table
 
 VERDICTS = ("delocalized", "chaotic", "chaotic_gali")
 

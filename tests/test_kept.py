@@ -20,6 +20,7 @@ from chainchaos.records.io import write_netcdf
 from chainchaos.studies.scan import runs
 from chainchaos.studies.search import archive
 from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION
+from chainchaos.studies.study import orbits
 
 ROOT = Path(__file__).resolve().parents[1]
 SEARCH_ARCHIVE = ROOT / "data" / "search" / "search_full.nc"
@@ -333,12 +334,12 @@ def test_one_disorder_trajectory_recomputed_is_bit_identical_to_the_archive():
                          **energies, "selection": settings["excitation"]}}
     model, r, e = "hertz", 3, 12
     realization = runs.realization_chain(scan, r, chain["N"])
-    pick = runs.select_excitation(realization, **runs.selection_kwargs(scan))
-    energy = runs.energy_grid(scan["disorder"])[e]
+    pick = orbits.select_excitation(realization, **runs.selection_kwargs(scan))
+    energy = orbits.energy_grid(scan["disorder"])[e]
     assert energy == ds["energy"].values[e] and pick["site"] == ds["excited_site"].values[r]
     [result] = runs.run_trajectories([runs.Trajectory(model, float(energy), realization, pick["site"])],
                                      runs.settings_for("disorder", scan))
     kept_values = ds.sel(model=model).isel(energy=e, realization=r)
-    for key, (_, dtype) in runs.SCALARS.items():
+    for key, (_, dtype) in orbits.SCALARS.items():
         ours, theirs = np.asarray(result[key]).astype(dtype), kept_values[key].values
         assert ours.tobytes() == theirs.astype(dtype).tobytes(), (key, ours, theirs)

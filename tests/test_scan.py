@@ -7,26 +7,24 @@ import xarray as xr
 
 from chainchaos import random_chain
 from chainchaos.records.io import chain_dataset, write_netcdf
-from chainchaos.studies.scan.merge import (
-    merge_disorder,
-    merge_energy_scan,
-    scan_groups,
-    wilson_interval,
-)
+from chainchaos.studies.scan.merge import merge_disorder, merge_energy_scan, scan_groups
+from chainchaos.studies.study.statistics import wilson_interval
 from chainchaos.studies.scan.runs import (
-    ScanSettings,
     Trajectory,
-    energy_grid,
     run_trajectories,
     scan_study,
-    select_excitation,
     settings_for,
 )
-from chainchaos.studies.scan.thresholds import (
+from chainchaos.paper.thresholds import (
     PAPER_THRESHOLDS,
     thresholds_csv,
     thresholds_table,
     thresholds_tex,
+)
+from chainchaos.studies.study.orbits import (
+    StudySettings,
+    energy_grid,
+    select_excitation,
 )
 from chainchaos.studies.study.runs import run_group
 from chainchaos.studies.study.spec import load_study
@@ -61,7 +59,7 @@ def scan_as_study(kind, chain_file=None):
 
 def test_a_scan_is_the_study_of_its_settings(chain_file):
     study = load_study(scan_study("energy_scan", CFG, 40, chain_file))
-    assert study.settings == ScanSettings(**{**settings_for("energy_scan", CFG).__dict__, "batch_size": 32})
+    assert study.settings == StudySettings(**{**settings_for("energy_scan", CFG).__dict__, "batch_size": 32})
     assert study.energies.tolist() == energy_grid(CFG["energy_scan"]).tolist()
     assert study.excitation().site == 21 and study.models == ["hertz", "fput"] and study.realizations == 1
     assert study.n_groups == 3  # 8 trajectories, 3 per job
@@ -98,11 +96,11 @@ def test_selection_rule_picks_a_localized_high_mode_near_the_centre(chain):
 
 
 def test_engines_agree_and_criteria_follow_their_definitions(chain):
-    settings = ScanSettings(t_final=400.0, dt=0.02, samples_per_decade=8, p_delocalized=6.0,
+    settings = StudySettings(t_final=400.0, dt=0.02, samples_per_decade=8, p_delocalized=6.0,
                                  chaos_growth_margin=2.0, final_samples=20)
     trajs = [Trajectory(m, E, chain, 21) for m in ("hertz", "fput", "toda") for E in (0.2, 3.0)]
     a = run_trajectories(trajs, settings)
-    b = run_trajectories(trajs, ScanSettings(**{**settings.__dict__, "engine": "single"}))
+    b = run_trajectories(trajs, StudySettings(**{**settings.__dict__, "engine": "single"}))
     for ra, rb in zip(a, b):
         for key in ("participation_final", "mlce_final", "eta_final", "max_gaps", "chaotic"):
             assert ra[key] == rb[key]  # the engines are bit-identical

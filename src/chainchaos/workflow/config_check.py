@@ -6,7 +6,7 @@ allowed:
 1. config/schema.yaml, read as JSON schema: types, ranges, names, unknown keys;
 2. what a JSON schema cannot say: every number finite (YAML's ``.nan`` and ``.inf`` are numbers);
 3. what holds between keys, checked by the very objects the jobs build from the config
-   (SceneParameters, ScanSettings, OrbitSettings, SearchPlan, SelectionCriteria), and
+   (SceneParameters, StudySettings, OrbitSettings, SearchPlan, SelectionCriteria), and
    sites within the chain, scene names among the paper's scenes.
 
 Every error of the first layer that finds any is reported, so one run names them all.
@@ -84,9 +84,10 @@ def consistency_errors(config: dict) -> list[str]:
     from chainchaos.paper import panels
     from chainchaos.run.orbits import OrbitSettings
     from chainchaos.run.scenes import scene_parameters
-    from chainchaos.studies.scan.runs import energy_range, settings_for
+    from chainchaos.studies.scan.runs import settings_for
     from chainchaos.studies.search.selection import SelectionCriteria
     from chainchaos.studies.search.stages import SearchPlan
+    from chainchaos.studies.study.orbits import energy_range
 
     messages = []
     scenes = panels.scenes()

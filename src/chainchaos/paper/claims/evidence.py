@@ -18,7 +18,7 @@ from chainchaos.paper.claims.framework import (
     Measurement,
 )
 from chainchaos.records.formatting import tex_math, tex_number, tex_parameter
-from chainchaos.studies.scan.merge import probability_at
+from chainchaos.paper.thresholds import probability_at
 
 
 def statement_result(inputs: Inputs, statement_id: str):

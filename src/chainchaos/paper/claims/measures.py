@@ -13,7 +13,7 @@ import numpy as np
 from chainchaos.paper.claims import quantities as q
 from chainchaos.paper.claims.framework import Inputs, Measurement
 from chainchaos.records.formatting import tex_number, tex_parameter
-from chainchaos.studies.scan.thresholds import (
+from chainchaos.paper.thresholds import (
     always_above,
     criterion_holds,
     first_energy,

@@ -23,7 +23,7 @@ from chainchaos.records.formatting import (
     tex_number,
     tex_parameter,
 )
-from chainchaos.studies.scan.thresholds import thresholds_table
+from chainchaos.paper.thresholds import thresholds_table
 from chainchaos.system.models import model_label
 
 CSV_FIELDS = [f.name for f in fields(Claim)]

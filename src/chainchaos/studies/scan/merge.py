@@ -10,20 +10,22 @@ The groups are the group files of the scan's study (``runs.scan_study``, run by
 import numpy as np
 import xarray as xr
 
-from chainchaos.kernels import exactmath
 from chainchaos.paper import panels
 from chainchaos.records.provenance import provenance_attrs
 from chainchaos.studies.scan.runs import (
-    EXCITATION,
     REALIZATION,
-    SCALARS,
-    SELECTION_RULE,
     SERIES,
-    criteria_attrs,
-    energy_grid,
     selection_kwargs,
     settings_for,
 )
+from chainchaos.studies.study.orbits import (
+    EXCITATION,
+    SCALARS,
+    SELECTION_RULE,
+    criteria_attrs,
+    energy_grid,
+)
+from chainchaos.studies.study.statistics import wilson_interval
 from chainchaos.system.chain import GENERATOR
 
 
@@ -31,17 +33,6 @@ def scan_groups(study_groups: list[xr.Dataset]) -> list[xr.Dataset]:
     """The group files of a scan's study, their dimension ``orbit`` read as the scan's
     ``trajectory`` (one lane per orbit)."""
     return [g.rename(orbit="trajectory") for g in study_groups]
-
-
-def wilson_interval(k, n, z: float = 1.959963984540054):
-    """Wilson score interval of a binomial proportion k/n (95% by default); NaN where n = 0."""
-    k, n = np.asarray(k, float), np.asarray(n, float)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        phat = k / n
-        denom = 1 + z**2 / n
-        centre = (phat + z**2 / (2 * n)) / denom
-        half = z * np.sqrt(phat * (1 - phat) / n + z**2 / (4 * n**2)) / denom
-    return np.clip(centre - half, 0, 1), np.clip(centre + half, 0, 1)
 
 
 def _grid_array(groups, key, shape, index_fn, fill):
@@ -89,16 +80,6 @@ def merge_energy_scan(groups: list[xr.Dataset], scan_cfg: dict, chain=None) -> x
     if chain is not None:
         ds.attrs.update(alpha=float(chain.alpha))
     return ds
-
-
-def probability_at(disorder: xr.Dataset, model: str, key: str, H: float) -> float:
-    """Fraction of the realizations of the disorder statistics that are ``key`` ("delocalized"
-    or "chaotic") at energy H, interpolated linearly in ln H on their grid; NaN outside it."""
-    E = disorder.energy.values
-    if not (np.isfinite(H) and E[0] <= H <= E[-1]):
-        return float("nan")
-    p = disorder[f"probability_{key}"].sel(model=model).values
-    return float(np.interp(exactmath.ln(H), exactmath.log(E), p))
 
 
 def merge_disorder(groups: list[xr.Dataset], scan_cfg: dict) -> xr.Dataset:

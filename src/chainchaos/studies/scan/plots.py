@@ -9,7 +9,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from chainchaos.output.plotting.style import PAGE_WIDTH, context, model_colour
-from chainchaos.studies.scan.thresholds import PAPER_THRESHOLDS
+from chainchaos.paper.thresholds import PAPER_THRESHOLDS
 from chainchaos.system.models import model_label
 
 ENERGY_LABEL = r"$H$"

@@ -14,8 +14,8 @@ from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
 from chainchaos.paper.verdicts import HOLDS, NOT_READ, VERDICT_NAMES, verdict_code
 from chainchaos.records.formatting import tex_number, tex_parameter
-from chainchaos.studies.scan.merge import probability_at
-from chainchaos.studies.scan.thresholds import criterion_holds, first_energy
+from chainchaos.paper.thresholds import probability_at
+from chainchaos.paper.thresholds import criterion_holds, first_energy
 from chainchaos.studies.search.joint import (
     held_counts,
     joint_statements,

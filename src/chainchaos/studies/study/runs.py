@@ -18,7 +18,7 @@ from chainchaos.observe.registry import REGISTRY
 from chainchaos.records import kept
 from chainchaos.records.provenance import provenance_attrs
 from chainchaos.run.orbits import integrate
-from chainchaos.studies.scan.runs import (
+from chainchaos.studies.study.orbits import (
     EXCITATION,
     EXCITATION_PICKS,
     SCALARS,

@@ -25,7 +25,11 @@ from chainchaos.observe.registry import study_observables
 from chainchaos.project import project_root
 from chainchaos.run.orbits import ALIGNMENT_SERIES, Orbit
 from chainchaos.run.window import Window
-from chainchaos.studies.scan.runs import ScanSettings, energy_grid, select_excitation
+from chainchaos.studies.study.orbits import (
+    StudySettings,
+    energy_grid,
+    select_excitation,
+)
 from chainchaos.system.chain import kg_chain, random_chain
 from chainchaos.system.initial import Excitation
 from chainchaos.system.models import BEAD_MODELS, MODELS
@@ -241,7 +245,7 @@ class Study:
 
     @cached_property
     def energies(self) -> np.ndarray:
-        """The energies: as given, or the grid of ``{min, max, n, spacing}`` (``scan.runs.energy_grid``)."""
+        """The energies: as given, or the grid of ``{min, max, n, spacing}`` (``orbits.energy_grid``)."""
         energies = self.spec["excitation"]["energies"]
         if isinstance(energies, dict):
             return energy_grid({"n_energies": energies["n"], "energy_min": energies["min"],
@@ -284,10 +288,10 @@ class Study:
         return Window.from_config(self.spec["integration"].get("window"))
 
     @cached_property
-    def settings(self) -> ScanSettings:
+    def settings(self) -> StudySettings:
         """Integration, lanes and criteria of every orbit."""
         spec = self.spec
-        return ScanSettings.from_config({**spec["integration"], **spec["ensemble"], **spec["criteria"],
+        return StudySettings.from_config({**spec["integration"], **spec["ensemble"], **spec["criteria"],
                                          "alignment": self.alignment, "engine": "batch"})
 
     @cached_property
@@ -327,7 +331,7 @@ class Study:
 
     @cached_property
     def picks(self) -> list[dict]:
-        """Per realization, what ``scan.runs.select_excitation`` picks (site ``selected``) in the
+        """Per realization, what ``orbits.select_excitation`` picks (site ``selected``) in the
         lattices of the study's first model."""
         return [select_excitation(chain, **self.spec["excitation"]["selection"])
                 for chain in self.lattices(self.models[0])]

@@ -24,7 +24,6 @@ import numpy as np
 import xarray as xr
 
 from chainchaos.kernels import exactmath
-from chainchaos.studies.scan.merge import wilson_interval
 
 QUANTILES = np.array([0.1, 0.25, 0.5, 0.75, 0.9])
 #: The series averaged as logarithms over realizations, and how they read.
@@ -123,3 +122,14 @@ def statistics(merged: xr.Dataset, window_decades: float) -> xr.Dataset:
                      statistics_rule=("over the valid realizations, lane 0; running slopes by least squares over "
                                       f"{window_decades:g} decades centred on each sample, at least 3 samples"))
     return out
+
+
+def wilson_interval(k, n, z: float = 1.959963984540054):
+    """Wilson score interval of a binomial proportion k/n (95% by default); NaN where n = 0."""
+    k, n = np.asarray(k, float), np.asarray(n, float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        phat = k / n
+        denom = 1 + z**2 / n
+        centre = (phat + z**2 / (2 * n)) / denom
+        half = z * np.sqrt(phat * (1 - phat) / n + z**2 / (4 * n**2)) / denom
+    return np.clip(centre - half, 0, 1), np.clip(centre + half, 0, 1)

@@ -9,7 +9,8 @@ import xarray as xr
 
 from chainchaos.records import kept
 from chainchaos.records.io import read_chain, write_netcdf, write_text
-from chainchaos.studies.scan import merge, thresholds
+from chainchaos.paper import thresholds
+from chainchaos.studies.scan import merge
 
 
 def _write_merged(kind: str, ds: xr.Dataset, groups: list, out) -> None:

@@ -5,6 +5,7 @@ above which it always holds, and their table (CSV, LaTeX) beside the paper's val
 import numpy as np
 import xarray as xr
 
+from chainchaos.kernels import exactmath
 from chainchaos.records.formatting import plain_number
 from chainchaos.system.models import model_label
 
@@ -101,3 +102,13 @@ def thresholds_tex(rows: list[dict], ds: xr.Dataset) -> str:
         + (f"% chaos by GALI: GALI$_{{{int(ds.attrs['gali_order'])}}}$ below ${ds.attrs['gali_threshold']:g}$ "
            f"by $t_f$\n" if int(ds.attrs.get("gali_order", 0)) > 1 else "")
     )
+
+
+def probability_at(disorder: xr.Dataset, model: str, key: str, H: float) -> float:
+    """Fraction of the realizations of the disorder statistics that are ``key`` ("delocalized"
+    or "chaotic") at energy H, interpolated linearly in ln H on their grid; NaN outside it."""
+    E = disorder.energy.values
+    if not (np.isfinite(H) and E[0] <= H <= E[-1]):
+        return float("nan")
+    p = disorder[f"probability_{key}"].sel(model=model).values
+    return float(np.interp(exactmath.ln(H), exactmath.log(E), p))
