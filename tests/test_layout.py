@@ -1,8 +1,10 @@
-"""The package's folders are its layers: every module imports in a fresh interpreter, no module
-imports itself back through others (at module level or inside a function), and nothing but the
-package's entry points lives outside the layer folders."""
+"""The package's folders are its layers: each imports only the layers below it (the import-linter
+contract of pyproject.toml), every module imports in a fresh interpreter, no module imports itself
+back through others (at module level or inside a function), and nothing but the package's entry
+points and its two base modules lives outside the layer folders."""
 
 import ast
+import shutil
 import subprocess
 import sys
 from graphlib import CycleError, TopologicalSorter
@@ -13,6 +15,7 @@ import chainchaos
 PACKAGE = Path(chainchaos.__file__).resolve().parent
 LAYERS = {"kernels", "system", "engine", "observe", "records", "run", "paper", "studies", "output", "workflow"}
 TOP_LEVEL_MODULES = {"__init__.py", "errors.py", "project.py", "__main__.py"}  # __main__: python -m chainchaos
+ROOT = PACKAGE.parents[1]
 
 
 def module_name(path: Path) -> str:
@@ -35,6 +38,31 @@ def imported_modules(path: Path) -> set[str]:
                 sub = f"{node.module}.{a.name}"
                 out.add(sub if sub in MODULES else node.module)
     return out
+
+
+def lint_imports(config: Path, source: Path) -> subprocess.CompletedProcess:
+    """``lint-imports`` (import-linter) with ``config``, on the package found in ``source``."""
+    linter = shutil.which("lint-imports") or str(Path(sys.executable).with_name("lint-imports"))
+    return subprocess.run([linter, "--config", str(config), "--no-cache"], capture_output=True, text=True,
+                          env={"PATH": str(Path(sys.executable).parent) + ":/usr/bin:/bin", "PYTHONPATH": str(source)},
+                          timeout=300, check=False)
+
+
+def test_each_layer_imports_only_the_layers_below_it():
+    done = lint_imports(ROOT / "pyproject.toml", PACKAGE.parent)
+    assert done.returncode == 0 and "layers KEPT" in done.stdout, done.stdout[-3000:] + done.stderr[-2000:]
+
+
+def test_an_import_against_the_layers_breaks_the_contract(tmp_path):
+    """The contract can fail: a copy of the package whose kernels import the workflow breaks it."""
+    copy = tmp_path / "src" / "chainchaos"
+    shutil.copytree(PACKAGE, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    kernels = copy / "kernels" / "exactmath.py"
+    kernels.write_text(kernels.read_text() + "\nfrom chainchaos.workflow import plan  # noqa: E402\n")
+    shutil.copy(ROOT / "pyproject.toml", tmp_path / "pyproject.toml")
+    done = lint_imports(tmp_path / "pyproject.toml", copy.parent)
+    assert done.returncode == 1 and "layers BROKEN" in done.stdout, done.stdout[-3000:] + done.stderr[-2000:]
+    assert "chainchaos.kernels.exactmath -> chainchaos.workflow.plan" in done.stdout
 
 
 def test_every_module_imports_in_a_fresh_interpreter():

@@ -216,7 +216,7 @@ def test_step_advice_reports_error_per_scene(chain):
 
 def test_figures_are_byte_stable(chain, tmp_path):
     pytest.importorskip("matplotlib")
-    from chainchaos.studies.numerics.plots import plot_work_precision
+    from chainchaos.output.plotting.numerics import plot_work_precision
 
     ds = work_precision(chain, [("hertz", 0.05)], schemes=["verlet"], dts=[0.1, 0.05], tolerances={"RK45": [1e-5]},
                         t_final=10.0, t_probe=10.0, reference={"scheme": "SRKN6b", "dt": {"hertz": 0.01}},

@@ -180,7 +180,7 @@ def test_wilson_interval_known_values():
 
 def test_scan_figures_are_byte_stable(tmp_path, chain, chain_file):
     from chainchaos.output.plotting.style import save_figure
-    from chainchaos.studies.scan import plots as scan_plots
+    from chainchaos.output.plotting import scan as scan_plots
 
     ds = merge_energy_scan(scan_groups(scan_as_study("energy_scan", chain_file)[1]), CFG, chain)
     dis = merge_disorder(scan_groups(scan_as_study("disorder")[1]), CFG)

@@ -1,5 +1,5 @@
 """The realization search's outputs read from a quick run: its LaTeX table and numbers
-(studies.search.report) and its figure (studies.search.plots); the benchmark problem of the
+(studies.search.report) and its figure (output.plotting.search); the benchmark problem of the
 engine timings (studies.numerics.bench)."""
 
 import re
@@ -83,7 +83,7 @@ def test_the_indicator_sentence_counts_the_pairs_on_which_lambda_and_gali_differ
 def test_the_search_figure_shows_every_statement_and_boxes_the_chosen_chain(search_results, tmp_path):
     from matplotlib.patches import Rectangle
 
-    from chainchaos.studies.search import plots
+    from chainchaos.output.plotting import search as plots
 
     search = search_results[0]
     fig = plots.search_figure(search)
@@ -100,7 +100,7 @@ def test_the_search_figure_shows_every_statement_and_boxes_the_chosen_chain(sear
 
 
 def test_the_search_figure_of_many_scored_candidates_labels_the_chosen_seed_only(search_results):
-    from chainchaos.studies.search import plots
+    from chainchaos.output.plotting import search as plots
 
     first = search_results[0]
     n = plots.LABELLED_COLUMNS + 1  # more scored columns than can be labelled: the first one, repeated
@@ -164,7 +164,7 @@ def test_the_joint_analysis_finds_exclusive_statements_and_ranks_the_chosen_chai
 
 
 def test_the_joint_figure_marks_every_exclusive_pair(tmp_path):
-    from chainchaos.studies.search import plots
+    from chainchaos.output.plotting import search as plots
 
     verdicts = np.array([[1, 0, 1], [0, 1, 1]])
     ds = _population(verdicts, [2.0, 2.0], onset=[2e2, 1e3], level=[1e-2, 1e-3])

@@ -32,6 +32,9 @@ TARGETS = ["scan/energy_scan.nc", "scan/disorder_statistics.nc", "scan/threshold
 
 pytestmark = [
     pytest.mark.slow,
+    # one worker runs them all: two workers would each start daemons on the same ports and one
+    # would stop them under the other's run (the hang seen in CI: jobs that never end)
+    pytest.mark.xdist_group("slurm"),
     pytest.mark.skipif(not WANTED, reason="SLURM test runs in CI (CI set) or with CHAINCHAOS_SLURM_TEST=1"),
 ]
 

@@ -13,7 +13,7 @@ Small, orthogonal pieces, all in the nondimensional units of docs/conventions.md
   stable step by bisection (``largest_stable_dt``), the near-sonic-vacuum chain
   (``sonic_vacuum_chain``), long-time energy drift (``energy_drift``), the FPUT Taylor-sign escape.
 - :mod:`~chainchaos.studies.numerics.advice`: the energy error of the production step per scene.
-- :mod:`~chainchaos.studies.numerics.tables` and :mod:`~chainchaos.studies.numerics.plots`: CSV/LaTeX tables and
+- :mod:`~chainchaos.studies.numerics.tables` and :mod:`~chainchaos.output.plotting.numerics`: CSV/LaTeX tables and
   the two figures (imported on demand: they pull in matplotlib).
 """
 

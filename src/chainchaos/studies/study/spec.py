@@ -44,11 +44,10 @@ def kept_group_path(name: str, group: int, root=None) -> Path | None:
     beside the ``studies/`` of :func:`studies_dir` (the workflow's config ``kept_studies``); None
     outside a project (an installed package: nothing is kept there)."""
     if root is None:
-        here = Path.cwd() / "studies"
-        project = Path.cwd() if here.is_dir() else project_root()
-        if project is None:
+        try:
+            root = studies_dir().parent / "data" / "studies"
+        except FileNotFoundError:
             return None
-        root = project / "data" / "studies"
     return Path(root) / name / "groups" / f"{group:04d}.nc"
 
 
@@ -61,7 +60,7 @@ def studies_dir() -> Path:
     return project_root(f"a study named without a path ({Path.cwd()} has no studies/)") / "studies"
 
 
-#: A study's standard figures (``studies.study.plots``), by name.
+#: A study's standard figures (``output.plotting.study``), by name.
 FIGURES = ("spreading", "chaos", "fractions")
 #: Series every orbit keeps whatever the study asks: P judges delocalization, ln|v| chaos by Lambda.
 JUDGED = ("participation", "log_growth")

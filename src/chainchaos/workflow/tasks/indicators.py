@@ -33,7 +33,7 @@ def plot_lyapunov_spectra(inputs, outputs, params, wildcards) -> None:
     from chainchaos.output.plotting.style import (
         save_figure,  # matplotlib: only in the plotting jobs
     )
-    from chainchaos.studies.indicators.plots import spectra_figure
+    from chainchaos.output.plotting.indicators import spectra_figure
 
     fig = spectra_figure([xr.load_dataset(f) for f in inputs["spectra"]])
     save_figure(fig, Path(outputs["pdf"]).with_suffix(""), dpi=params["dpi"])

@@ -59,7 +59,7 @@ def numerics_work_precision(inputs, outputs, params, wildcards) -> None:
 
 def numerics_plot_work_precision(inputs, outputs, params, wildcards) -> None:
     """The work-precision figure (PDF and PNG)."""
-    from chainchaos.studies.numerics.plots import (
+    from chainchaos.output.plotting.numerics import (
         plot_work_precision,  # matplotlib: only in the plotting jobs
     )
 
@@ -118,7 +118,7 @@ def numerics_step_advice(inputs, outputs, params, wildcards) -> None:
 
 def numerics_plot_stability(inputs, outputs, params, wildcards) -> None:
     """The stability figure (PDF and PNG) and its tables (CSV, LaTeX)."""
-    from chainchaos.studies.numerics.plots import (
+    from chainchaos.output.plotting.numerics import (
         plot_stability,  # matplotlib: only in the plotting jobs
     )
 

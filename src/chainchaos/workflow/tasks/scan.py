@@ -50,7 +50,7 @@ def plot_energy_scan(inputs, outputs, params, wildcards) -> None:
     from chainchaos.output.plotting.style import (
         save_figure,  # matplotlib: only in the plotting jobs
     )
-    from chainchaos.studies.scan import plots as scan_plots
+    from chainchaos.output.plotting import scan as scan_plots
 
     fig = scan_plots.energy_scan_figure(xr.load_dataset(inputs["data"]))
     save_figure(fig, Path(outputs["pdf"]).with_suffix(""), dpi=params["dpi"])
@@ -61,7 +61,7 @@ def plot_disorder_statistics(inputs, outputs, params, wildcards) -> None:
     from chainchaos.output.plotting.style import (
         save_figure,  # matplotlib: only in the plotting jobs
     )
-    from chainchaos.studies.scan import plots as scan_plots
+    from chainchaos.output.plotting import scan as scan_plots
 
     fig = scan_plots.disorder_figure(xr.load_dataset(inputs["data"]))
     save_figure(fig, Path(outputs["pdf"]).with_suffix(""), dpi=params["dpi"])

@@ -110,8 +110,8 @@ def plot_search(inputs, outputs, params, wildcards) -> None:
     of chaos against its level, with the claims' tolerances on the paper's values (``joint_pdf``,
     ``joint_png``)."""
     # matplotlib: only in the plotting jobs
-    from chainchaos.studies.search.plots import plot_search as draw
-    from chainchaos.studies.search.plots import plot_search_joint
+    from chainchaos.output.plotting.search import plot_search as draw
+    from chainchaos.output.plotting.search import plot_search_joint
 
     # the kept full search when `all` uses it: a damaged one stops this job, naming it
     kept.check_data(inputs["search"], "snakemake --cores 2 keep --config keep=search_full")

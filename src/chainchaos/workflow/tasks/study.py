@@ -99,7 +99,7 @@ def plot_study(inputs, outputs, params, wildcards) -> None:
     from chainchaos.output.plotting.style import (
         save_figure,  # matplotlib: only in the plotting jobs
     )
-    from chainchaos.studies.study.plots import comparison_figure, study_figure
+    from chainchaos.output.plotting.study import comparison_figure, study_figure
 
     for reference, directory in params.get("models", []):  # one's own models: their labels and colours
         load_model(reference, directory)
