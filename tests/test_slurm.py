@@ -9,6 +9,7 @@ It is skipped, saying why, when not root, without apt, without the executor plug
 daemons do not come up (e.g. a container that forbids them).
 """
 
+import fcntl
 import importlib.util
 import os
 import shutil
@@ -16,6 +17,7 @@ import signal
 import socket
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -32,9 +34,6 @@ TARGETS = ["scan/energy_scan.nc", "scan/disorder_statistics.nc", "scan/threshold
 
 pytestmark = [
     pytest.mark.slow,
-    # one worker runs them all: two workers would each start daemons on the same ports and one
-    # would stop them under the other's run (the hang seen in CI: jobs that never end)
-    pytest.mark.xdist_group("slurm"),
     pytest.mark.skipif(not WANTED, reason="SLURM test runs in CI (CI set) or with CHAINCHAOS_SLURM_TEST=1"),
 ]
 
@@ -100,7 +99,22 @@ def _stop(pid):
 
 @pytest.fixture(scope="module")
 def slurm(tmp_path_factory):
-    """A running single-node SLURM: yields the environment (SLURM_CONF) for its clients."""
+    """A running single-node SLURM: yields the environment (SLURM_CONF) for its clients.
+
+    One process at a time holds it (a lock file): under pytest-xdist each worker that runs a test
+    of this module starts its own daemons, on the same ports and the same /etc/slurm/slurm.conf,
+    and a worker that stopped them under another's run left that run's jobs unfinished for ever
+    (seen in CI: the status checks fell back to sacct, which this cluster cannot answer)."""
+    lock = open(Path(tempfile.gettempdir()) / "chainchaos-slurm-test.lock", "w")  # noqa: SIM115
+    fcntl.flock(lock, fcntl.LOCK_EX)
+    try:
+        yield from _running_slurm(tmp_path_factory)
+    finally:
+        fcntl.flock(lock, fcntl.LOCK_UN)
+        lock.close()
+
+
+def _running_slurm(tmp_path_factory):
     if os.geteuid() != 0:
         pytest.skip("starting munged, slurmctld and slurmd needs root")
     if importlib.util.find_spec("snakemake_executor_plugin_slurm") is None:
