@@ -38,13 +38,13 @@ def _drop_title(text: str) -> str:
 def config_keys() -> str:
     from chainchaos.workflow import config_docs as cd
 
-    return _drop_title(cd.render(cd.load_schema(), cd.HEADER))
+    return _drop_title(cd.render(cd.load_schema(own_models=False), cd.HEADER))
 
 
 def study_keys() -> str:
     from chainchaos.workflow import config_docs as cd
 
-    return _drop_title(cd.render(cd.load_schema(cd.STUDY_SCHEMA), cd.STUDY_HEADER))
+    return _drop_title(cd.render(cd.load_schema(cd.STUDY_SCHEMA, own_models=False), cd.STUDY_HEADER))
 
 
 def _cell(text) -> str:

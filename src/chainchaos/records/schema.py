@@ -29,15 +29,18 @@ CONSTRAINTS = {
 }
 
 
-def registries() -> dict[str, list]:
+def registries(own_models: bool = True) -> dict[str, list]:
     """The names a key marked ``x-registry: <registry>`` in the schema may take: the models of
-    ``chainchaos.system.models`` and the schemes of ``chainchaos.engine.integrators``, so that a new model or
-    scheme is allowed without an edit to the schema."""
+    ``chainchaos.system.models`` (with ``own_models``, those added in this process too; without,
+    the package's, as its documentation lists them) and the schemes of
+    ``chainchaos.engine.integrators``, so that a new model or scheme is allowed without an edit to
+    the schema."""
     from chainchaos.engine.integrators import SCHEMES
     from chainchaos.observe.registry import study_observables
-    from chainchaos.system.models import MODELS
+    from chainchaos.system.models import MODELS, PACKAGE_MODELS
 
-    return {"models": list(MODELS), "schemes": list(SCHEMES), "study_observables": study_observables()}
+    models = list(MODELS) if own_models else list(PACKAGE_MODELS)
+    return {"models": models, "schemes": list(SCHEMES), "study_observables": study_observables()}
 
 
 def _fill_registry_enums(node, names: dict[str, list]) -> None:
@@ -63,13 +66,14 @@ def load_yaml(text: str):
     return yaml.load(text, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
 
 
-def load_schema(path: Path | None = None) -> dict:
+def load_schema(path: Path | None = None, own_models: bool = True) -> dict:
     """The schema at ``path`` (default: the project's config schema, :data:`SCHEMA`) with the
     registries' names filled in (a copy of its own for each caller; the file is read once per
-    process and version of it, the registries as they are now: a model added since is allowed)."""
+    process and version of it, the registries as they are now: a model added since is allowed;
+    ``own_models=False``: the package's models only, for its documentation)."""
     path = Path(path if path is not None else project_root("the config schema") / SCHEMA).resolve()
     schema = copy.deepcopy(_parsed_schema(path, path.stat().st_mtime_ns))
-    _fill_registry_enums(schema, registries())
+    _fill_registry_enums(schema, registries(own_models))
     return schema
 
 

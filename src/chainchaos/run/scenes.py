@@ -52,8 +52,10 @@ class SceneParameters(RunSettings):
         The displaced bead or site, 1-based (default 21).
     name : str, optional
         The scene's name (default ``<model>_H<energy>``).
-    **settings
-        The keywords of :class:`~chainchaos.run.settings.RunSettings`.
+    t_final, dt : float
+        Final time and time step, in the model's time unit (:class:`~chainchaos.run.settings.RunSettings`).
+    integrator, samples_per_decade, t_first_sample, check_every, k4_sign, deviation_seed, max_energy_error, exponents, gali_order : optional
+        As in :class:`~chainchaos.run.settings.RunSettings`, with its defaults.
 
     Examples
     --------

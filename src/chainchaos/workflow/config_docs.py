@@ -119,7 +119,7 @@ stands for each item of a list.
 def render(schema: dict | None = None, header: str = HEADER) -> str:
     """The text of config/README.md (or, with the study schema and :data:`STUDY_HEADER`, of
     studies/README.md)."""
-    schema = load_schema() if schema is None else schema
+    schema = load_schema(own_models=False) if schema is None else schema
     all_keys = keys(schema)
     lines = [header]
     for top in schema["properties"]:
@@ -140,7 +140,7 @@ def main(argv=None) -> int:
     status = 0
     root = project_root("python -m chainchaos.workflow.config_docs")
     for schema_path, readme, header in ((SCHEMA, README, HEADER), (STUDY_SCHEMA, STUDY_README, STUDY_HEADER)):
-        schema = load_schema(root / schema_path)
+        schema = load_schema(root / schema_path, own_models=False)
         missing = undescribed(schema)
         if missing:
             print(f"{schema_path}: keys without a description: " + ", ".join(missing), file=sys.stderr)
