@@ -4,10 +4,10 @@ import numpy as np
 import pytest
 from numba import njit
 
+from chainchaos.engine import model_checks
 from chainchaos.kernels.simd import LANES, vbelow, vload, vnext, vprev, vstore
 from chainchaos.system.chain import random_chain
 from chainchaos.system.models import MODELS
-from chainchaos.system.models.base import bond_force, bond_force_stiffness, bond_opening
 
 # normal numbers, signed zeros, subnormals, infinities and NaN in every operand position
 SPECIAL = np.array([1.5, -2.25, 0.0, -0.0, 5e-324, -1e-310, np.inf, -np.inf, np.nan, 3.0e300, -7.0, 0.125])
@@ -54,27 +54,6 @@ def test_each_lane_is_its_scalar_operation_bit_for_bit():
     np.testing.assert_array_equal(vec.view(np.int64), ref.view(np.int64))
 
 
-@njit
-def _vector_laws(model, P, left, right, out):
-    for i in range(0, left.size, LANES):
-        bond = (vload(P[0], i), vload(P[1], i), vload(P[2], i))
-        u, v = vload(left, i), vload(right, i)
-        f, k = bond_force_stiffness(model, bond, u, v)
-        vstore(out[0], i, f)
-        vstore(out[1], i, k)
-        vstore(out[2], i, bond_force(model, bond, u, v))
-        vstore(out[3], i, bond_opening(model, bond, u, v))
-
-
-@njit
-def _scalar_laws(model, P, left, right, out):
-    for i in range(left.size):
-        bond = (P[0, i], P[1, i], P[2, i])
-        out[0, i], out[1, i] = bond_force_stiffness(model, bond, left[i], right[i])
-        out[2, i] = bond_force(model, bond, left[i], right[i])
-        out[3, i] = bond_opening(model, bond, left[i], right[i])
-
-
 @pytest.mark.parametrize("name", sorted(MODELS))
 def test_every_bond_law_compiles_for_vectors_and_agrees_with_the_scalar_one(name):
     model = MODELS[name]
@@ -82,9 +61,11 @@ def test_every_bond_law_compiles_for_vectors_and_agrees_with_the_scalar_one(name
     P = model.bond_parameters(chain)
     rng = np.random.default_rng(1)
     left, right = rng.normal(scale=0.7, size=(2, 4 * LANES))  # about half the Hertz bonds open
-    vec, ref = np.empty((4, left.size)), np.empty((4, left.size))
-    _vector_laws(model, P, left, right, vec)
-    _scalar_laws(model, P, left, right, ref)
+    vec, ref = np.zeros((5, left.size)), np.zeros((5, left.size))
+    # the kernels of model_checks' lanes check: rows f, k, the force alone, the opening (1..4)
+    model_checks._vector_laws(model, P, left, right, vec)
+    model_checks._scalar_laws(model, P, left, right, ref)
+    vec, ref = vec[1:], ref[1:]
     np.testing.assert_array_equal(vec.view(np.int64), ref.view(np.int64))
     np.testing.assert_array_equal(vec[2], vec[0])  # the force alone is the force of the pair
     if model.has_gaps:

@@ -1,42 +1,18 @@
-"""Energy scans and disorder statistics of delocalization and chaos (issue 7).
+"""Energy scans and disorder statistics of delocalization and chaos (issue 7): studies of the
+config's ``scan`` block (:func:`scan_study`), their settings and their kept files.
 
-Many short trajectories, each reduced to a handful of numbers:
-
-- ``participation_final``: the time average of the participation number P over the last decade
-  (t >= t_final / 10; ``reductions.final_average`` on the log-spaced samples plus
-  ``final_samples`` evenly spaced ones);
-- ``mlce_final``: the finite-time mLCE Lambda(t_final), and ``log_growth_final`` = Lambda t =
-  ln(|v(t)|/|v(0)|) at t_final;
-- ``eta_final``: the time average of the normalised spectral entropy eta over the last decade;
-- ``max_gaps``: the largest number of simultaneously open Hertz bonds over the run (FPUT: -1);
-- ``delocalization_onset``: the first sample time from which P(t) stays above ``p_delocalized``
-  for ``onset_hold_decades`` (``reductions.sustained_onset``; NaN if never);
-- ``chaos_onset``: the onset of chaos (``reductions.chaos_onset``; NaN if not chaotic at the end);
-- with ``alignment``, the second chaos indicator: ``chaotic_gali`` (GALI_k below ``gali_threshold``
-  by t_final; -1 without GALI_k) and ``gali_onset``, the time it crosses (NaN: never).
-
-Criteria (config values, stated in every output file):
-
-- delocalized: ``participation_final > p_delocalized`` (default 10: the initial excitation has
-  P ~ 1-3, an equipartitioned chain of N = 40 beads P ~ 20-27).
-- chaotic: the paper's reading of Lambda(t) over the last decade (``reductions.is_chaotic``): its
-  log-log slope exceeds ``chaos_slope`` (a regular orbit's Lambda ~ ln(t)/t has slope near -1, a
-  chaotic one levels off) and ln|v| grew by more than ln 10 + ``chaos_growth_margin`` (faster than
-  the linear growth a regular orbit allows). A chaotic orbit with mLCE lambda is seen once
-  lambda t_final is of order 10, so a short scan (quick scale, t = 1e3) reports only strong chaos.
-  With ``alignment`` each run is also judged by GALI_k, and a claim that reads "chaotic" from the
-  scan is undecided where the two indicators lead to different answers (``claims.measures``).
+Each trajectory is reduced to the numbers of ``studies.study.orbits`` (``participation_final``,
+``mlce_final``, ``delocalization_onset``, ``chaos_onset``, ...) and judged by its criteria
+(delocalized, chaotic, and with ``alignment`` GALI_k), stated in every output file; the
+excitation of a realization is ``orbits.select_excitation``. A chaotic orbit with mLCE lambda is
+seen once lambda t_final is of order 10, so a short scan (quick scale, t = 1e3) reports only strong
+chaos, and a claim that reads "chaotic" from the scan is undecided where the two indicators lead
+to different answers (``claims.measures``).
 
 Trajectories are integrated by ``orbits.integrate`` (the batch engine, ``batch_size`` at a time,
 or one at a time with ``engine: single``: identical numbers). A trajectory whose state turns
 non-finite or whose relative energy error exceeds ``max_energy_error`` is kept with ``valid = 0``
 and left out of the statistics.
-
-Excitation of a realization (``select_excitation``): among the ``high_frequency_modes`` highest
-linear modes, those whose energy-density maximum lies within ``centre_window`` sites of the chain
-centre (N+1)/2; the one with the smallest participation number is chosen, and its maximum bead is
-excited alone (u = u0 at that bead, p = 0), as in the paper. If no high mode peaks near the centre,
-the most localized high mode anywhere is taken and ``selection_fallback`` is set.
 """
 
 import math
