@@ -155,16 +155,18 @@ rule plot_search:
         "../scripts/plot_search.py"
 
 
-# The scenes of one model in one job (rule ensemble_verdicts_<model>): their orbits share SIMD
-# blocks of the batch engine, and every scene's verdicts are those of its own ensemble.
+# The scenes of one model are one study (paper.ensembles.verdict_study, study verdicts_<model>): its
+# orbits run in the study's jobs (rule study_group), and this rule judges every scene's statements
+# on its own ensemble (seconds of work).
 for model, verdict_scenes in statements.statement_scenes_by_model().items():
 
     rule:
         name:
             f"ensemble_verdicts_{model}"
+        localrule: True
         input:
             chain=result("chain", "chain.nc"),
-            kernels=kernel_flags([model]),
+            groups=study_group_files(f"verdicts_{model}"),
         output:
             **{name: VERDICT_FILES[name] for name in verdict_scenes},
         priority: 3
@@ -172,19 +174,10 @@ for model, verdict_scenes in statements.statement_scenes_by_model().items():
             scenes=verdict_scenes,
             verdicts=config["verdicts"],
             claims=config.get("claims", {}),
-            site=config["simulation"]["excited_site"],
         log:
             log_file("ensemble_verdicts", model),
         benchmark:
             benchmark_file("ensemble_verdicts", model)
-        resources:
-            mem_mb=1000,
-            runtime=plan.cluster_minutes(
-                len(verdict_scenes) * config["verdicts"]["lanes"],
-                config["verdicts"]["settings"]["t_final"],
-                config["verdicts"]["settings"].get("dt", config["search"]["settings"]["dt"]),
-                US_PER_STEP,
-            ),
         script:
             "../scripts/ensemble_verdicts.py"
 

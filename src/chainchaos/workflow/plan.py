@@ -27,6 +27,15 @@ from chainchaos.run.scenes import SceneParameters, scene_batches, scene_paramete
 #: The scans are studies too (``studies.scan.runs.scan_study``), named by their kind.
 SCAN_STUDIES = ("energy_scan", "disorder", "disorder_full")
 
+
+def verdict_studies() -> dict[str, str]:
+    """The studies of the paper's statement scenes on the chosen chain, one per model
+    (``paper.ensembles.verdict_study``): {study name: model}."""
+    from chainchaos.paper.ensembles import verdict_study_name
+    from chainchaos.paper.statements import statement_scenes_by_model
+
+    return {verdict_study_name(model): model for model in statement_scenes_by_model()}
+
 #: Kept results a run can make when config ``keep`` names them (a study's name keeps its groups).
 KEPT_PRODUCTS = ("search_full", "search_rejudge", "disorder_full")
 
@@ -250,6 +259,10 @@ def load_run_study(name: str, config: dict):
 
         chain_file = f"{config['results']}/chain/chain.nc"
         return load_study(scan_study(name, config["scan"], config["chain"]["N"], chain_file))
+    if name in verdict_studies():
+        from chainchaos.paper.ensembles import verdict_study
+
+        return load_study(verdict_study(verdict_studies()[name], config))
     given = str(config.get("study") or "")
     return load_study(given if study_name(given) == name and given != name else name)
 
@@ -265,7 +278,7 @@ def kept_group(study, group: int, kept_root) -> Kept:
     from chainchaos.studies.study.runs import STUDY_RESULT_VERSION, group_settings
     from chainchaos.studies.study.spec import kept_group_path
 
-    if study.name in SCAN_STUDIES:
+    if study.name in SCAN_STUDIES or study.name in verdict_studies():  # the run's own, never kept
         return Kept(None)
     return use_kept(kept_group_path(study.name, group, kept_root), group_settings(study, group),
                     STUDY_RESULT_VERSION, f"snakemake --cores 2 keep --config keep={study.name}")

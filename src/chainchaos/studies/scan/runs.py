@@ -20,7 +20,7 @@ from dataclasses import asdict
 
 from chainchaos.paper import panels
 from chainchaos.run.orbits import Orbit, integrate
-from chainchaos.studies.study.orbits import StudySettings, reduce_orbit
+from chainchaos.studies.study.orbits import StudySettings, reduce_orbit, settings_blocks
 from chainchaos.system.chain import random_chain
 
 #: Version of the numbers of the disorder statistics (the kept full statistics record it,
@@ -137,16 +137,6 @@ REALIZATION = {"units": "1", "long_name": "realization r: random_chain(first_see
 # The scans as studies
 # ----------------------------------------------------------------------------------------------
 
-#: Keys of the scan's settings that a study states under `integration`, `ensemble` and `criteria`.
-STUDY_BLOCKS = {
-    "integration": ("integrator", "dt", "t_final", "samples_per_decade", "t_first_sample", "final_samples",
-                    "check_every", "max_energy_error", "k4_sign", "deviation_seed"),
-    "ensemble": ("perturbation", "perturbation_seed"),
-    "criteria": ("p_delocalized", "chaos_slope", "chaos_growth_margin", "onset_hold_decades", "gali_order",
-                 "gali_threshold"),
-}
-
-
 def scan_study(kind: str, scan_cfg: dict, N: int = 40, chain_file: str | None = None) -> dict:
     """The study (``chainchaos.studies.study``, the keys of a study file) that a scan kind of the
     config block ``scan`` is: every orbit of the kind, run by the study's rules and functions.
@@ -161,7 +151,6 @@ def scan_study(kind: str, scan_cfg: dict, N: int = 40, chain_file: str | None = 
     base, cfg = scan_config(kind, scan_cfg)
     block = cfg[base]
     settings = settings_for(base, cfg)
-    values = {**asdict(settings), "k4_sign": int(settings.k4_sign)}
     models = list(block.get("models", panels.models()))
     if base == "energy_scan":
         lattice = {"model": models, "chain_file": chain_file}
@@ -178,7 +167,7 @@ def scan_study(kind: str, scan_cfg: dict, N: int = 40, chain_file: str | None = 
         excitation["selection"] = selection_kwargs(cfg)
     return {
         "name": kind, "title": TITLES[base], "lattice": lattice, "excitation": excitation,
-        **{name: {key: values[key] for key in keys} for name, keys in STUDY_BLOCKS.items()},
+        **settings_blocks(settings),
         "observables": ["participation", "log_growth", "eta", *(["log_gali"] if settings.alignment else [])],
         "jobs": {"orbits_per_job": int(block["trajectories_per_job"])},
         "figures": [],

@@ -39,7 +39,6 @@ from chainchaos.studies.search.stages import (
     _outcomes,
     candidate_rows,
 )
-from chainchaos.system.chain import random_chain
 
 #: The per-statement stage-2 columns of a score file that the merge reads.
 SCORE_COLUMNS = ("fraction", "verdict", "fraction_lambda", "fraction_gali", "verdict_lambda", "verdict_gali")
@@ -119,8 +118,8 @@ def filter_group(kept: xr.Dataset, selection, plan, settings, criteria, ids, gro
     outcome = np.full((len(rows), len(_ids())), np.nan)
     if scenes and rows:
         short = type(settings)(**{**vars(settings), "t_final": float(plan.filter_t_final), "alignment": False})
-        chains = [random_chain(r["seed"], selection.alpha, selection.N) for r in rows]
-        outcome = _outcomes(chains, site, 1, short, criteria, progress, scenes)[0]["outcome"][:, :, 0]
+        outcome = _outcomes([r["seed"] for r in rows], selection, site, 1, short, criteria, progress,
+                            scenes)[0]["outcome"][:, :, 0]
     ds = xr.Dataset({"outcome": (("candidate", "statement"), outcome, {
         "units": "1", "long_name": "1 satisfied, 0 already violated, NaN not decided by the short run (or not rerun)"})},
         coords={"candidate": ("candidate", np.arange(first, first + len(rows))), "statement": _ids()})
@@ -174,8 +173,7 @@ def score_candidate(kept: xr.Dataset, selection, plan, settings, criteria, ids, 
         ds.attrs.update(rejudge="scored in full (not a survivor of the kept search)", **stage_key(kept, ids))
         return ds
     scenes = scenes_of(ids)
-    chain = random_chain(rows[candidate]["seed"], selection.alpha, selection.N)
-    ev, _ = _outcomes([chain], site, plan.lanes, settings, criteria, progress, scenes)
+    ev, _ = _outcomes([rows[candidate]["seed"]], selection, site, plan.lanes, settings, criteria, progress, scenes)
     ev = {key: v[0] for key, v in ev.items()}
     sv = scene_verdicts(ev, criteria.agreement)
     columns = {key: np.array(kept[key].values[candidate]) for key in SCORE_COLUMNS}

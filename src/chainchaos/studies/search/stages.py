@@ -17,7 +17,8 @@ overlaps near 1.06) leave many chains, and they differ in what the paper's scene
    linear-rule order).
 
 With ``pinned_seed`` the search is skipped: stage 2 re-scores that one chain, and the chain file
-says it was pinned. All orbits run on the batch engine (``orbits.integrate``); a coarser step than
+says it was pinned. The orbits of a stage's chains are studies (``paper.ensembles.scenes_study``), whose
+judging is this module's; a coarser step than
 the scenes' is used (``settings.dt``), which the pipeline checks by comparing the chosen chain's
 fractions with the ensemble verdicts at the verdicts' step.
 """
@@ -38,14 +39,16 @@ from chainchaos.paper.verdicts import (
     scene_verdicts,
     verdict_variables,
 )
-from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
+from chainchaos.paper.ensembles import scene_runs, scenes_study
+from chainchaos.run.orbits import OrbitSettings
 from chainchaos.studies.search.selection import (
     SelectionCriteria,
     candidate_row,
     qualifying,
     ranked,
 )
-from chainchaos.system.chain import random_chain
+from chainchaos.studies.study.runs import run_group
+from chainchaos.studies.study.spec import load_study
 
 #: Version of the numbers a search computes (the kept full search records it, chainchaos.records.kept):
 #: bump only when a change of code changes its numbers (a bit-identity test tells).
@@ -103,38 +106,38 @@ def _scene_names(scenes=None) -> list[str]:
     return [name for name in statements.statement_scenes() if scenes is None or name in scenes]
 
 
-def _statement_orbits(chains: list, site: int, lanes: int, scenes=None) -> list[Orbit]:
-    """Every (chain, statement scene, lane), chain-major."""
-    of = statements.statement_scenes()
-    return [Orbit(of[name].model, of[name].energy, chain, site, lane) for chain in chains
-            for name in _scene_names(scenes) for lane in range(lanes)]
-
-
-def _outcomes(chains: list, site: int, lanes: int, settings: OrbitSettings, criteria: Criteria, progress=None,
-              scenes=None):
+def _outcomes(seeds: list[int], selection: SelectionCriteria, site: int, lanes: int, settings: OrbitSettings,
+              criteria: Criteria, progress=None, scenes=None):
     """Per-orbit outcomes and measured values (``verdicts.evaluate``'s keys, arrays (chain,
-    statement, lane)) of every statement on every chain, and each chain's largest energy error.
-    ``scenes``: run only these statement scenes (the others' statements stay NaN); an orbit's
-    numbers do not depend on which others run beside it."""
-    orbits = _statement_orbits(chains, site, lanes, scenes)
-    t, runs = integrate(orbits, settings, progress, gali_stop=np.log(criteria.gali_threshold))
+    statement, lane)) of every statement on the chains of ``seeds``, and each chain's largest
+    energy error. The orbits of each model's scenes are one study (``paper.ensembles.scenes_study``,
+    run by ``studies.study.runs.run_group``) whose realizations are the chains. ``scenes``: run only
+    these statement scenes (the others' statements stay NaN); an orbit's numbers do not depend on
+    which others run beside it."""
     names = _scene_names(scenes)
-    C, L = len(chains), lanes
+    C, L = len(seeds), lanes
     ids = [st.id for st in statements.STATEMENTS]
     keys = ("value", "outcome", "value_gali", "outcome_gali")
     result = {key: np.full((C, len(ids), L), np.nan) for key in keys}
     result["read_gali"] = np.zeros((C, len(ids)), dtype=bool)
-    for c in range(C):
-        for k, name in enumerate(names):
-            first = (c * len(names) + k) * L
+    energy_error = [[] for _ in range(C)]
+    of = statements.statement_scenes()
+    lattice = {"seeds": [int(s) for s in seeds], "N": int(selection.N), "alpha": float(selection.alpha)}
+    for model in dict.fromkeys(of[name].model for name in names) if C else ():
+        mine = [name for name in names if of[name].model == model]
+        study = load_study(scenes_study(f"search_{model}", model, [of[name].energy for name in mine], lattice,
+                                        settings, lanes, site, criteria, f"Realization search: {model} scenes"))
+        group = run_group(study, 0, progress)
+        for k, name in enumerate(mine):
             of_scene = statements.statements_of_scene(name)
-            ev = evaluate(of_scene, t, runs[first:first + L], criteria)
-            for i, st in enumerate(of_scene):
-                for key in (*keys, "read_gali"):
-                    result[key][c, ids.index(st.id)] = ev[key][i]
-    energy_error = np.array([[np.nanmax(r["energy_error"]) for r in runs[c * len(names) * L:(c + 1) * len(names) * L]]
-                             for c in range(C)])
-    return result, np.max(energy_error, axis=1) if C else np.zeros(0)
+            for c in range(C):
+                t, runs = scene_runs([group], k, c)
+                ev = evaluate(of_scene, t, runs, criteria)
+                for i, st in enumerate(of_scene):
+                    for key in (*keys, "read_gali"):
+                        result[key][c, ids.index(st.id)] = ev[key][i]
+                energy_error[c] += [np.nanmax(r["energy_error"]) for r in runs]
+    return result, np.array([max(e) for e in energy_error]) if C else np.zeros(0)
 
 
 def seed_chunk(selection: SelectionCriteria, plan: SearchPlan, chunk: int) -> xr.Dataset:
@@ -209,8 +212,7 @@ def filter_group(selection: SelectionCriteria, plan: SearchPlan, settings: Orbit
     rows = rows[group * plan.candidates_per_job:(group + 1) * plan.candidates_per_job]
     # a screen by Λ alone: GALI_k's verdicts are taken on the scored ensembles
     short = OrbitSettings(**{**vars(settings), "t_final": float(plan.filter_t_final), "alignment": False})
-    chains = [random_chain(r["seed"], selection.alpha, selection.N) for r in rows]
-    ev, err = _outcomes(chains, site, 1, short, criteria, progress)
+    ev, err = _outcomes([r["seed"] for r in rows], selection, site, 1, short, criteria, progress)
     out, value = ev["outcome"], ev["value"]
     data = _seed_dataset(rows)
     data.update({
@@ -244,8 +246,7 @@ def score_candidate(selection: SelectionCriteria, plan: SearchPlan, settings: Or
     """Stage 2 for one candidate (index into ``rows``): ``plan.lanes`` perturbed orbits per scene
     to ``settings.t_final``; per statement the lanes' outcomes, fraction and verdict."""
     row = rows[candidate]
-    chain = random_chain(row["seed"], selection.alpha, selection.N)
-    ev, err = _outcomes([chain], site, plan.lanes, settings, criteria, progress)
+    ev, err = _outcomes([row["seed"]], selection, site, plan.lanes, settings, criteria, progress)
     ev = {key: v[0] for key, v in ev.items()}
     data = _seed_dataset([row])
     data = {k: ((), v[1][0], v[2]) for k, v in data.items()}

@@ -34,7 +34,7 @@ centre, the most localized high mode anywhere is taken and ``selection_fallback`
 """
 
 import math
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
 import numpy as np
 
@@ -76,6 +76,35 @@ class StudySettings(OrbitSettings):
         require(np.isfinite(self.chaos_slope) and self.chaos_slope <= 0, "chaos_slope", self.chaos_slope, "<= 0")
         for key in ("chaos_growth_margin", "onset_hold_decades"):
             require(np.isfinite(getattr(self, key)) and getattr(self, key) >= 0, key, getattr(self, key), ">= 0")
+
+
+#: The keys of a study file's blocks ``integration``, ``ensemble`` and ``criteria`` that give a
+#: :class:`StudySettings` (``alignment`` follows from the observables, the engine is the batch one).
+SETTINGS_BLOCKS = {
+    "integration": ("integrator", "dt", "t_final", "samples_per_decade", "t_first_sample", "final_samples",
+                    "check_every", "max_energy_error", "k4_sign", "deviation_seed"),
+    "ensemble": ("perturbation", "perturbation_seed"),
+    "criteria": ("p_delocalized", "chaos_slope", "chaos_growth_margin", "onset_hold_decades", "gali_order",
+                 "gali_threshold"),
+}
+
+
+def settings_blocks(settings: StudySettings) -> dict:
+    """The blocks ``integration``, ``ensemble`` and ``criteria`` of a study file whose orbits are
+    integrated and judged with ``settings``.
+
+    Parameters
+    ----------
+    settings : StudySettings
+        Integration, sampling, perturbations and criteria of the orbits.
+
+    Returns
+    -------
+    dict
+        ``{block: {key: value}}`` with the keys of :data:`SETTINGS_BLOCKS`.
+    """
+    values = {**asdict(settings), "k4_sign": int(settings.k4_sign)}
+    return {block: {key: values[key] for key in keys} for block, keys in SETTINGS_BLOCKS.items()}
 
 
 def select_excitation(chain, high_frequency_modes: int = 14, centre_window: int = 5,

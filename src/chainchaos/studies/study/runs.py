@@ -108,6 +108,32 @@ def run_group(study, group: int, progress=None) -> xr.Dataset:
     return ds
 
 
+def orbit_runs(group: xr.Dataset, series, orbits=None) -> list[dict]:
+    """Orbits of a group file (:func:`run_group`) as ``orbits.integrate`` returns them, for a step
+    that judges them (the paper's verdicts, the realization search).
+
+    Parameters
+    ----------
+    group : xarray.Dataset
+        A group of a study, on the dimension ``orbit``.
+    series : sequence of str
+        The series to read, in this order (each kept by the study: ``kept_series``).
+    orbits : array of int, optional
+        Indices of the orbits to read, in this order; default all.
+
+    Returns
+    -------
+    list of dict
+        Per orbit: each series (array on ``time``), ``u0`` (float), ``max_gaps`` (int, -1 for a
+        model without gaps) and ``valid`` (bool).
+    """
+    index = np.arange(group.sizes["orbit"]) if orbits is None else np.asarray(orbits)
+    values = {name: group[name].values for name in series}
+    u0, gaps, valid = group["u0"].values, group["max_gaps"].values, group["valid"].values
+    return [{**{name: values[name][i] for name in series}, "u0": float(u0[i]), "max_gaps": int(gaps[i]),
+             "valid": bool(valid[i])} for i in index]
+
+
 def study_attrs(study) -> dict:
     """The provenance, settings and criteria every file of a study states."""
     settings = study.settings

@@ -4,16 +4,16 @@ of the chosen chain."""
 import sys
 import time
 
-import numpy as np
 import xarray as xr
 
 from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
+from chainchaos.paper.ensembles import scene_runs
 from chainchaos.paper.verdicts import verdict_dataset
 from chainchaos.records import kept
 from chainchaos.records.io import read_chain, write_netcdf
 from chainchaos.records.provenance import provenance_attrs
-from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
+from chainchaos.run.orbits import OrbitSettings
 from chainchaos.studies.search import stages as search
 from chainchaos.studies.search.selection import SelectionCriteria
 from chainchaos.studies.search.stages import SearchPlan
@@ -124,28 +124,25 @@ def plot_search(inputs, outputs, params, wildcards) -> None:
 
 
 def ensemble_verdicts(inputs, outputs, params, wildcards) -> None:
-    """The ensembles of perturbed orbits of a model's scenes (params ``scenes``) on the chosen
-    chain, integrated together, and each scene's statements' verdicts in its own file (output
-    keyed by the scene's name)."""
+    """Each scene's statements' verdicts (output keyed by the scene's name) from the study of a
+    model's scenes on the chosen chain (``paper.ensembles.verdict_study``, its groups ``groups``)."""
     block = params["verdicts"]
     lanes = int(block["lanes"])
     settings = OrbitSettings.from_config(block["settings"])
     criteria = Criteria.from_config(params.get("claims"))
     chain = read_chain(inputs["chain"])
+    groups = [xr.load_dataset(p) for p in as_list(inputs["groups"])]
     of = statements.statement_scenes()
-    scenes = {name: of[name] for name in params["scenes"]}
-    orbits = [Orbit(scene.model, scene.energy, chain, int(params["site"]), lane)
-              for scene in scenes.values() for lane in range(lanes)]
-    t, runs = integrate(orbits, settings, progress(f"verdicts {', '.join(scenes)}"),
-                        gali_stop=np.log(criteria.gali_threshold))
-    for k, (name, scene) in enumerate(scenes.items()):
+    for k, name in enumerate(params["scenes"]):
+        scene = of[name]
+        t, runs = scene_runs(groups, k)
         attrs = provenance_attrs({"verdicts": block, "scene": name})
         if settings.alignment:
             attrs.update(gali_order=int(settings.gali_order))
         attrs.update(model=scene.model, energy=float(scene.energy), dt=float(settings.dt),
                      t_final=float(settings.t_final), integrator=settings.integrator, lanes=lanes,
                      perturbation=float(settings.perturbation), seed=-1 if chain.seed is None else int(chain.seed))
-        ds = verdict_dataset(name, t, runs[k * lanes:(k + 1) * lanes], criteria, attrs)
+        ds = verdict_dataset(name, t, runs, criteria, attrs)
         for st, frac, v in zip(ds.statement.values, ds["fraction"].values, ds["verdict"].values):
             print(f"{name:14s} {st:28s} fraction {frac:.3f} verdict {v}", file=sys.stderr)
         write_netcdf(ds, outputs[name])
