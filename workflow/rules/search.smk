@@ -1,7 +1,8 @@
 # The realization chosen by the paper's published dynamics (chainchaos.studies.search.stages): the linear rule
 # over chunks of seeds, a short-run filter, and ensembles of the survivors scored against the paper's
-# statements (chainchaos.paper.statements.STATEMENTS); then, on the chosen chain, the ensemble verdicts of
-# every statement (chainchaos.paper.verdicts) that the claims table reads.
+# statements (chainchaos.paper.statements.STATEMENTS), each stage's orbits a study of its chains
+# (chainchaos.paper.ensembles); then, on the chosen chain, the ensemble verdicts of every statement
+# (chainchaos.paper.verdicts) that the claims table reads, judged on the studies verdicts_<model>.
 #
 # The rules serve two searches ({search}): `search`, the one `all` runs, and `search_full`, the
 # search over many more chains whose merged result is kept in the repository (config

@@ -13,13 +13,14 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-from chainchaos.project import PACKAGE, project_root
+from chainchaos.project import project_root
+from chainchaos.studies.study import spec as study_spec
 from chainchaos.records.schema import SCHEMA, _type, _value, load_schema
 
 #: The pipeline's config schema and its README, in the project directory.
 README = Path("config/README.md")
 #: The study schema, package data; its README in the project directory.
-STUDY_SCHEMA = PACKAGE / "studies" / "study" / "schema.yaml"
+STUDY_SCHEMA = study_spec.SCHEMA
 STUDY_README = Path("studies/README.md")
 
 

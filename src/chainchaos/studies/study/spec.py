@@ -13,6 +13,7 @@ depend on that cut.
 
 import copy
 import math
+from importlib import resources
 from dataclasses import dataclass
 from functools import cached_property
 from pathlib import Path
@@ -34,8 +35,8 @@ from chainchaos.system.chain import kg_chain, random_chain
 from chainchaos.system.initial import Excitation
 from chainchaos.system.models import BEAD_MODELS, MODELS
 
-#: The schema of a study file (shipped with the package; its keys: ``studies/README.md``).
-SCHEMA = Path(__file__).resolve().with_name("schema.yaml")
+#: The schema of a study file, a file of the package (its keys: ``studies/README.md``).
+SCHEMA = Path(str(resources.files("chainchaos.studies.study") / "schema.yaml"))
 
 
 def kept_group_path(name: str, group: int, root=None) -> Path | None:
