@@ -1,0 +1,171 @@
+"""The pipeline end to end at quick scale, its incremental behaviour, and config validation.
+
+The quick run writes into a temporary results directory (config key `results`), so it neither
+needs nor touches the project's own results/.
+"""
+
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+from matplotlib.image import imread
+
+from chainchaos.engine.batch import SERIAL_REMAINDER
+from chainchaos.kernels.simd import LANES
+from chainchaos.paper import panels, statements
+
+ROOT = Path(__file__).resolve().parents[2]
+QUICK = ["--configfile", "config/quick.yaml"]
+
+
+def snakemake(*args, timeout=1500):
+    done = subprocess.run([sys.executable, "-m", "snakemake", "--cores", "2", "--nolock", *args], cwd=ROOT,
+                          capture_output=True, text=True, timeout=timeout)
+    return done.returncode, done.stdout + done.stderr
+
+
+def planned_jobs(output: str) -> dict[str, int]:
+    """Job counts from the 'Job stats' table of a (dry) run."""
+    table = output.split("Job stats:")[-1]
+    return {m.group(1): int(m.group(2)) for m in re.finditer(r"^(\w+)\s+(\d+)$", table, re.M) if m.group(1) != "total"}
+
+
+# The `quick` fixture (the whole quick-scale pipeline in a temporary results directory) is in
+# conftest.py, shared with tests/test_claims.py.
+
+
+@pytest.mark.slow
+def test_every_panel_and_figure_exists_and_is_not_blank(quick):
+    names = [f"fig{p}" for p in panels.PANELS] + [f"fig{n}" for n in panels.LAYOUTS]
+    for name in names:
+        pdf, png = quick / "figures" / f"{name}.pdf", quick / "figures" / f"{name}.png"
+        assert pdf.stat().st_size > 1000 and pdf.read_bytes()[:5] == b"%PDF-", name
+        pixels = imread(png)
+        assert pixels.std() > 0.01, f"{name}.png is blank"
+
+
+@pytest.mark.slow
+def test_each_scene_holds_what_its_panels_asked_for(quick):
+    for name, scene in panels.scenes().items():
+        with xr.open_dataset(quick / "scenes" / f"{name}.nc") as ds:
+            asked = set(panels.scene_observables(name))
+            written = {v for v in ds.data_vars if v in _contract_variables()}
+            assert written == asked | {"energy_error"}, name
+            assert ds.attrs["model"] == scene.model and ds.attrs["energy"] == scene.energy
+            assert ds.attrs["final_energy_error"] < 1e-2
+            assert np.all(np.isin(10.0 ** np.arange(0, 4), ds.time.values))
+
+
+def _contract_variables():
+    from chainchaos.observe.registry import OBSERVABLES
+
+    return set(OBSERVABLES)
+
+
+@pytest.mark.slow
+def test_deleted_panel_reruns_only_its_figure_s_drawing_job(quick):
+    (quick / "figures" / "fig4d.pdf").unlink()
+    code, out = snakemake(str(quick / "figures" / "fig4d.pdf"), *QUICK, "--config", f"results={quick}", "-n")
+    assert code == 0, out
+    assert planned_jobs(out) == {"plot_figure_4": 1}
+
+
+@pytest.mark.slow
+def test_deleted_study_figure_reruns_only_its_study_s_drawing_job(quick, tmp_path):
+    figure = quick / "studies" / "kg_weak_chaos" / "figures" / "chaos.pdf"
+    kept = shutil.copy2(figure, tmp_path / "chaos.pdf")
+    figure.unlink()
+    try:
+        code, out = snakemake(str(figure), *QUICK, "--config", f"results={quick}", "-n")
+    finally:
+        shutil.copy2(kept, figure)  # the other tests of the quick run read it
+    assert code == 0, out
+    assert planned_jobs(out) == {"plot_study_kg_weak_chaos": 1}
+
+
+@pytest.mark.slow
+def test_changed_scene_parameter_reruns_only_its_batch(quick, tmp_path):
+    """The changed scene leaves its batch (its step differs now), so it and the scenes it shared a
+    SIMD block with rerun, and the panels drawn from them; nothing else."""
+    override = tmp_path / "override.yaml"
+    override.write_text("scenes:\n  hertz_H1.8:\n    dt: 0.005\n")
+    code, out = snakemake(*QUICK, str(override), "--config", f"results={quick}", "-n")
+    assert code == 0, out
+    jobs = planned_jobs(out)
+    batches = re.findall(r"(?:local)?rule simulate_scenes_\w+:\n(?:[ \t]+\w+:.*\n)*?[ \t]+output: (.*)\n", out)
+    rerun = {name for outputs in batches for name in re.findall(r"/scenes/(\w+_H[\d.]+)\.nc", outputs)}
+    assert "hertz_H1.8" in rerun and all(name.startswith("hertz_") for name in rerun)
+    assert sum(n for rule, n in jobs.items() if rule.startswith("simulate_scenes_")) == len(batches) == 2
+    affected = {p for p, panel in panels.PANELS.items() if rerun & {s.name for s in panel.scenes}}
+    drawn = {rule for rule in jobs if rule.startswith("plot_figure_")}
+    assert drawn == {f"plot_figure_{p[:-1]}" for p in affected} and all(jobs[rule] == 1 for rule in drawn)
+    assert "compute_ensemble" not in jobs and "select_chain" not in jobs
+
+
+def test_paper_scale_dry_run_plans_every_scene(tmp_path):
+    code, out = snakemake("-n", "--config", f"results={tmp_path}")
+    assert code == 0, out[-4000:]
+    jobs = planned_jobs(out)
+    # every scene's file is written by the job of its batch
+    batches = {rule: n for rule, n in jobs.items() if rule.startswith("simulate_scenes_")}
+    assert set(re.findall(r"/scenes/(\w+_H[\d.]+)\.nc", out)) == set(panels.scenes())
+    # one drawing job per figure: its panels and its composite
+    assert {rule: n for rule, n in jobs.items() if rule.startswith(("plot_figure", "plot_panel"))} == {
+        f"plot_figure_{n}": 1 for n in panels.LAYOUTS}
+    # scenes that share their settings run together, one SIMD block per job, and the few left over
+    # (at most batch.SERIAL_REMAINDER) one per job, on the single engine
+    per_model = [divmod(sum(s.model == model for s in panels.scenes().values()), LANES) for model in ("hertz", "fput")]
+    assert sum(batches.values()) == len(batches) == sum(whole + (rest if rest <= SERIAL_REMAINDER else 1) for whole, rest in per_model)
+    # the realization search: stage 0 (its size decides stage 1: a checkpoint), the verdicts one job per model
+    assert jobs["search_seeds"] == 1 and jobs["search_candidates"] == 1 and jobs["search_merge"] == 1
+    assert {rule: n for rule, n in jobs.items() if rule.startswith("ensemble_verdicts")} == {
+        f"ensemble_verdicts_{model}": 1 for model in statements.statement_scenes_by_model()}
+
+
+def test_an_archived_full_search_pins_its_chain_and_none_searches(tmp_path):
+    """With search.archive naming an existing file (made with this run's settings), `all` re-scores
+    the archive's chain alone; with none (or a missing file) it searches, its filter planned once
+    stage 0 has run."""
+    archive = tmp_path / "search_full.nc"
+    shutil.copyfile(ROOT / "data" / "search" / "search_full.nc", archive)
+    for path, pinned in ((archive, True), (tmp_path / "missing.nc", False), ("", False)):
+        config = tmp_path / "archive.yaml"
+        config.write_text(f"search:\n  archive: '{path}'\n")
+        code, out = snakemake("-n", "--configfile", "config/config.yaml", str(config),
+                              "--config", f"results={tmp_path / 'results'}")
+        assert code == 0, out[-4000:]
+        jobs = planned_jobs(out)
+        assert "search_filter" not in jobs and jobs["search_candidates"] == 1
+        assert ("search_score" in jobs) == pinned, (path, jobs)
+
+
+def test_a_pinned_seed_rescores_that_chain_without_a_search(tmp_path):
+    pinned = tmp_path / "pinned.yaml"
+    pinned.write_text("search:\n  pinned_seed: 879\n")
+    code, out = snakemake(str(tmp_path / "search" / "search.nc"), "--configfile", "config/config.yaml",
+                          str(pinned), "--config", f"results={tmp_path}", "-n")
+    assert code == 0, out[-4000:]
+    jobs = planned_jobs(out)
+    assert "search_filter" not in jobs and jobs["search_score"] == 1 and jobs["search_merge"] == 1
+    assert jobs["search_candidates"] == 1
+
+
+@pytest.mark.slow
+def test_the_search_chooses_the_chain_and_the_verdicts_run_on_it(quick):
+    found = xr.load_dataset(quick / "search" / "search.nc")
+    chain = xr.load_dataset(quick / "chain" / "chain.nc")
+    assert int(chain.attrs["seed"]) == found.attrs["chosen_seed"] == int(chain.attrs["selection_seed"])
+    assert found.sizes["statement"] == len(statements.STATEMENTS) and found.attrs["n_scored"] >= 1
+    for name in statements.statement_scenes():
+        v = xr.load_dataset(quick / "verdicts" / f"{name}.nc")
+        assert int(v.attrs["seed"]) == found.attrs["chosen_seed"]
+        assert v.sizes["lane"] >= 2 and set(v.statement.values) == {s.id for s in statements.statements_of_scene(name)}
+        u0 = v["u0"].values
+        assert np.all(np.abs(u0[1:] / u0[0] - 1) <= 1e-9) and len(set(u0)) == u0.size
+    image = imread(quick / "figures" / "search.png")
+    assert image.std() > 0.01

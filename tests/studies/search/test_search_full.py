@@ -1,0 +1,98 @@
+"""The full realization search at a small scale: its stages run as chunks, a killed run resumes
+without redoing a finished chunk, and `snakemake keep --config keep=search_full` writes the archive
+that `all` pins."""
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from chainchaos.studies.search.archive import STAGES, chosen_seed
+from records.test_compliance import cf_problems
+
+ROOT = Path(__file__).resolve().parents[3]
+
+# 2 chunks of seeds, every qualifying chain filtered 2 to a job, 2 scored on 2 lanes (quick times).
+SMALL = """search:
+  archive: {archive}
+search_full:
+  n_seeds: 1500
+  seeds_per_job: 750
+  candidates:
+  candidates_per_job: 2
+  survivors: 2
+  lanes: 2
+  filter_t_final: 100.0
+"""
+
+
+def _snakemake(config: Path, results: Path, *args, keep: bool = False):
+    """A run with the small config; ``keep``: the run that makes the kept full search."""
+    return [sys.executable, "-m", "snakemake", "--cores", "1", "--nolock", *args, "--configfile",
+            "config/quick.yaml", str(config), "--config", f"results={results}",
+            *(["keep=search_full"] if keep else [])]
+
+
+def _finished(results: Path) -> dict:
+    """Every stage file written so far, with its modification time and inode."""
+    return {p: (p.stat().st_mtime_ns, p.stat().st_ino) for p in sorted((results / "search_full").rglob("*.nc"))}
+
+
+@pytest.mark.slow
+def test_a_killed_full_search_resumes_without_redoing_a_finished_chunk(tmp_path):
+    results, archive = tmp_path / "results", tmp_path / "data" / "search_full.nc"
+    config = tmp_path / "small.yaml"
+    config.write_text(SMALL.format(archive=archive))
+    run = subprocess.Popen(_snakemake(config, results, "keep", keep=True), cwd=ROOT, stdout=subprocess.DEVNULL,
+                           stderr=subprocess.DEVNULL, start_new_session=True)
+    filters = results / "search_full" / "filter"
+    deadline = time.monotonic() + 600
+    while not (filters.is_dir() and len(list(filters.glob("*.nc"))) >= 2) and time.monotonic() < deadline:
+        assert run.poll() is None, "the search ended before it could be killed"
+        time.sleep(0.2)
+    os.killpg(run.pid, signal.SIGKILL)  # no clean shutdown: as a node failure or a killed session
+    run.wait()
+    before = _finished(results)
+    assert len([p for p in before if p.parent.name == "filter"]) >= 2 and not archive.exists()
+
+    done = subprocess.run(_snakemake(config, results, "keep", "--rerun-incomplete", keep=True), cwd=ROOT,
+                          capture_output=True, text=True, timeout=900)
+    assert done.returncode == 0, (done.stdout + done.stderr)[-4000:]
+    after = _finished(results)
+    assert {p: after[p] for p in before} == before  # no finished chunk was rewritten
+    assert len(after) > len(before)
+
+    # the archive: every qualifying chain filtered, the survivors scored, the cost of every stage
+    ds = xr.load_dataset(archive)
+    candidates = xr.load_dataset(results / "search_full" / "candidates.nc")
+    assert ds.sizes["candidate"] == candidates.sizes["candidate"] == ds.attrs["n_qualifying"]
+    assert ds.attrs["seeds_scanned"] == 1500 and int(ds["scored"].sum()) == 2
+    ran = np.concatenate([xr.load_dataset(f)["candidate"].values for f in sorted(filters.glob("*.nc"))])
+    assert sorted(ran) == list(range(ds.sizes["candidate"]))  # every candidate ran stage 1, once
+    for stage in STAGES:
+        assert ds.attrs[f"cost_{stage}_jobs"] >= 1 and ds.attrs[f"cost_{stage}_cpu_seconds"] > 0, stage
+    assert ds.attrs["cost_search_seeds_jobs"] == 2
+    n_filter = -(-candidates.sizes["candidate"] // 2)
+    resumed = n_filter - len([p for p in before if p.parent.name == "filter"])
+    assert resumed <= ds.attrs["cost_search_filter_jobs"] <= n_filter  # a killed job may leave no benchmark
+    assert ds.attrs["stage_cpus"] and ds.attrs["stage_commits"]
+    # the files a pinned run does not write pass the CF checker here (tests/test_compliance.py)
+    assert cf_problems(archive) == [] and cf_problems(sorted(filters.glob("*.nc"))[0]) == []
+
+    # `all` pins the archive's chain: its search's candidates are that chain alone, and no filter runs
+    pinned = tmp_path / "all"
+    dry = subprocess.run(_snakemake(config, pinned, "-n"), cwd=ROOT, capture_output=True, text=True, timeout=300)
+    assert dry.returncode == 0, dry.stdout[-4000:]
+    planned = dry.stdout.split("Job stats:")[-1]
+    assert "search_filter" not in planned and "\nsearch_score " in planned
+    stage0 = subprocess.run(_snakemake(config, pinned, str(pinned / "search" / "candidates.nc")), cwd=ROOT,
+                            capture_output=True, text=True, timeout=600)
+    assert stage0.returncode == 0, (stage0.stdout + stage0.stderr)[-4000:]
+    found = xr.load_dataset(pinned / "search" / "candidates.nc")
+    assert found.attrs["pinned"] == 1 and list(found["seed"].values) == [chosen_seed(archive)]

@@ -1,0 +1,187 @@
+"""The workflow's decisions (chainchaos.workflow.plan), without Snakemake; and what they mean for
+the workflow: the same jobs at every SIMD width, no kept result remade on the way to a target, a
+run of a second clone using that clone's code."""
+
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import netCDF4
+import pytest
+import yaml
+
+from chainchaos.paper import panels
+from chainchaos.records import kept
+from chainchaos.workflow import plan
+
+ROOT = Path(__file__).resolve().parents[2]
+CONFIG = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+
+
+def config(**overrides):
+    return {**CONFIG, **overrides}
+
+
+# ---- scene jobs: a count of the config ---------------------------------------------------------
+
+
+def test_scene_jobs_follow_the_config_counts_and_cover_every_scene_once():
+    for per_job, singles in [(8, 4), (4, 0), (2, 1), (16, 0)]:
+        jobs = plan.scene_jobs(config(scene_batches={"scenes_per_job": per_job, "single_scenes": singles}))
+        names = [scene.name for scenes in jobs.values() for scene in scenes]
+        assert sorted(names) == sorted(panels.scenes()), (per_job, singles)
+        assert all(1 <= len(scenes) <= per_job for scenes in jobs.values())
+        for scenes in jobs.values():
+            assert len({(s.model, s.dt, s.t_final) for s in scenes}) == 1  # one job, one set of settings
+    one_each = plan.scene_jobs(config(scene_batches={"scenes_per_job": 1, "single_scenes": 0}))
+    assert len(one_each) == len(panels.scenes())
+
+
+def test_scene_jobs_do_not_depend_on_the_simd_width(monkeypatch):
+    from chainchaos.engine import batch
+    from chainchaos.kernels import simd
+
+    cut = config()
+    expected = plan.scene_jobs(cut)
+    for lanes in (2, 4, 8, 16):
+        monkeypatch.setattr(simd, "LANES", lanes)
+        monkeypatch.setattr(batch, "SERIAL_REMAINDER", lanes // 2)
+        assert plan.scene_jobs(cut) == expected
+
+
+def job_list(lanes: int) -> list[str]:
+    """The jobs (rule, output) of a dry run of `all` at a chosen SIMD width."""
+    done = subprocess.run([sys.executable, "-m", "snakemake", "-n", "--nolock", "all"], cwd=ROOT, text=True,
+                          capture_output=True, env={**os.environ, "CHAINCHAOS_SIMD_LANES": str(lanes)}, timeout=300)
+    assert done.returncode == 0, done.stderr[-3000:]
+    jobs = re.findall(r"^(?:local)?rule (\w+):\n(?:    .*\n)*?    output: (.*)$", done.stdout, re.M)
+    assert len(jobs) > 50
+    return sorted(map(str, jobs))
+
+
+def test_the_same_config_gives_the_same_jobs_at_4_and_8_lanes():
+    assert job_list(4) == job_list(8)
+
+
+# ---- kept results --------------------------------------------------------------------------------
+
+
+def kept_file(path: Path, settings: dict, version: int = 1) -> Path:
+    with netCDF4.Dataset(path, "w") as nc:
+        nc.createDimension("candidate", 3)
+        nc.createVariable("x", "f8", ("candidate",))[:] = [1.0, 2.0, 3.0]
+        nc.setncatts({**kept.kept_attrs(settings, version), "chosen_seed": 879})
+    return path
+
+
+def test_a_kept_file_is_used_only_with_the_run_s_settings_and_version(tmp_path, capsys):
+    path = kept_file(tmp_path / "k.nc", {"chain": {"N": 40}, "t": 1.0})
+    used = plan.use_kept(path, {"chain": {"N": 40}, "t": 1}, 1, "remake")
+    assert used.path == str(path) and used.attrs["chosen_seed"] == 879 and used.sizes == {"candidate": 3}
+    assert capsys.readouterr().err == ""
+    other = plan.use_kept(path, {"chain": {"N": 41}, "t": 1.0}, 1, "remake")
+    assert other.path is None
+    assert capsys.readouterr().err == (f"kept file {path}: chain.N is 40 in the file, 41 in this run; "
+                                       "not used, computed at the configured scale\n")
+    assert plan.use_kept(path, {"chain": {"N": 41}, "t": 1.0}, 1, "remake", keys=("t",)).path == str(path)
+    assert plan.use_kept(path, {"chain": {"N": 40}, "t": 1.0}, 2, "remake").path is None
+    assert plan.use_kept(tmp_path / "absent.nc", {}, 1, "remake") == plan.Kept(None)
+    assert plan.use_kept(None, {}, 1, "remake") == plan.Kept(None)
+
+
+def test_a_kept_file_that_cannot_be_read_is_left_to_the_jobs_that_read_it(tmp_path, capsys):
+    """Parsing the workflow does not stop: only the jobs that read the file fail, naming it."""
+    path = kept_file(tmp_path / "k.nc", {"a": 1})
+    path.write_bytes(path.read_bytes()[:200])
+    decision = plan.use_kept(path, {"a": 1}, 1, "snakemake --cores 2 keep --config keep=x")
+    assert decision.path == str(path) and "cannot be read" in decision.reason
+    err = capsys.readouterr().err
+    assert err.startswith(f"kept file {path} cannot be read") and "git checkout -- " in err
+    assert err.rstrip().endswith("the jobs that read it stop")
+
+
+def test_keep_names_a_kept_product_or_a_study():
+    assert plan.kept_product(None, ["a"]) is None and plan.kept_product("", ["a"]) is None
+    assert plan.kept_product("search_full", []) == "search_full"
+    assert plan.kept_product("kg", ["kg"]) == "kg"
+    with pytest.raises(ValueError, match=r"config keep is 'serch_full': one of search_full, search_rejudge, "
+                                         r"disorder_full or a study of studies/ \(kg\)"):
+        plan.kept_product("serch_full", ["kg"])
+
+
+def test_the_paper_pins_the_kept_search_s_chain_and_reads_the_kept_disorder_statistics():
+    archive = plan.search_archive(CONFIG)
+    assert archive.path == "data/search/search_full.nc"
+    pinned = plan.pinned_archive(CONFIG, archive)
+    plans = plan.search_plans(CONFIG, pinned)
+    assert plans["search"].pinned and plans["search"].pinned_seed == archive.attrs["chosen_seed"]
+    assert not plans["search_full"].pinned
+    assert plan.pinned_archive({**CONFIG, "search": {**CONFIG["search"], "pinned_seed": 3}}, archive).path is None
+    assert plan.disorder_archive(CONFIG).path == "data/disorder/disorder_full.nc"
+
+
+# ---- what a run asks for -----------------------------------------------------------------------
+
+
+def test_paper_targets_are_every_panel_and_figure_as_pdf_and_png():
+    targets = plan.paper_targets("out")
+    assert "out/figures/fig4d.pdf" in targets and "out/figures/fig4.png" in targets
+    assert len(targets) == 2 * (len(panels.PANELS) + len(panels.LAYOUTS))
+
+
+def test_a_figure_reads_its_panels_scenes_and_only_them():
+    for number in panels.LAYOUTS:
+        files = plan.figure_inputs(number, "out")
+        scenes = {s.name for p in panels.panels_of_figure(number) for s in panels.PANELS[p].scenes}
+        assert {k for k in files if k not in ("chain", "ensemble")} == scenes
+        assert all(path.startswith("out/") for path in files.values())
+
+
+def test_beyond_entries_and_asked_figures():
+    figures = {"a": ["spreading", "chaos"], "b": ["spreading"]}.__getitem__
+    entries = plan.beyond_entries(["a", {"b": []}], figures)
+    assert entries == {"a": ["spreading", "chaos"], "b": []}
+    with pytest.raises(ValueError, match="study a has no figure maps; its figures"):
+        plan.beyond_entries([{"a": ["maps"]}], figures)
+    with pytest.raises(ValueError, match="study a is named twice"):
+        plan.beyond_entries(["a", "a"], figures)
+    assert plan.asked_figures("a", ["spreading", "chaos"], {"a": ["chaos"]}, None) == ["chaos"]
+    assert plan.asked_figures("a", ["spreading", "chaos"], {}, "a") == ["spreading", "chaos"]
+    assert plan.asked_figures("b", ["spreading"], {"a": ["chaos"]}, "a") == []
+
+
+def test_study_name_and_cluster_minutes():
+    assert plan.study_name("studies/my.v2.yaml") == "my.v2" and plan.study_name("fput100") == "fput100"
+    assert plan.cluster_minutes(1, 1e3, 1e-2, 1.0) == 11  # 0.1 s of steps: a minute of margin and ten
+    assert plan.cluster_minutes(8, 1e6, 1e-3, 2.0) == 3 * 8 * 1e9 * 2e-6 / 60 + 10
+
+
+# ---- a second clone runs its own code ------------------------------------------------------------
+
+
+@pytest.mark.slow
+def test_a_second_clone_runs_its_own_package_not_the_installed_one(tmp_path):
+    """The installed chainchaos is this checkout's (editable): a clone elsewhere must still plan
+    with, and run the jobs of, its own src/."""
+    clone = tmp_path / "clone"
+    subprocess.run(["git", "clone", "-q", str(ROOT), str(clone)], check=True)
+    task_file = clone / "src" / "chainchaos" / "workflow" / "tasks" / "chain.py"
+    task_file.write_text(task_file.read_text().replace(  # the module imports sys
+        '    e = params["ensemble"]', '    print("task of", __file__, file=sys.stderr)\n    e = params["ensemble"]'))
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    snakemake = [sys.executable, "-m", "snakemake", "--cores", "1", "--configfile", "config/quick.yaml"]
+    # the kernels' sources, inputs of compile_kernels, are the clone's own (the target after "--":
+    # --configfile takes several files)
+    done = subprocess.run([*snakemake, "-n", "--", "results/kernels/hertz.txt"], cwd=clone, env=env, text=True,
+                          capture_output=True, timeout=300)
+    assert done.returncode == 0, done.stdout[-3000:]
+    assert "input: src/chainchaos/" in done.stdout and "../" not in done.stdout
+    done = subprocess.run([*snakemake, "--", "results/ensemble/participation_stats.nc"], cwd=clone, env=env,
+                          text=True, capture_output=True, timeout=300)
+    assert done.returncode == 0, done.stderr[-3000:]
+    log = (clone / "results" / "logs" / "compute_ensemble" / "run.log").read_text()
+    assert f"task of {clone.resolve()}/src/chainchaos/workflow/tasks/chain.py" in log
+    shutil.rmtree(clone)
