@@ -17,10 +17,12 @@ import yaml
 from chainchaos.errors import KeptFileError
 from chainchaos.records import kept
 from chainchaos.records.io import write_netcdf
+from chainchaos.run.orbits import Orbit
 from chainchaos.studies.scan import runs
 from chainchaos.studies.search import archive
 from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION
 from chainchaos.studies.study import orbits
+from reduced import reduced_orbits
 
 ROOT = Path(__file__).resolve().parents[2]
 SEARCH_ARCHIVE = ROOT / "data" / "search" / "search_full.nc"
@@ -256,6 +258,7 @@ def rule_inputs(output: str, rule: str) -> str:
     return found.group(1)
 
 
+@pytest.mark.pipeline
 def test_a_changed_chain_computes_the_search_and_disorder_and_restoring_it_reuses_them(tmp_path):
     results = f"results={tmp_path}"
     code, out = dry_run("all", "--config", results, "chain={N: 41}")
@@ -279,6 +282,7 @@ def test_a_changed_chain_computes_the_search_and_disorder_and_restoring_it_reuse
     assert kept_lines(out) == []
 
 
+@pytest.mark.pipeline
 def test_the_quick_scale_pins_the_archives_chain_unless_the_chain_changes(tmp_path):
     quick = ["all", "--configfile", "config/quick.yaml", "--config", f"results={tmp_path}"]
     code, out = dry_run(*quick)
@@ -291,6 +295,7 @@ def test_the_quick_scale_pins_the_archives_chain_unless_the_chain_changes(tmp_pa
                                "not used, computed at the configured scale"]
 
 
+@pytest.mark.pipeline
 def test_a_truncated_archive_stops_only_the_jobs_that_read_it(tmp_path):
     """The workflow still plans (one line names the file and its remedy); a target that does not
     read the file is made; the job that reads it stops with that line, no traceback."""
@@ -337,7 +342,7 @@ def test_one_disorder_trajectory_recomputed_is_bit_identical_to_the_archive():
     pick = orbits.select_excitation(realization, **runs.selection_kwargs(scan))
     energy = orbits.energy_grid(scan["disorder"])[e]
     assert energy == ds["energy"].values[e] and pick["site"] == ds["excited_site"].values[r]
-    [result] = runs.run_trajectories([runs.Trajectory(model, float(energy), realization, pick["site"])],
+    [result] = reduced_orbits([Orbit(model, float(energy), realization, pick["site"])],
                                      runs.settings_for("disorder", scan))
     kept_values = ds.sel(model=model).isel(energy=e, realization=r)
     for key, (_, dtype) in orbits.SCALARS.items():

@@ -9,12 +9,8 @@ from chainchaos import random_chain
 from chainchaos.records.io import chain_dataset, write_netcdf
 from chainchaos.studies.scan.merge import merge_disorder, merge_energy_scan, scan_groups
 from chainchaos.studies.study.statistics import wilson_interval
-from chainchaos.studies.scan.runs import (
-    Trajectory,
-    run_trajectories,
-    scan_study,
-    settings_for,
-)
+from chainchaos.run.orbits import Orbit
+from chainchaos.studies.scan.runs import scan_study, settings_for
 from chainchaos.paper.thresholds import (
     PAPER_THRESHOLDS,
     thresholds_csv,
@@ -29,6 +25,7 @@ from chainchaos.studies.study.orbits import (
 from chainchaos.studies.study.runs import run_group
 from chainchaos.studies.study.spec import load_study
 from chainchaos.system.models import get_model
+from reduced import reduced_orbits
 
 CFG = {
     "settings": {"dt": 0.02, "samples_per_decade": 8, "p_delocalized": 10.0, "chaos_slope": -0.5,
@@ -98,9 +95,9 @@ def test_selection_rule_picks_a_localized_high_mode_near_the_centre(chain):
 def test_engines_agree_and_criteria_follow_their_definitions(chain):
     settings = StudySettings(t_final=400.0, dt=0.02, samples_per_decade=8, p_delocalized=6.0,
                                  chaos_growth_margin=2.0, final_samples=20)
-    trajs = [Trajectory(m, E, chain, 21) for m in ("hertz", "fput", "toda") for E in (0.2, 3.0)]
-    a = run_trajectories(trajs, settings)
-    b = run_trajectories(trajs, StudySettings(**{**settings.__dict__, "engine": "single"}))
+    trajs = [Orbit(m, E, chain, 21) for m in ("hertz", "fput", "toda") for E in (0.2, 3.0)]
+    a = reduced_orbits(trajs, settings)
+    b = reduced_orbits(trajs, StudySettings(**{**settings.__dict__, "engine": "single"}))
     for ra, rb in zip(a, b):
         for key in ("participation_final", "mlce_final", "eta_final", "max_gaps", "chaotic"):
             assert ra[key] == rb[key]  # the engines are bit-identical
@@ -193,12 +190,12 @@ def test_scan_figures_are_byte_stable(tmp_path, chain, chain_file):
 
 
 def test_a_scan_orbit_of_the_study_is_the_scans_trajectory(chain, chain_file):
-    """The study path and run_trajectories give the same numbers, orbit by orbit, to the bit."""
+    """The study path and the orbits integrated alone give the same numbers, orbit by orbit, to the bit."""
     study, groups = scan_as_study("energy_scan", chain_file)
     g = groups[0]
-    trajs = [Trajectory(str(m), float(study.energies[e]), chain, 21)
+    trajs = [Orbit(str(m), float(study.energies[e]), chain, 21)
              for m, e in zip(g["model"].values, g["energy_index"].values)]
-    for i, r in enumerate(run_trajectories(trajs, settings_for("energy_scan", CFG))):
+    for i, r in enumerate(reduced_orbits(trajs, settings_for("energy_scan", CFG))):
         for key in ("participation_final", "mlce_final", "eta_final", "chaos_onset", "max_gaps", "u0"):
             np.testing.assert_array_equal(g[key].values[i], r[key], err_msg=key)
         np.testing.assert_array_equal(g["participation"].values[i], r["participation"])

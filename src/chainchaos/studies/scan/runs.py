@@ -9,45 +9,21 @@ seen once lambda t_final is of order 10, so a short scan (quick scale, t = 1e3) 
 chaos, and a claim that reads "chaotic" from the scan is undecided where the two indicators lead
 to different answers (``claims.measures``).
 
-Trajectories are integrated by ``orbits.integrate`` (the batch engine, ``batch_size`` at a time,
-or one at a time with ``engine: single``: identical numbers). A trajectory whose state turns
-non-finite or whose relative energy error exceeds ``max_energy_error`` is kept with ``valid = 0``
-and left out of the statistics.
+Their orbits run as every study's do (``studies.study.runs.run_group``). A trajectory whose state
+turns non-finite or whose relative energy error exceeds ``max_energy_error`` is kept with
+``valid = 0`` and left out of the statistics.
 """
 
-import math
 from dataclasses import asdict
 
 from chainchaos.paper import panels
-from chainchaos.run.orbits import Orbit, integrate
-from chainchaos.studies.study.orbits import StudySettings, reduce_orbit, settings_blocks
+from chainchaos.studies.study.orbits import StudySettings, settings_blocks
 from chainchaos.system.chain import random_chain
 
 #: Version of the numbers of the disorder statistics (the kept full statistics record it,
 #: chainchaos.records.kept): bump only when a change of code changes their numbers (the bit-identity
-#: test tests/test_kept.py tells).
+#: test tests/records/test_kept.py tells).
 DISORDER_RESULT_VERSION = 1
-
-
-#: One run of a scan: an orbit (lane 0) of a model, an energy, a chain and the excited bead.
-Trajectory = Orbit
-
-
-# ----------------------------------------------------------------------------------------------
-# Realizations: the excitation rule
-# ----------------------------------------------------------------------------------------------
-
-
-# ----------------------------------------------------------------------------------------------
-# Running trajectories
-# ----------------------------------------------------------------------------------------------
-
-def run_trajectories(trajectories: list[Orbit], settings: StudySettings, progress=None) -> list[dict]:
-    """Integrate every trajectory (``orbits.integrate``) and reduce it to the scan observables
-    (module docstring). Returns one dict per trajectory, in the input order."""
-    times, runs = integrate(trajectories, settings, progress, gali_stop=math.log(settings.gali_threshold))
-    return [{**reduce_orbit(times, r, settings), "times": times, "participation": r["participation"],
-             "log_growth": r["log_growth"], "eta": r["eta"]} for r in runs]
 
 
 # ----------------------------------------------------------------------------------------------
