@@ -9,7 +9,7 @@ import yaml
 
 from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
-from chainchaos.paper.ensembles import scene_runs, scene_series, scenes_study, verdict_study
+from chainchaos.paper.ensembles import scene_series, scenes_study, study_runs, verdict_study
 from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
 from chainchaos.studies.study.runs import run_group
 from chainchaos.studies.study.spec import load_study
@@ -30,14 +30,14 @@ def test_a_scene_study_holds_the_orbits_integrate_gives(alignment):
                         criteria, "test")
     study = load_study(spec)
     assert study.n_groups == 1 and study.lanes == lanes
-    group = run_group(study, 0)
+    times, found = study_runs([run_group(study, 0)])
     orbits = [Orbit("hertz", e, random_chain(s, 5.0, 40), 21, lane) for s in seeds for e in energies
               for lane in range(lanes)]
     t, runs = integrate(orbits, settings, gali_stop=np.log(criteria.gali_threshold))
     assert set(scene_series(alignment)) <= set(runs[0])
     for c, seed in enumerate(seeds):
         for k, energy in enumerate(energies):
-            times, mine = scene_runs([group], k, c)
+            mine = found[k, c]
             assert times.tobytes() == t.tobytes() and len(mine) == lanes
             for lane, run in enumerate(mine):
                 theirs = runs[(c * len(energies) + k) * lanes + lane]

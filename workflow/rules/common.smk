@@ -5,6 +5,7 @@
 import os
 import re
 from pathlib import Path
+from types import SimpleNamespace
 
 from chainchaos.kernels.cache import kernel_sources
 from chainchaos.output import report_captions
@@ -109,35 +110,49 @@ def search_param(key):
     return lambda wildcards: search_params(wildcards.search)[key]
 
 
-def n_candidates(name):
-    """Stage 0's count of candidates, once the checkpoint search_candidates has run."""
-    import netCDF4
+def search_seed_files(wildcards):
+    """Stage 0's files: the chunks of seeds of the linear rule."""
+    chain = plan.search_chain(wildcards.search, config)
+    n = SEARCH_PLANS[wildcards.search].n_seed_jobs(selection_criteria({"chain": chain}))
+    return [result(wildcards.search, "seeds", f"{k:03d}.nc") for k in range(n)]
 
-    with netCDF4.Dataset(checkpoints.search_candidates.get(search=name).output.result) as nc:
-        return len(nc.dimensions["candidate"])
 
-
-def search_stage_files(stage):
-    """The files of a search stage: ``seeds`` (chunks of seeds), ``filter`` or ``score``."""
+def search_study_files(stage):
+    """The groups of the studies of a search's stage (``filter``: none when a seed is pinned;
+    ``score``), once the stages before have run: their chains are read from them."""
 
     def files(wildcards):
-        search_plan = SEARCH_PLANS[wildcards.search]
-        if stage == "seeds":
-            chain = plan.search_chain(wildcards.search, config)
-            n = search_plan.n_seed_jobs(selection_criteria({"chain": chain}))
-        else:
-            found = 0 if search_plan.pinned else n_candidates(wildcards.search)
-            n = plan.search_jobs(search_plan, stage, found)
-        return [result(wildcards.search, stage, f"{k:03d}.nc") for k in range(n)]
+        search = wildcards.search
+        pinned = SEARCH_PLANS[search].pinned
+        if stage == "filter" and pinned:
+            return []
+        checkpoints.search_candidates.get(search=search)
+        if stage == "score" and not pinned:
+            checkpoints.search_filter.get(search=search)
+        return [f for name in plan.search_studies(search, stage) for f in study_group_files(name)]
 
     return files
 
 
-def search_minutes(stage):
-    settings = config["search"]["settings"]
-    return lambda wildcards: plan.search_minutes(
-        SEARCH_PLANS[wildcards.search], stage, settings["t_final"], settings["dt"], US_PER_STEP
-    )
+def search_stage_inputs(search):
+    """Every file the stages of ``search`` write before its merge."""
+
+    def files(wildcards):
+        stage = SimpleNamespace(search=search)
+        return [
+            *search_seed_files(stage),
+            result(search, "candidates.nc"),
+            *search_filter_file(stage),
+            *search_study_files("filter")(stage),
+            *search_study_files("score")(stage),
+        ]
+
+    return files
+
+
+def search_filter_file(wildcards):
+    """Stage 1's judged file, which a search with a pinned seed has not."""
+    return [] if SEARCH_PLANS[wildcards.search].pinned else [result(wildcards.search, "filter.nc")]
 
 
 # The search whose candidates the manuscript counts, and the one the chain is chosen from.
@@ -158,7 +173,7 @@ def study_of(name):
     """The study ``name`` (a scan kind, the file config `study` names, or studies/<name>.yaml),
     read and checked once."""
     if name not in STUDIES:
-        STUDIES[name] = plan.load_run_study(name, config)
+        STUDIES[name] = plan.load_run_study(name, config, CHOSEN_SEED)
     return STUDIES[name]
 
 

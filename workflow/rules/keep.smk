@@ -24,6 +24,7 @@ if KEEP == "search_full":
         """The full search's merged result, with its cost and provenance."""
         input:
             search=result("search_full", "search.nc"),
+            stages=search_stage_inputs("search_full"),  # the commits and CPUs they ran on
         output:
             archive=SEARCH_ARCHIVE,
         params:

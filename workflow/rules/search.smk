@@ -8,8 +8,10 @@
 # search over many more chains whose merged result is kept in the repository (config
 # search.archive; made by `snakemake --cores 2 keep --config keep=search_full`, keep.smk). With a
 # kept archive whose settings and result version are the run's (plan.search_archive), `all` pins
-# its chosen chain and re-scores that chain only; `search.pinned_seed` pins any seed. Every stage
-# writes one file per chunk, so a killed search resumes where it stopped.
+# its chosen chain and re-scores that chain only; `search.pinned_seed` pins any seed. Stages 1 and
+# 2 are studies of their chains, one per model (<search>-filter-<model>, <search>-score-<model>),
+# whose groups rule study_group makes (study.smk); the chunks of seeds and the groups are files of
+# their own, so a killed search resumes where it stopped.
 
 
 wildcard_constraints:
@@ -38,7 +40,7 @@ rule search_seeds:
 checkpoint search_candidates:
     """Stage 0: the candidates (or the pinned seed), from every chunk of seeds."""
     input:
-        seeds=search_stage_files("seeds"),
+        seeds=search_seed_files,
     output:
         result=result("{search}", "candidates.nc"),
     priority: 10
@@ -53,37 +55,14 @@ checkpoint search_candidates:
         "../scripts/search_candidates.py"
 
 
-rule search_filter:
-    """Stage 1: one short orbit per scene for a group of candidates."""
+checkpoint search_filter:
+    """Stage 1 judged: the filter studies' short orbits (rule study_group) decide each candidate's
+    early statements; the survivors, whose chains the score studies run."""
     input:
         candidates=result("{search}", "candidates.nc"),
-        kernels=kernel_flags(),
+        groups=search_study_files("filter"),
     output:
-        result=result("{search}", "filter", "{group}.nc"),
-    params:
-        search=search_param("search"),
-        chain=search_param("chain"),
-        claims=search_param("claims"),
-        site=search_param("site"),
-    log:
-        log_file("search_filter", "{search}-{group}"),
-    benchmark:
-        benchmark_file("search_filter", "{search}-{group}")
-    resources:
-        mem_mb=1000,
-        runtime=search_minutes("filter"),
-    script:
-        "../scripts/search_filter.py"
-
-
-rule search_score:
-    """Stage 2: the ensembles of the survivor of a given rank."""
-    input:
-        candidates=result("{search}", "candidates.nc"),
-        filters=search_stage_files("filter"),
-        kernels=kernel_flags(),
-    output:
-        result=result("{search}", "score", "{rank}.nc"),
+        result=result("{search}", "filter.nc"),
     priority: 4
     params:
         search=search_param("search"),
@@ -91,21 +70,20 @@ rule search_score:
         claims=search_param("claims"),
         site=search_param("site"),
     log:
-        log_file("search_score", "{search}-{rank}"),
+        log_file("search_filter", "{search}"),
     benchmark:
-        benchmark_file("search_score", "{search}-{rank}")
-    resources:
-        mem_mb=1000,
-        runtime=search_minutes("score"),
+        benchmark_file("search_filter", "{search}")
     script:
-        "../scripts/search_score.py"
+        "../scripts/search_filter.py"
 
 
 rule search_merge:
+    """Stage 2 judged (the score studies' ensembles of the survivors), the chosen chain, and the
+    search as one file."""
     input:
         candidates=result("{search}", "candidates.nc"),
-        filters=search_stage_files("filter"),
-        scores=search_stage_files("score"),
+        filters=search_filter_file,
+        groups=search_study_files("score"),
     output:
         result=result("{search}", "search.nc"),
     priority: 4

@@ -31,7 +31,7 @@ def verdict_study_name(model: str) -> str:
 
 
 def scenes_study(name: str, model: str, energies, lattice: dict, settings: OrbitSettings, lanes: int, site: int,
-                 criteria: Criteria, title: str) -> dict:
+                 criteria: Criteria, title: str, realizations_per_job: int | None = None) -> dict:
     """A study (the keys of a study file) of ``model``'s orbits at ``energies`` on ``lattice``.
 
     Parameters
@@ -55,22 +55,24 @@ def scenes_study(name: str, model: str, energies, lattice: dict, settings: Orbit
         The claims' criteria; their ``gali_threshold`` stops an orbit's GALI vectors.
     title : str
         The title its files state.
+    realizations_per_job : int, optional
+        Chains whose orbits (every energy and lane) one job integrates; default all of them.
 
     Returns
     -------
     dict
-        The study's keys, for ``studies.study.spec.load_study``; every orbit in one group.
+        The study's keys, for ``studies.study.spec.load_study``.
     """
     study_settings = StudySettings.from_config({**asdict(settings), "gali_threshold": float(criteria.gali_threshold)})
     blocks = settings_blocks(study_settings)
-    realizations = len(lattice.get("seeds") or [None])
+    per_job = realizations_per_job or len(lattice.get("seeds") or [None])
     return {
         "name": name, "title": title, "lattice": {"model": model, **lattice},
         "excitation": {"kind": "site", "variable": "displacement", "site": int(site),
                        "energies": [float(e) for e in energies]},
         **blocks, "ensemble": {**blocks["ensemble"], "lanes": int(lanes)},
         "observables": [*scene_series(settings.alignment)],
-        "jobs": {"orbits_per_job": int(lanes) * len(energies) * realizations},
+        "jobs": {"orbits_per_job": int(lanes) * len(energies) * int(per_job)},
         "figures": [],
     }
 
@@ -94,29 +96,27 @@ def verdict_study(model: str, config: dict) -> dict:
                         f"Ensembles of the {model} scenes of the paper's statements on the chosen chain")
 
 
-def scene_runs(groups: list[xr.Dataset], energy_index: int, realization: int = 0) -> tuple[np.ndarray, list[dict]]:
-    """The orbits of one scene of a study made by :func:`scenes_study`, as ``orbits.integrate``
-    returns them.
+def study_runs(groups: list[xr.Dataset]) -> tuple[np.ndarray, dict[tuple[int, int], list[dict]]]:
+    """The orbits of a study made by :func:`scenes_study`, as ``orbits.integrate`` returns them.
 
     Parameters
     ----------
     groups : list of xarray.Dataset
-        The study's group files.
-    energy_index : int
-        The scene's index in the study's energies.
-    realization : int, optional
-        The chain's index in the study's realizations.
+        The study's group files (``studies.study.runs.run_group``), all or some of them.
 
     Returns
     -------
     times : numpy.ndarray
         The sample times.
-    runs : list of dict
-        Per lane, in lane order: the :func:`scene_series` the study keeps, ``u0``, ``max_gaps``, ``valid``.
+    runs : dict
+        ``(energy index, realization) -> list`` of the orbits of that scene and chain in lane
+        order, each with the :func:`scene_series` the study keeps, ``u0``, ``max_gaps``, ``valid``.
     """
-    runs = []
+    found: dict[tuple[int, int], list] = {}
     for g in groups:
-        mine = np.flatnonzero((g["energy_index"].values == energy_index) & (g["realization"].values == realization))
         series = [name for name in scene_series(True) if name in g]
-        runs += [(int(g["lane"].values[i]), run) for i, run in zip(mine, orbit_runs(g, series, mine))]
-    return groups[0]["time"].values, [run for _, run in sorted(runs, key=lambda item: item[0])]
+        where = zip(g["energy_index"].values, g["realization"].values, g["lane"].values)
+        for (e, r, lane), run in zip(where, orbit_runs(g, series)):
+            found.setdefault((int(e), int(r)), []).append((int(lane), run))
+    return groups[0]["time"].values, {key: [run for _, run in sorted(runs, key=lambda item: item[0])]
+                                      for key, runs in found.items()}

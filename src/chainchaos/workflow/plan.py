@@ -249,10 +249,57 @@ def study_name(given) -> str:
     return Path(given).stem if str(given).endswith((".yaml", ".yml")) else str(given)
 
 
-def load_run_study(name: str, config: dict):
-    """The study ``name`` as this run reads it: a scan kind (from config block ``scan``), the file
+def search_stage_study(name: str) -> tuple[str, str, str] | None:
+    """(search, stage, model) of the study of a search's stage (``<search>-<stage>-<model>``,
+    ``studies.search.stages.stage_studies``), or None for another name."""
+    import re
+
+    from chainchaos.studies.search.stages import STUDY_STAGES
+
+    found = re.fullmatch(rf"(search|search_full)-({'|'.join(STUDY_STAGES)})-(\w+)", name)
+    return None if found is None else found.groups()
+
+
+def search_studies(search: str, stage: str) -> list[str]:
+    """The studies of a stage of search ``search``, one per model of the statement scenes."""
+    from chainchaos.studies.search.stages import search_models, study_name
+
+    return [study_name(search, stage, model) for model in search_models()]
+
+
+def _search_stage_keys(search: str, stage: str, model: str, config: dict, pinned_seed: int | None) -> dict:
+    """The keys of a search stage's study: its chains are the candidates (``filter``), or the
+    survivors by rank (``score``; the pinned seed when one is), read from the stage before
+    (``<results>/<search>/candidates.nc``, ``filter.nc``): call it once those exist."""
+    import xarray as xr
+
+    from chainchaos.paper.criteria import Criteria
+    from chainchaos.run.orbits import OrbitSettings
+    from chainchaos.studies.search.selection import SelectionCriteria
+    from chainchaos.studies.search.stages import SearchPlan, stage_studies
+
+    params = search_params(search, config, pinned_seed)
+    chain = params["chain"]
+    selection = SelectionCriteria(alpha=float(chain["alpha"]), N=int(chain["N"]), **chain.get("selection", {}))
+    search_plan = SearchPlan.from_config(params["search"])
+    root = Path(config["results"], search)
+    seeds = xr.load_dataset(root / "candidates.nc")["seed"].values
+    if stage == "score" and not search_plan.pinned:
+        seeds = seeds[xr.load_dataset(root / "filter.nc")["survivor"].values]
+    return stage_studies(search, stage, selection, search_plan, OrbitSettings.from_config(params["search"]["settings"]),
+                         Criteria.from_config(params["claims"]), int(params["site"]), seeds)[model]
+
+
+def load_run_study(name: str, config: dict, pinned_seed: int | None = None):
+    """The study ``name`` as this run reads it: a scan kind (from config block ``scan``), the
+    scenes of a model on the chosen chain (``verdicts_<model>``), a stage of a search
+    (:func:`search_stage_study`; ``pinned_seed`` as :func:`search_params` takes it), the file
     config ``study`` names (whose stem is ``name``), or ``studies/<name>.yaml``."""
     from chainchaos.studies.study.spec import load_study
+
+    stage = search_stage_study(name)
+    if stage is not None:
+        return load_study(_search_stage_keys(*stage, config, pinned_seed))
 
     if name in SCAN_STUDIES:
         from chainchaos.studies.scan.runs import scan_study
@@ -278,7 +325,7 @@ def kept_group(study, group: int, kept_root) -> Kept:
     from chainchaos.studies.study.runs import STUDY_RESULT_VERSION, group_settings
     from chainchaos.studies.study.spec import kept_group_path
 
-    if study.name in SCAN_STUDIES or study.name in verdict_studies():  # the run's own, never kept
+    if study.name in SCAN_STUDIES or study.name in verdict_studies() or search_stage_study(study.name):  # the run's own
         return Kept(None)
     return use_kept(kept_group_path(study.name, group, kept_root), group_settings(study, group),
                     STUDY_RESULT_VERSION, f"snakemake --cores 2 keep --config keep={study.name}")
@@ -420,18 +467,6 @@ def beyond_inputs(results: str, shown: dict) -> dict[str, str]:
     for name, figures in shown.items():
         files.update({f"beyond_{figure_key(name, f)}": f"{results}/studies/{name}/figures/{f}.pdf" for f in figures})
     return files
-
-
-def search_minutes(search_plan, stage: str, t_final: float, dt: float, us_per_step: float) -> int:
-    """Minutes a cluster job of a search stage may take: a ``filter`` job runs
-    ``candidates_per_job`` orbits to the filter's end per statement scene, a ``score`` job
-    ``lanes`` orbits to ``t_final``."""
-    from chainchaos.paper.statements import statement_scenes
-
-    filtering = stage == "filter"
-    orbits = search_plan.candidates_per_job if filtering else search_plan.lanes
-    end = search_plan.filter_t_final if filtering else t_final
-    return cluster_minutes(len(statement_scenes()) * orbits, end, dt, us_per_step)
 
 
 def own_models(study) -> list[list[str]]:

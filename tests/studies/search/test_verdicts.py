@@ -23,6 +23,8 @@ from chainchaos.run.orbits import Orbit, OrbitSettings, integrate, lane_factor, 
 from chainchaos.run.scenes import SceneParameters, simulate
 from chainchaos.studies.search import stages as search
 from chainchaos.studies.search.selection import SelectionCriteria
+from chainchaos.studies.study.runs import run_group
+from chainchaos.studies.study.spec import load_study
 
 
 @pytest.fixture(scope="module")
@@ -213,11 +215,26 @@ def test_search_filters_scores_and_chooses_the_best(tmp_path):
     rows = search.candidate_rows(found)
     assert len(rows) == 3 and [r["score"] for r in rows] == sorted(r["score"] for r in rows)
     assert found.attrs["n_qualifying"] >= 3
-    filters = [search.filter_group(selection, plan, settings, c, rows, g, 21) for g in range(plan.n_filter_jobs(len(rows)))]
-    assert [f.sizes["candidate"] for f in filters] == [2, 1]
-    kept = search.survivors(filters, plan)
-    assert len(kept) == 2
-    scores = [search.score_candidate(selection, plan, settings, c, rows, int(k), 21) for k in kept]
+    filter_studies = search.stage_studies("search", "filter", selection, plan, settings, c, 21, found["seed"].values)
+    assert sorted(filter_studies) == ["fput", "hertz"]
+    groups = {}
+    for model, keys in filter_studies.items():
+        study = load_study(keys)
+        assert study.n_groups == plan.n_filter_jobs(len(rows)) and study.lanes == 1  # candidates_per_job per job
+        assert study.settings.t_final == plan.filter_t_final and not study.settings.alignment
+        groups[model] = [run_group(study, g) for g in range(study.n_groups)]
+    filtered = search.filter_dataset(plan, settings, c, found, groups)
+    filters = [filtered]
+    kept = filtered["survivor"].values
+    assert len(kept) == 2 and list(kept) == list(search.survivors(filters, plan))
+    score_studies = search.stage_studies("search", "score", selection, plan, settings, c, 21, found["seed"].values[kept])
+    groups = {model: [run_group(study, g) for g in range(study.n_groups)]
+              for model, study in ((m, load_study(keys)) for m, keys in score_studies.items())}
+    scores = search.score_datasets(plan, settings, c, found, kept, groups)
+    # the score of a survivor integrated in one process (as the re-judging of a kept search does) is the same
+    alone = search.score_candidate(selection, plan, settings, c, rows, int(kept[1]), 21)
+    for key in ("fraction", "verdict", "measured", "energy_error_max"):
+        assert alone[key].values.tobytes() == scores[1][key].values.tobytes(), key
     ds = search.merge(selection, plan, settings, c, found, filters, scores)
     assert ds.sizes == {"candidate": 3, "statement": len(statements.STATEMENTS)}
     scored = np.flatnonzero(ds["scored"].values == 1)

@@ -20,8 +20,9 @@ from chainchaos.run.orbits import OrbitSettings
 from chainchaos.studies.search.selection import SelectionCriteria
 from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION, SearchPlan
 
-#: The rules of a search, in the order they run (workflow/rules/search.smk).
-STAGES = ("search_seeds", "search_candidates", "search_filter", "search_score", "search_merge")
+#: The rules of a search, in the order they run (workflow/rules/search.smk; ``study_group``: the
+#: groups of its filter and score studies, ``<search>-<stage>-<model>``).
+STAGES = ("search_seeds", "search_candidates", "study_group", "search_filter", "search_merge")
 #: The rules that re-judge a kept search (``rejudge``).
 REJUDGE_STAGES = ("search_rejudge_filter", "search_rejudge_score")
 

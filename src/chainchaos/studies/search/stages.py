@@ -7,7 +7,7 @@ overlaps near 1.06) leave many chains, and they differ in what the paper's scene
    of seeds 0..n_seeds-1 that pass the linear rule, ordered by their overlap score; the first
    ``candidates`` of them (all of them when ``candidates`` is empty) are searched.
 1. **Filter**: every candidate's scenes (``statements.statement_scenes``), one orbit each, to
-   ``filter_t_final``. A statement marked ``early`` that such a run already breaks (a packet
+   ``filter_t_final``, ``candidates_per_job`` candidates per job. A statement marked ``early`` that such a run already breaks (a packet
    already spread, an orbit already chaotic) cannot hold at t = 1e5. The ``survivors`` candidates
    with the fewest broken statements go on (ties: linear-rule order).
 2. **Score**: each survivor's scenes with ``lanes`` perturbed orbits to ``t_final``; per statement
@@ -17,10 +17,13 @@ overlaps near 1.06) leave many chains, and they differ in what the paper's scene
    linear-rule order).
 
 With ``pinned_seed`` the search is skipped: stage 2 re-scores that one chain, and the chain file
-says it was pinned. The orbits of a stage's chains are studies (``paper.ensembles.scenes_study``), whose
-judging is this module's; a coarser step than
-the scenes' is used (``settings.dt``), which the pipeline checks by comparing the chosen chain's
-fractions with the ensemble verdicts at the verdicts' step.
+says it was pinned. The orbits of stages 1 and 2 are studies of the stage's chains, one per model
+(:func:`stage_studies`, study ``<search>-<stage>-<model>``), integrated, cut into jobs and resumed
+as every study is (workflow rule ``study_group``); what is the search's own is the step after each,
+which judges the statements on a study's groups (:func:`judge`, :func:`filter_dataset`,
+:func:`score_datasets`) and chooses. A coarser step than the scenes' is used (``settings.dt``),
+which the pipeline checks by comparing the chosen chain's fractions with the ensemble verdicts at
+the verdicts' step.
 """
 
 from dataclasses import dataclass
@@ -39,7 +42,7 @@ from chainchaos.paper.verdicts import (
     scene_verdicts,
     verdict_variables,
 )
-from chainchaos.paper.ensembles import scene_runs, scenes_study
+from chainchaos.paper.ensembles import scenes_study, study_runs
 from chainchaos.run.orbits import OrbitSettings
 from chainchaos.studies.search.selection import (
     SelectionCriteria,
@@ -106,38 +109,104 @@ def _scene_names(scenes=None) -> list[str]:
     return [name for name in statements.statement_scenes() if scenes is None or name in scenes]
 
 
-def _outcomes(seeds: list[int], selection: SelectionCriteria, site: int, lanes: int, settings: OrbitSettings,
-              criteria: Criteria, progress=None, scenes=None):
-    """Per-orbit outcomes and measured values (``verdicts.evaluate``'s keys, arrays (chain,
-    statement, lane)) of every statement on the chains of ``seeds``, and each chain's largest
-    energy error. The orbits of each model's scenes are one study (``paper.ensembles.scenes_study``,
-    run by ``studies.study.runs.run_group``) whose realizations are the chains. ``scenes``: run only
-    these statement scenes (the others' statements stay NaN); an orbit's numbers do not depend on
-    which others run beside it."""
+#: The stages whose orbits are studies: ``filter`` (one short orbit per scene of every candidate)
+#: and ``score`` (``lanes`` orbits per scene of each survivor).
+STUDY_STAGES = ("filter", "score")
+
+
+def study_name(search: str, stage: str, model: str) -> str:
+    """The name of the study of a search's stage for one model: ``<search>-<stage>-<model>``."""
+    return f"{search}-{stage}-{model}"
+
+
+def search_models(scenes=None) -> list[str]:
+    """The models of the statement scenes run (:func:`_scene_names`), in table order."""
+    of = statements.statement_scenes()
+    return list(dict.fromkeys(of[name].model for name in _scene_names(scenes)))
+
+
+def stage_studies(search: str, stage: str, selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSettings,
+                  criteria: Criteria, site: int, seeds, scenes=None) -> dict[str, dict]:
+    """The studies of a stage's orbits on the chains of ``seeds``, one per model (``model ->`` the
+    study's keys, ``paper.ensembles.scenes_study``).
+
+    ``filter``: one orbit per scene to ``plan.filter_t_final``, judged by Λ alone (GALI_k's verdicts
+    are taken on the scored ensembles), ``candidates_per_job`` chains per job; ``score``:
+    ``plan.lanes`` orbits per scene to ``settings.t_final``, one chain per job. ``scenes``: only
+    these statement scenes."""
+    require(stage in STUDY_STAGES, "stage", stage, f"one of {STUDY_STAGES}")
+    of = statements.statement_scenes()
     names = _scene_names(scenes)
-    C, L = len(seeds), lanes
+    filtering = stage == "filter"
+    run = OrbitSettings(**{**vars(settings), "t_final": float(plan.filter_t_final), "alignment": False}) \
+        if filtering else settings
+    lattice = {"seeds": [int(seed) for seed in seeds], "N": int(selection.N), "alpha": float(selection.alpha)}
+    return {model: scenes_study(study_name(search, stage, model), model,
+                                [of[name].energy for name in names if of[name].model == model], lattice, run,
+                                1 if filtering else plan.lanes, site, criteria,
+                                f"Realization search ({search}), stage {stage}: the {model} scenes of its chains",
+                                plan.candidates_per_job if filtering else 1)
+            for model in search_models(scenes)}
+
+
+def judge(groups: dict[str, list[xr.Dataset]], n_chains: int, lanes: int, criteria: Criteria, scenes=None):
+    """The statements judged on the studies of a stage (:func:`stage_studies`).
+
+    Parameters
+    ----------
+    groups : dict
+        ``model ->`` the group files of that model's study.
+    n_chains : int
+        The study's realizations (the chains of the stage, in its order).
+    lanes : int
+        Orbits per scene and chain.
+    criteria : Criteria
+        The claims' criteria.
+    scenes : list of str, optional
+        The statement scenes run (default all); the other statements stay NaN.
+
+    Returns
+    -------
+    result : dict
+        ``verdicts.evaluate``'s keys as arrays (chain, statement, lane), ``read_gali`` (chain, statement).
+    energy_error : numpy.ndarray
+        Each chain's largest relative energy error over its orbits.
+    """
+    names = _scene_names(scenes)
+    of = statements.statement_scenes()
     ids = [st.id for st in statements.STATEMENTS]
     keys = ("value", "outcome", "value_gali", "outcome_gali")
-    result = {key: np.full((C, len(ids), L), np.nan) for key in keys}
-    result["read_gali"] = np.zeros((C, len(ids)), dtype=bool)
-    energy_error = [[] for _ in range(C)]
-    of = statements.statement_scenes()
-    lattice = {"seeds": [int(s) for s in seeds], "N": int(selection.N), "alpha": float(selection.alpha)}
-    for model in dict.fromkeys(of[name].model for name in names) if C else ():
-        mine = [name for name in names if of[name].model == model]
-        study = load_study(scenes_study(f"search_{model}", model, [of[name].energy for name in mine], lattice,
-                                        settings, lanes, site, criteria, f"Realization search: {model} scenes"))
-        group = run_group(study, 0, progress)
-        for k, name in enumerate(mine):
+    result = {key: np.full((n_chains, len(ids), lanes), np.nan) for key in keys}
+    result["read_gali"] = np.zeros((n_chains, len(ids)), dtype=bool)
+    energy_error = [[] for _ in range(n_chains)]
+    for model, model_groups in groups.items():
+        t, runs = study_runs(model_groups)
+        for k, name in enumerate(n for n in names if of[n].model == model):
             of_scene = statements.statements_of_scene(name)
-            for c in range(C):
-                t, runs = scene_runs([group], k, c)
-                ev = evaluate(of_scene, t, runs, criteria)
+            for c in range(n_chains):
+                ev = evaluate(of_scene, t, runs[k, c], criteria)
                 for i, st in enumerate(of_scene):
                     for key in (*keys, "read_gali"):
                         result[key][c, ids.index(st.id)] = ev[key][i]
-                energy_error[c] += [np.nanmax(r["energy_error"]) for r in runs]
-    return result, np.array([max(e) for e in energy_error]) if C else np.zeros(0)
+                energy_error[c] += [np.nanmax(r["energy_error"]) for r in runs[k, c]]
+    return result, np.array([max(e) for e in energy_error]) if n_chains else np.zeros(0)
+
+
+def _outcomes(seeds: list[int], selection: SelectionCriteria, site: int, lanes: int, settings: OrbitSettings,
+              criteria: Criteria, progress=None, scenes=None):
+    """:func:`judge` on the chains of ``seeds`` integrated in this process, each model's orbits one
+    study (``paper.ensembles.scenes_study``, ``studies.study.runs.run_group``): the re-judging of
+    a kept search (``rejudge``) runs them so. ``scenes``: run only these statement scenes; an
+    orbit's numbers do not depend on which others run beside it."""
+    groups = {}
+    lattice = {"seeds": [int(seed) for seed in seeds], "N": int(selection.N), "alpha": float(selection.alpha)}
+    of = statements.statement_scenes()
+    for model in search_models(scenes) if seeds else ():
+        energies = [of[name].energy for name in _scene_names(scenes) if of[name].model == model]
+        study = load_study(scenes_study(f"search-{model}", model, energies, lattice, settings, lanes, site, criteria,
+                                        f"Realization search: {model} scenes"))
+        groups[model] = [run_group(study, 0, progress)]
+    return judge(groups, len(seeds), lanes, criteria, scenes)
 
 
 def seed_chunk(selection: SelectionCriteria, plan: SearchPlan, chunk: int) -> xr.Dataset:
@@ -203,30 +272,27 @@ def _seed_dataset(rows: list[dict]) -> dict:
     }
 
 
-def filter_group(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSettings, criteria: Criteria,
-                 rows: list[dict], group: int, site: int, progress=None) -> xr.Dataset:
-    """Stage 1 for the candidates of one job (``rows``: :func:`candidate_rows`): one orbit per
-    scene to ``plan.filter_t_final``."""
-    n_jobs = plan.n_filter_jobs(len(rows))
-    require(0 <= group < max(n_jobs, 1), "group", group, f"0..{n_jobs - 1}")
-    rows = rows[group * plan.candidates_per_job:(group + 1) * plan.candidates_per_job]
-    # a screen by Λ alone: GALI_k's verdicts are taken on the scored ensembles
-    short = OrbitSettings(**{**vars(settings), "t_final": float(plan.filter_t_final), "alignment": False})
-    ev, err = _outcomes([r["seed"] for r in rows], selection, site, 1, short, criteria, progress)
-    out, value = ev["outcome"], ev["value"]
+def filter_dataset(plan: SearchPlan, settings: OrbitSettings, criteria: Criteria, found: xr.Dataset,
+                   groups: dict[str, list[xr.Dataset]]) -> xr.Dataset:
+    """Stage 1 judged: every candidate's filter outcomes (candidate, statement) on the groups of the
+    filter studies (``model ->`` groups, :func:`stage_studies`), and the ``survivor`` candidates
+    (by rank) that go on to stage 2 (:func:`survivors`)."""
+    rows = candidate_rows(found)
+    ev, err = judge(groups, len(rows), 1, criteria)
     data = _seed_dataset(rows)
     data.update({
-        "outcome": (("candidate", "statement"), out[:, :, 0] if rows else np.zeros((0, len(statements.STATEMENTS))),
+        "outcome": (("candidate", "statement"), ev["outcome"][:, :, 0],
                     {"units": "1", "long_name": "1 satisfied, 0 already violated, NaN not decided by the short run"}),
-        "measured": (("candidate", "statement"), value[:, :, 0] if rows else np.zeros((0, len(statements.STATEMENTS))),
+        "measured": (("candidate", "statement"), ev["value"][:, :, 0],
                      {"long_name": "measured value of the statement (one orbit, short run)"}),
         "energy_error_max": ("candidate", err, {"units": "1", "long_name": "largest relative energy error"}),
     })
-    ds = xr.Dataset(data, coords={"candidate": _candidates(np.arange(group * plan.candidates_per_job,
-                                                                     group * plan.candidates_per_job + len(rows))),
+    ds = xr.Dataset(data, coords={"candidate": _candidates(np.arange(len(rows))),
                                   "statement": _statements(statements.STATEMENTS)})
-    ds.attrs.update(title="Realization search, stage 1: one orbit per scene of a job's candidates",
-                    stage="filter", t_final=float(plan.filter_t_final), dt=float(settings.dt), group=int(group))
+    ds["survivor"] = ("rank", survivors([ds], plan).astype(np.int64),
+                      {"units": "1", "long_name": "candidate of each rank that goes on to stage 2"})
+    ds.attrs.update(title="Realization search, stage 1: one orbit per scene of every candidate", stage="filter",
+                    t_final=float(plan.filter_t_final), dt=float(settings.dt))
     return ds
 
 
@@ -241,18 +307,14 @@ def survivors(filter_groups: list[xr.Dataset], plan: SearchPlan) -> np.ndarray:
     return ds["candidate"].values[order][:plan.n_score_jobs(ds.sizes["candidate"])]
 
 
-def score_candidate(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSettings, criteria: Criteria,
-                    rows: list[dict], candidate: int, site: int, progress=None) -> xr.Dataset:
-    """Stage 2 for one candidate (index into ``rows``): ``plan.lanes`` perturbed orbits per scene
-    to ``settings.t_final``; per statement the lanes' outcomes, fraction and verdict."""
-    row = rows[candidate]
-    ev, err = _outcomes([row["seed"]], selection, site, plan.lanes, settings, criteria, progress)
-    ev = {key: v[0] for key, v in ev.items()}
+def _score_dataset(plan: SearchPlan, settings: OrbitSettings, criteria: Criteria, row: dict, candidate: int,
+                   ev: dict, err: float) -> xr.Dataset:
+    """Stage 2 of one candidate from its judged lanes (``ev``: :func:`judge`'s arrays of its chain)."""
     data = _seed_dataset([row])
     data = {k: ((), v[1][0], v[2]) for k, v in data.items()}
     data.update({
         **verdict_variables(ev, scene_verdicts(ev, criteria.agreement)),
-        "energy_error_max": ((), float(err[0]), {"units": "1", "long_name": "largest relative energy error"}),
+        "energy_error_max": ((), float(err), {"units": "1", "long_name": "largest relative energy error"}),
     })
     ds = xr.Dataset(data, coords={"statement": _statements(statements.STATEMENTS),
                                   "lane": ("lane", np.arange(plan.lanes), LANE)})
@@ -260,6 +322,27 @@ def score_candidate(selection: SelectionCriteria, plan: SearchPlan, settings: Or
                     stage="score", candidate=int(candidate), t_final=float(settings.t_final), dt=float(settings.dt),
                     lanes=int(plan.lanes))
     return ds
+
+
+def score_datasets(plan: SearchPlan, settings: OrbitSettings, criteria: Criteria, found: xr.Dataset,
+                   ranked: np.ndarray, groups: dict[str, list[xr.Dataset]]) -> list[xr.Dataset]:
+    """Stage 2 judged: per survivor (``ranked``: its candidate index, by rank, the realizations of
+    the score studies) the lanes' outcomes, fractions and verdicts, from the score studies'
+    groups (``model ->`` groups, :func:`stage_studies`)."""
+    rows = candidate_rows(found)
+    ev, err = judge(groups, len(ranked), plan.lanes, criteria)
+    return [_score_dataset(plan, settings, criteria, rows[int(c)], int(c), {key: v[r] for key, v in ev.items()},
+                           err[r]) for r, c in enumerate(ranked)]
+
+
+def score_candidate(selection: SelectionCriteria, plan: SearchPlan, settings: OrbitSettings, criteria: Criteria,
+                    rows: list[dict], candidate: int, site: int, progress=None) -> xr.Dataset:
+    """Stage 2 for one candidate (index into ``rows``) in this process (``rejudge`` scores a
+    candidate the kept search did not so): ``plan.lanes`` perturbed orbits per scene to
+    ``settings.t_final``; per statement the lanes' outcomes, fraction and verdict."""
+    row = rows[candidate]
+    ev, err = _outcomes([row["seed"]], selection, site, plan.lanes, settings, criteria, progress)
+    return _score_dataset(plan, settings, criteria, row, candidate, {key: v[0] for key, v in ev.items()}, err[0])
 
 
 def chain_score(fraction: np.ndarray) -> float:

@@ -28,7 +28,7 @@ def search_full(inputs, outputs, params, wildcards) -> None:
     result version (``chainchaos.records.kept``)."""
     target = outputs["archive"]
     merged = Path(inputs["search"])
-    stage_files = sorted(merged.parent.glob("*/*.nc")) + [merged.parent / "candidates.nc", merged]
+    stage_files = [*as_list(inputs["stages"]), merged]
     ds = archive.archive_dataset(xr.load_dataset(merged), archive.job_costs(Path(params["benchmarks"])),
                                  archive.stage_machines(stage_files))
     ds.attrs.update(kept.kept_attrs(archive.search_settings(params), SEARCH_RESULT_VERSION))

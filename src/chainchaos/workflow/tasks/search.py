@@ -8,7 +8,7 @@ import xarray as xr
 
 from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
-from chainchaos.paper.ensembles import scene_runs
+from chainchaos.paper.ensembles import study_runs
 from chainchaos.paper.verdicts import verdict_dataset
 from chainchaos.records import kept
 from chainchaos.records.io import read_chain, write_netcdf
@@ -70,34 +70,33 @@ def search_candidates(inputs, outputs, params, wildcards) -> None:
     write_search_product(ds, params, selection, outputs["result"])
 
 
+def study_groups(paths) -> dict[str, list[xr.Dataset]]:
+    """The groups of a search stage's studies (``paths``), by model."""
+    groups: dict[str, list[xr.Dataset]] = {}
+    for path in as_list(paths):
+        ds = xr.load_dataset(path)
+        groups.setdefault(str(ds["model"].values[0]), []).append(ds)
+    return groups
+
+
 def search_filter(inputs, outputs, params, wildcards) -> None:
-    """Stage 1 of the realization search for one group of candidates."""
-    selection, plan, settings, criteria, site = search_parts(params)
-    rows = search.candidate_rows(xr.load_dataset(inputs["candidates"]))
-    group = int(wildcards["group"])
-    ds = search.filter_group(selection, plan, settings, criteria, rows, group, site, progress(f"filter {group}"))
-    write_search_product(ds, params, selection, outputs["result"])
-
-
-def search_score(inputs, outputs, params, wildcards) -> None:
-    """Stage 2 of the realization search for the survivor of the given rank."""
-    selection, plan, settings, criteria, site = search_parts(params)
-    rows = search.candidate_rows(xr.load_dataset(inputs["candidates"]))
-    filters = [xr.load_dataset(p) for p in as_list(inputs.get("filters"))]
-    rank = int(wildcards["rank"])
-    candidate = int(search.survivors(filters, plan)[rank])
-    print(f"survivor {rank}: candidate {candidate}", file=sys.stderr)
-    ds = search.score_candidate(selection, plan, settings, criteria, rows, candidate, site,
-                                progress(f"score {rank}"))
+    """Stage 1 of the realization search judged on its studies' groups: every candidate's
+    outcomes, and the survivors."""
+    selection, plan, settings, criteria, _ = search_parts(params)
+    found = xr.load_dataset(inputs["candidates"])
+    ds = search.filter_dataset(plan, settings, criteria, found, study_groups(inputs.get("groups")))
+    print(f"survivors: candidates {', '.join(str(int(c)) for c in ds['survivor'].values)}", file=sys.stderr)
     write_search_product(ds, params, selection, outputs["result"])
 
 
 def search_merge(inputs, outputs, params, wildcards) -> None:
-    """The search's candidates, scores and choice as one file."""
+    """Stage 2 of the realization search judged on its studies' groups; the candidates, scores
+    and choice as one file."""
     selection, plan, settings, criteria, _ = search_parts(params)
     found = xr.load_dataset(inputs["candidates"])
     filters = [xr.load_dataset(p) for p in as_list(inputs.get("filters"))]
-    scores = [xr.load_dataset(p) for p in as_list(inputs["scores"])]
+    ranked = filters[0]["survivor"].values if filters else search.survivors([], plan)
+    scores = search.score_datasets(plan, settings, criteria, found, ranked, study_groups(inputs["groups"]))
     ds = search.merge(selection, plan, settings, criteria, found, filters, scores)
     print(f"chose seed {ds.attrs['chosen_seed']} (score {ds.attrs['chosen_score']:.3f} of "
           f"{ds.attrs['n_statements']})", file=sys.stderr)
@@ -133,16 +132,16 @@ def ensemble_verdicts(inputs, outputs, params, wildcards) -> None:
     chain = read_chain(inputs["chain"])
     groups = [xr.load_dataset(p) for p in as_list(inputs["groups"])]
     of = statements.statement_scenes()
+    t, runs = study_runs(groups)
     for k, name in enumerate(params["scenes"]):
         scene = of[name]
-        t, runs = scene_runs(groups, k)
         attrs = provenance_attrs({"verdicts": block, "scene": name})
         if settings.alignment:
             attrs.update(gali_order=int(settings.gali_order))
         attrs.update(model=scene.model, energy=float(scene.energy), dt=float(settings.dt),
                      t_final=float(settings.t_final), integrator=settings.integrator, lanes=lanes,
                      perturbation=float(settings.perturbation), seed=-1 if chain.seed is None else int(chain.seed))
-        ds = verdict_dataset(name, t, runs, criteria, attrs)
+        ds = verdict_dataset(name, t, runs[k, 0], criteria, attrs)
         for st, frac, v in zip(ds.statement.values, ds["fraction"].values, ds["verdict"].values):
             print(f"{name:14s} {st:28s} fraction {frac:.3f} verdict {v}", file=sys.stderr)
         write_netcdf(ds, outputs[name])
