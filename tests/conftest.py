@@ -35,11 +35,24 @@ def pytest_configure(config):
         config.pluginmanager.register(_QuickGrouping(), "chainchaos-quick-grouping")
 
 
+# ---- markers (pyproject.toml [tool.pytest.ini_options] markers; --strict-markers) ------------------
+# A test that uses the `quick` fixture runs Snakemake: it is marked `pipeline`. Every test marked
+# `pipeline`, `browser` or `docs` is also `slow`, beside those marked slow themselves (installs into a
+# fresh environment, a second compilation), so `-m "not slow"` leaves the package's own tests. This
+# hook runs first, before `-m` deselects (on every xdist worker too).
+
+#: What a test needs beyond the package; each makes it slow.
+SLOW_KINDS = ("pipeline", "browser", "docs")
+
+
 @pytest.hookimpl(tryfirst=True)
 def pytest_collection_modifyitems(config, items):
     for item in items:
         if "quick" in getattr(item, "fixturenames", ()):
             item.add_marker(pytest.mark.xdist_group("quick"))
+            item.add_marker(pytest.mark.pipeline)
+        if not item.get_closest_marker("slow") and any(item.get_closest_marker(kind) for kind in SLOW_KINDS):
+            item.add_marker(pytest.mark.slow)
 # Where the quick run of the `quick` fixture puts the manuscript, inside its results directory
 # (config manuscript.pdf), so that no test writes the project's manuscript/ms.pdf.
 QUICK_MANUSCRIPT = "manuscript/ms.pdf"

@@ -57,7 +57,7 @@ def assert_lanes_match_single_runs(name, chains, batch, q, p, dq, dp, integrator
             np.testing.assert_array_equal(batch.gap_steps[:, j], gsum)
 
 
-@pytest.mark.parametrize("name", sorted(BEAD_MODELS))  # the KG lattice's: tests/test_klein_gordon.py
+@pytest.mark.parametrize("name", sorted(BEAD_MODELS))  # the KG lattice's: tests/system/test_klein_gordon.py
 @pytest.mark.parametrize("integrator", ["SRKN6b", "ABA864", "verlet"])
 def test_every_lane_matches_the_single_engine(name, integrator):
     """Different chains, energies and excited beads per lane, with the tangent map and (where bonds

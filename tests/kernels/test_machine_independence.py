@@ -333,6 +333,7 @@ def test_scene_data_bit_for_bit(model):
     assert digest_arrays({k: ds[k].values for k in ds.variables}) == SCENE_DIGESTS[model]
 
 
+@pytest.mark.slow  # every kernel compiled again, for another CPU, in a second process
 def test_same_bits_in_an_emulated_avx2_build():
     """Rerun every other test of this file, the bit-for-bit ones included, with NumPy, Numba and
     OpenBLAS choosing the code of an AVX2 CPU (chainchaos.records.provenance.EMULATED_AVX2), with a

@@ -6,6 +6,8 @@ docs/reference/environment.md names every environment variable the package reads
 import re
 from pathlib import Path
 
+import pytest
+
 from chainchaos.engine.integrators import SCHEMES
 from chainchaos.observe.registry import NEED_REFERENCES, REGISTRY, TANGENT, needing
 from chainchaos.output import citing
@@ -13,6 +15,8 @@ from chainchaos.output import citing
 ROOT = Path(__file__).resolve().parents[2]
 PAGE = ROOT / "docs" / "reference" / "citing.md"
 ENVIRONMENT = ROOT / "docs" / "reference" / "environment.md"
+
+pytestmark = pytest.mark.docs  # checks pages of docs/
 
 
 def executed_blocks(path: Path) -> str:

@@ -79,7 +79,8 @@ def _embedded(html: str, name: str):
     return json.loads(match.group(1))
 
 
-@pytest.mark.slow
+@pytest.mark.pipeline
+@pytest.mark.browser
 def test_report_of_the_quick_run_holds_every_figure_with_caption_and_labels(quick, tmp_path):
     out = tmp_path / "report.html"
     done = subprocess.run([sys.executable, "-m", "snakemake", "--nolock", "--report", str(out),
@@ -118,7 +119,7 @@ def test_report_of_the_quick_run_holds_every_figure_with_caption_and_labels(quic
     assert console_errors([out]) == {str(out): []}  # it loads in Chromium without errors
 
 
-@pytest.mark.slow
+@pytest.mark.pipeline
 def test_the_run_summary_says_what_the_quick_run_did_from_its_files(quick):
     """The quick run pins the archived full search's chain: the summary says so with that search's
     counts, and the quick scale's times as the project writes them, none of it from the config."""

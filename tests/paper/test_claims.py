@@ -448,7 +448,7 @@ def figure_objects(pdf: Path) -> list[str]:
     return re.findall(rb"/PTEX\.FileName \(([^)]*)\)", pdf.read_bytes())
 
 
-@pytest.mark.slow
+@pytest.mark.pipeline
 @pytest.mark.skipif(shutil.which("pdftotext") is None, reason="needs poppler-utils")
 def test_quick_manuscript_has_every_figure_and_the_claims(quick):
     pdf = quick / QUICK_MANUSCRIPT
@@ -472,7 +472,7 @@ def test_quick_manuscript_has_every_figure_and_the_claims(quick):
     assert len(scan_rows) == len(SCAN_ROWS) and all(r["measured_text"] != "--" for r in scan_rows)
 
 
-@pytest.mark.slow
+@pytest.mark.pipeline
 def test_every_macro_the_manuscript_uses_is_generated(quick):
     macros = (quick / "claims" / "macros.tex").read_text()
     defined = set(re.findall(r"\\csname cc@([^\\]+)\\endcsname", macros))

@@ -458,7 +458,7 @@ def test_every_statement_of_the_paper_has_its_quote():
 
 #: What the paper itself reports for each row, as the fields of the row's measurement (typed from
 #: its text, independently of the catalogue); None where it prints no number a check could read
-#: (the scan rows are fed the paper's energies in tests/test_claims.py).
+#: (the scan rows are fed the paper's energies in tests/paper/test_claims.py).
 PAPER_VALUES = {
     "fig1-count": {"counts": [10]},                              # "about 10 strongly localized modes"
     "fig1-level": {"levels": [2.0]},                             # "<P> ~ 2"

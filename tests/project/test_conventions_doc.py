@@ -3,10 +3,14 @@
 import re
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[2]
 DOC = ROOT / "docs" / "conventions.md"
 CITING = ("src", "workflow", "config", "tests", "README.md", "docs")
 CITATION = re.compile(r"conventions\.md#([A-Za-z0-9_-]+)")
+
+pytestmark = pytest.mark.docs  # checks pages of docs/
 
 
 def anchors(markdown: str) -> set[str]:

@@ -15,6 +15,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 
+pytestmark = pytest.mark.docs  # every test here builds the site or its hook
+
 pytest.importorskip("mkdocs", reason="the docs extra is not installed: pip install -e '.[docs]'")
 pytest.importorskip("markdown_exec", reason="the docs extra is not installed: pip install -e '.[docs]'")
 pytest.importorskip("mkdocstrings", reason="the docs extra is not installed: pip install -e '.[docs]'")
@@ -35,7 +37,6 @@ def built(tmp_path_factory):
     return result, site, time.perf_counter() - start
 
 
-@pytest.mark.slow
 def test_the_site_builds_strict(built):
     result, site, seconds = built
     assert result.returncode == 0, result.stderr[-5000:]
@@ -72,7 +73,7 @@ def test_the_site_builds_strict(built):
     print(f"mkdocs build --strict: {seconds:.1f} s")
 
 
-@pytest.mark.slow
+@pytest.mark.browser
 def test_every_page_of_the_site_loads_in_chromium_without_console_errors(built):
     from browser import console_errors
 

@@ -113,3 +113,39 @@ def test_public_names_keep_working():
     assert chainchaos.MODELS is MODELS and chainchaos.SCHEMES is SCHEMES and chainchaos.OBSERVABLES is REGISTRY
     assert chainchaos.STATEMENTS is STATEMENTS and chainchaos.CLAIMS is CATALOGUE
     assert chainchaos.random_chain(879, 5.0).N == 40
+
+
+# ---- the tests mirror the package -------------------------------------------------------------------
+
+TESTS = ROOT / "tests"
+#: The folder of the tests of the whole project (docs, README, packaging, lock, layout, pipeline,
+#: SLURM), beside one folder per layer of the package.
+PROJECT_TESTS = "project"
+
+
+def test_the_tests_mirror_the_package():
+    """No test file at tests/ top level: each lives in the folder of the layer it tests (tests/kernels/,
+    ..., tests/studies/scan/, ...) or in tests/project/, and each folder is a package, so that two
+    folders may hold test files of one name."""
+    assert not sorted(p.name for p in TESTS.glob("test_*.py")), "a test file at tests/ top level: move it to its layer"
+    folders = {p.parent.relative_to(TESTS) for p in TESTS.rglob("test_*.py")}
+    assert {f.parts[0] for f in folders} == LAYERS | {PROJECT_TESTS}, folders
+    for folder in folders:
+        assert folder.parts[0] == PROJECT_TESTS or (PACKAGE / folder).is_dir(), f"tests/{folder}: no such layer"
+        for depth in range(1, len(folder.parts) + 1):
+            assert (TESTS.joinpath(*folder.parts[:depth]) / "__init__.py").is_file(), f"tests/{folder}: no __init__.py"
+
+
+def test_a_marker_pyproject_does_not_register_stops_the_tests(tmp_path):
+    """--strict-markers (addopts): a test marked with a marker that pyproject.toml does not register
+    is not collected; the registered ones are."""
+    (tmp_path / "test_registered.py").write_text(
+        "import pytest\n\n\n@pytest.mark.pipeline\n@pytest.mark.browser\n@pytest.mark.docs\n@pytest.mark.slow\n"
+        "def test_it():\n    pass\n")
+    (tmp_path / "test_unregistered.py").write_text("import pytest\n\n\n@pytest.mark.pipelin\ndef test_it():\n    pass\n")
+    done = subprocess.run([sys.executable, "-m", "pytest", "-c", str(ROOT / "pyproject.toml"), "--rootdir", str(tmp_path),
+                           "-p", "no:cacheprovider", "-p", "no:xdist", "-q", str(tmp_path)],
+                          cwd=tmp_path, capture_output=True, text=True, timeout=300)
+    assert done.returncode != 0, done.stdout
+    assert "'pipelin' not found in `markers` configuration option" in done.stdout, done.stdout
+    assert "test_unregistered.py" in done.stdout and "ERROR test_registered.py" not in done.stdout, done.stdout

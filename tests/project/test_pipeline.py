@@ -22,6 +22,8 @@ from chainchaos.paper import panels, statements
 ROOT = Path(__file__).resolve().parents[2]
 QUICK = ["--configfile", "config/quick.yaml"]
 
+pytestmark = pytest.mark.pipeline  # every test here runs Snakemake
+
 
 def snakemake(*args, timeout=1500):
     done = subprocess.run([sys.executable, "-m", "snakemake", "--cores", "2", "--nolock", *args], cwd=ROOT,
@@ -36,10 +38,9 @@ def planned_jobs(output: str) -> dict[str, int]:
 
 
 # The `quick` fixture (the whole quick-scale pipeline in a temporary results directory) is in
-# conftest.py, shared with tests/test_claims.py.
+# conftest.py, shared with tests/paper/test_claims.py.
 
 
-@pytest.mark.slow
 def test_every_panel_and_figure_exists_and_is_not_blank(quick):
     names = [f"fig{p}" for p in panels.PANELS] + [f"fig{n}" for n in panels.LAYOUTS]
     for name in names:
@@ -49,7 +50,6 @@ def test_every_panel_and_figure_exists_and_is_not_blank(quick):
         assert pixels.std() > 0.01, f"{name}.png is blank"
 
 
-@pytest.mark.slow
 def test_each_scene_holds_what_its_panels_asked_for(quick):
     for name, scene in panels.scenes().items():
         with xr.open_dataset(quick / "scenes" / f"{name}.nc") as ds:
@@ -67,7 +67,6 @@ def _contract_variables():
     return set(OBSERVABLES)
 
 
-@pytest.mark.slow
 def test_deleted_panel_reruns_only_its_figure_s_drawing_job(quick):
     (quick / "figures" / "fig4d.pdf").unlink()
     code, out = snakemake(str(quick / "figures" / "fig4d.pdf"), *QUICK, "--config", f"results={quick}", "-n")
@@ -75,7 +74,6 @@ def test_deleted_panel_reruns_only_its_figure_s_drawing_job(quick):
     assert planned_jobs(out) == {"plot_figure_4": 1}
 
 
-@pytest.mark.slow
 def test_deleted_study_figure_reruns_only_its_study_s_drawing_job(quick, tmp_path):
     figure = quick / "studies" / "kg_weak_chaos" / "figures" / "chaos.pdf"
     kept = shutil.copy2(figure, tmp_path / "chaos.pdf")
@@ -88,7 +86,6 @@ def test_deleted_study_figure_reruns_only_its_study_s_drawing_job(quick, tmp_pat
     assert planned_jobs(out) == {"plot_study_kg_weak_chaos": 1}
 
 
-@pytest.mark.slow
 def test_changed_scene_parameter_reruns_only_its_batch(quick, tmp_path):
     """The changed scene leaves its batch (its step differs now), so it and the scenes it shared a
     SIMD block with rerun, and the panels drawn from them; nothing else."""
@@ -155,7 +152,6 @@ def test_a_pinned_seed_rescores_that_chain_without_a_search(tmp_path):
     assert jobs["search_candidates"] == 1
 
 
-@pytest.mark.slow
 def test_the_search_chooses_the_chain_and_the_verdicts_run_on_it(quick):
     found = xr.load_dataset(quick / "search" / "search.nc")
     chain = xr.load_dataset(quick / "chain" / "chain.nc")

@@ -1,6 +1,6 @@
 """Where the package finds the project's files (chainchaos.project): a setting, else the working
 directory or its parents, else the package's checkout; the installed-wheel case (no checkout) is
-run in tests/test_packaging.py's library-only install."""
+run in tests/project/test_packaging.py's library-only install."""
 
 from pathlib import Path
 

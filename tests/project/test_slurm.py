@@ -33,7 +33,7 @@ TARGETS = ["scan/energy_scan.nc", "scan/disorder_statistics.nc", "scan/threshold
            "figures/disorder_statistics.png"]
 
 pytestmark = [
-    pytest.mark.slow,
+    pytest.mark.pipeline,
     pytest.mark.skipif(not WANTED, reason="SLURM test runs in CI (CI set) or with CHAINCHAOS_SLURM_TEST=1"),
 ]
 

@@ -84,7 +84,7 @@ def cf_problems(path) -> list[str]:
 
 
 #: kinds that a run whose realization is pinned (by the archived full search or the config) does not
-#: write; the small full search of tests/test_search_full.py checks them
+#: write; the small full search of tests/studies/search/test_search_full.py checks them
 NOT_WHEN_PINNED = {"search filter job"}
 
 
@@ -102,7 +102,7 @@ def product_files(results) -> dict:
     return chosen
 
 
-@pytest.mark.slow
+@pytest.mark.pipeline
 def test_every_kind_of_product_passes_the_cf_checker(quick):
     problems = {f"{kind} ({name})": cf_problems(quick / name) for kind, name in product_files(quick).items()}
     problems = {where: msgs for where, msgs in problems.items() if msgs}

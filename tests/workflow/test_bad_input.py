@@ -231,6 +231,7 @@ def _snakemake(*args, results):
      "config manuscript.beyond: study hertz500 has no figure nosuch; its figures: ['spreading', 'comparison']"),
     (("manuscript={beyond: [hertz500, {hertz500: []}]}",), "config manuscript.beyond: study hertz500 is named twice"),
 ])
+@pytest.mark.pipeline
 def test_snakemake_refuses_a_bad_config_before_any_job(tmp_path, extra, expected):
     bad = tmp_path / "bad.yaml"
     bad.write_text("simulation:\n  integrator: rk4\n")
@@ -240,6 +241,7 @@ def test_snakemake_refuses_a_bad_config_before_any_job(tmp_path, extra, expected
     assert "Job stats" not in out and not results.exists()
 
 
+@pytest.mark.pipeline
 def test_snakemake_accepts_a_typed_nested_override(tmp_path):
     code, out = _snakemake("search={pinned_seed: 879}", results=tmp_path / "results")
     assert code == 0, out[-3000:]

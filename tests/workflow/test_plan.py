@@ -62,6 +62,7 @@ def job_list(lanes: int) -> list[str]:
     return sorted(map(str, jobs))
 
 
+@pytest.mark.pipeline
 def test_the_same_config_gives_the_same_jobs_at_4_and_8_lanes():
     assert job_list(4) == job_list(8)
 
@@ -162,7 +163,7 @@ def test_study_name_and_cluster_minutes():
 # ---- a second clone runs its own code ------------------------------------------------------------
 
 
-@pytest.mark.slow
+@pytest.mark.pipeline
 def test_a_second_clone_runs_its_own_package_not_the_installed_one(tmp_path):
     """The installed chainchaos is this checkout's (editable): a clone elsewhere must still plan
     with, and run the jobs of, its own src/."""

@@ -2,7 +2,7 @@
 
 Every rule `X` of workflow/rules/F.smk runs workflow/scripts/X.py, which names its task: an import
 of ``chainchaos.workflow.tasks.F.X`` and ``run(snakemake, X)``, which runs it with stderr in the
-rule's log. The end-to-end run of every task is the quick pipeline (tests/test_pipeline.py); the
+rule's log. The end-to-end run of every task is the quick pipeline (tests/project/test_pipeline.py); the
 cheap ones are also run here on small inputs."""
 
 import ast

@@ -8,6 +8,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[2]
 SNAKEFILES = ["Snakefile", *sorted(str(p.relative_to(ROOT)) for p in (ROOT / "workflow" / "rules").glob("*.smk"))]
 ACCEPTED_LINTS = {"Specify a conda environment or container for each rule."}
@@ -19,6 +21,7 @@ def test_snakefiles_are_formatted_with_snakefmt():
     assert done.returncode == 0, done.stdout + done.stderr
 
 
+@pytest.mark.pipeline
 def test_snakemake_lint_leaves_only_the_conda_note():
     done = subprocess.run([sys.executable, "-m", "snakemake", "--lint", "--nolock"], cwd=ROOT,
                           capture_output=True, text=True, timeout=300)

@@ -20,8 +20,8 @@ batch of any size B is padded to whole blocks by repeating its last trajectory, 
 lanes run on the single-trajectory engine (:class:`Batch`'s ``serial_lanes``): a block costs
 more than :data:`SERIAL_REMAINDER` single-engine trajectories, whatever its padding.
 
-Semantics are those of ``integrators.advance`` lane by lane, to the bit (tests/test_batch.py,
-tests/test_lane_width.py, at every width): the same kick/drift table (``integrators.SCHEMES``),
+Semantics are those of ``integrators.advance`` lane by lane, to the bit (tests/engine/test_batch.py,
+tests/engine/test_lane_width.py, at every width): the same kick/drift table (``integrators.SCHEMES``),
 the same floating-point operations in the same order, a force evaluation reused by the next kick
 when no drift came in between, the tangent map drift(c): dq += c dt M^-1 dp, kick(d): dp -= d dt
 Hess V(u) dq with Hess V tridiagonal from the bond stiffness (and a site law's w'(u) and w''(u)

@@ -9,7 +9,7 @@ is computed:
 - ``fma``: :func:`fma_sqrt`, a branch-free sequence of 27 lane-wise operations (integer
   operations, multiplies and fused multiply-adds) whose result is the correctly rounded square
   root, bit for bit what ``np.sqrt`` returns, on every double: docs/conventions.md#square-root
-  proves it, tests/test_sqrt.py checks it on over 2e9 random inputs and on the hard cases.
+  proves it, tests/kernels/test_sqrt.py checks it on over 2e9 random inputs and on the hard cases.
 
 Both give the same numbers everywhere; only the time differs, and which one is faster depends on
 the CPU (its square-root unit against its FMA ports, which the rest of the kernel also uses):

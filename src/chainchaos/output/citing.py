@@ -2,7 +2,7 @@
 method papers behind each integrator and chaos indicator, read from the registries' own references
 (``SCHEMES[name].reference``; an observable's ``reference`` and ``NEED_REFERENCES``, the method
 behind what it needs: the tangent map). docs/reference/citing.md renders them when the site builds, and
-the README carries the same BibTeX (tests/test_citing.py checks both), so neither can go stale.
+the README carries the same BibTeX (tests/output/test_citing.py checks both), so neither can go stale.
 """
 
 from __future__ import annotations

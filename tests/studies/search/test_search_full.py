@@ -44,7 +44,7 @@ def _finished(results: Path) -> dict:
     return {p: (p.stat().st_mtime_ns, p.stat().st_ino) for p in sorted((results / "search_full").rglob("*.nc"))}
 
 
-@pytest.mark.slow
+@pytest.mark.pipeline
 def test_a_killed_full_search_resumes_without_redoing_a_finished_chunk(tmp_path):
     results, archive = tmp_path / "results", tmp_path / "data" / "search_full.nc"
     config = tmp_path / "small.yaml"
@@ -82,7 +82,7 @@ def test_a_killed_full_search_resumes_without_redoing_a_finished_chunk(tmp_path)
     resumed = n_filter - len([p for p in before if p.parent.name == "filter"])
     assert resumed <= ds.attrs["cost_search_filter_jobs"] <= n_filter  # a killed job may leave no benchmark
     assert ds.attrs["stage_cpus"] and ds.attrs["stage_commits"]
-    # the files a pinned run does not write pass the CF checker here (tests/test_compliance.py)
+    # the files a pinned run does not write pass the CF checker here (tests/records/test_compliance.py)
     assert cf_problems(archive) == [] and cf_problems(sorted(filters.glob("*.nc"))[0]) == []
 
     # `all` pins the archive's chain: its search's candidates are that chain alone, and no filter runs

@@ -16,7 +16,7 @@ from chainchaos import run_study
 
 ROOT = Path(__file__).resolve().parents[3]
 # One worker runs this module's tests (its module-scoped runs happen once under pytest-xdist).
-pytestmark = pytest.mark.xdist_group("study_workflow")
+pytestmark = [pytest.mark.pipeline, pytest.mark.xdist_group("study_workflow")]  # every test here runs Snakemake
 
 SMALL = """\
 title: a small Hertz study of the tests
@@ -39,7 +39,6 @@ def small(tmp_path_factory):
     return base, results / "studies" / "small"
 
 
-@pytest.mark.slow
 def test_the_workflow_writes_run_studys_numbers(small):
     base, out = small
     ds = run_study(base / "small.yaml")
@@ -56,7 +55,6 @@ def test_the_workflow_writes_run_studys_numbers(small):
             assert scene.attrs["model"] == model and scene.attrs["energy"] == energy
 
 
-@pytest.mark.slow
 def test_a_study_resumes_from_its_finished_jobs_and_plans_nothing_of_the_paper(small, tmp_path):
     """As after a run interrupted in its second job: the finished groups are not run again."""
     base, out = small
@@ -71,7 +69,6 @@ def test_a_study_resumes_from_its_finished_jobs_and_plans_nothing_of_the_paper(s
     assert not {"search_seeds", "select_chain", "evaluate_claims", "build_manuscript", "simulate_scenes"} & set(jobs)
 
 
-@pytest.mark.slow
 def test_a_changed_key_reruns_the_study(small, tmp_path):
     _, out = small
     changed = tmp_path / "small.yaml"
@@ -104,7 +101,6 @@ def worked(tmp_path_factory):
     return results / "studies"
 
 
-@pytest.mark.slow
 def test_the_worked_study_makes_every_product(worked):
     fput = worked / "fput100"
     for energy in ("0.5", "1.8", "3"):
@@ -119,7 +115,6 @@ def test_the_worked_study_makes_every_product(worked):
         assert ds.model.values.tolist() == ["hertz"] and ds.sizes["realization"] == 16
 
 
-@pytest.mark.slow
 def test_the_worked_studys_files_pass_the_cf_checker(worked):
     from records.test_compliance import cf_problems
 
@@ -127,7 +122,7 @@ def test_the_worked_studys_files_pass_the_cf_checker(worked):
         assert cf_problems(worked / path) == [], path
 
 
-@pytest.mark.slow
+@pytest.mark.browser
 def test_the_report_shows_the_studys_figures(worked, tmp_path):
     report = tmp_path / "report.html"
     code, out = snakemake("--report", str(report), "study", "--config", "study=fput100", f"results={worked.parent}")
@@ -152,7 +147,6 @@ jobs: {orbits_per_job: 1}
 """
 
 
-@pytest.mark.slow
 def test_a_kept_study_is_read_not_run_while_its_settings_hold(tmp_path):
     """`keep --config keep=<study>` keeps each group with its key; the study then plans no group
     job, a change of a key its numbers do not depend on (its figures) neither, a changed step says

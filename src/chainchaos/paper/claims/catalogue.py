@@ -1,7 +1,7 @@
 """The paper's quantitative statements as data: one :class:`ClaimRow` per claim, in table order.
 
 Each row quotes the paper's words it encodes (``quote``: passages of the paper's LaTeX source, from
-the section its ``where`` names; tests/test_claims_catalogue.py finds them in the paper) and names
+the section its ``where`` names; tests/paper/test_claims_catalogue.py finds them in the paper) and names
 the statement and value, the measure that reads the stored results
 (:data:`chainchaos.paper.claims.measures.MEASURES`), the checks of the verdict, the time the statement
 needs and the texts of the claims table (templates, see :mod:`chainchaos.paper.claims.framework`). The

@@ -9,7 +9,7 @@ the chain's coefficients 2 K3^2 / (3 K2) = h / 96 is the paper's K4 (K4 sign +1)
 in the potential, the paper's FPUT chain is this Toda chain. Beta > 0 (K3 < 0): the bond hardens
 exponentially in compression and its tension saturates at K2 / beta. A chain of equal beads is
 integrable: the walls and N beads are the odd-symmetric half of a periodic Toda lattice of 2(N+1)
-particles, whose Flaschka-Lax traces are conserved (tests/test_toda.py). Bonds never open.
+particles, whose Flaschka-Lax traces are conserved (tests/system/test_toda.py). Bonds never open.
 
 The kernels use e^x - 1 = expm1(x) (the C library's, lane by lane on vectors), exact near x = 0.
 """
