@@ -253,7 +253,8 @@ def test_small_full_search_runs_through_slurm(slurm, tmp_path):
                         "keep=search_full", "--", "keep")
     with xr.open_dataset(archive) as ds:
         assert ds.attrs["seeds_scanned"] == 1500 and int(ds["scored"].sum()) == 2
-        assert ds.attrs["cost_search_filter_jobs"] == -(-ds.sizes["candidate"] // PER_JOB)
+        # per model, the filter study's groups of PER_JOB chains and the score study's of one survivor each
+        assert ds.attrs["cost_study_group_jobs"] == 2 * (-(-ds.sizes["candidate"] // PER_JOB) + 2)
 
 
 def test_a_study_runs_through_slurm(slurm, tmp_path):

@@ -33,8 +33,10 @@ PRODUCT_KINDS = {
     "disorder statistics": "scan/disorder_statistics.nc",
     "search seed job": "search/seeds/*.nc",
     "search candidates": "search/candidates.nc",
-    "search filter job": "search/filter/*.nc",
-    "search score job": "search/score/*.nc",
+    "search filter": "search/filter.nc",
+    "search filter group": "studies/search-filter-*/groups/*.nc",
+    "search score group": "studies/search-score-*/groups/*.nc",
+    "verdict group": "studies/verdicts_*/groups/*.nc",
     "search": "search/search.nc",
     "verdicts": "verdicts/*.nc",
     "Lyapunov spectrum": "indicators/spectrum_*.nc",
@@ -85,7 +87,7 @@ def cf_problems(path) -> list[str]:
 
 #: kinds that a run whose realization is pinned (by the archived full search or the config) does not
 #: write; the small full search of tests/studies/search/test_search_full.py checks them
-NOT_WHEN_PINNED = {"search filter job"}
+NOT_WHEN_PINNED = {"search filter", "search filter group"}
 
 
 def product_files(results) -> dict:

@@ -265,7 +265,7 @@ def test_a_changed_chain_computes_the_search_and_disorder_and_restoring_it_reuse
     assert code == 0, out[-4000:]
     jobs = planned_jobs(out)
     # a search at the configured scale (stage 1 planned once stage 0 has run), not the pinned re-score
-    assert jobs["search_seeds"] == 1 and jobs["search_candidates"] == 1 and "search_score" not in jobs
+    assert jobs["search_seeds"] == 1 and jobs["search_candidates"] == 1 and "/search-score-" not in out
     assert "search_full.nc" not in rule_inputs(out, "select_chain")
     # the disorder statistics from their group jobs, not from the archive
     merged_from = rule_inputs(out, "merge_disorder")
@@ -276,7 +276,9 @@ def test_a_changed_chain_computes_the_search_and_disorder_and_restoring_it_reuse
     code, out = dry_run("all", "--config", results)
     assert code == 0, out[-4000:]
     jobs = planned_jobs(out)
-    assert jobs["search_score"] == 1 and "search_filter" not in jobs  # the archive's chain re-scored
+    # the archive's chain re-scored: one group of each model's score study
+    assert set(re.findall(r"/studies/search-score-(\w+)/groups/(\d+)\.nc", out)) == {("hertz", "0000"), ("fput", "0000")}
+    assert "search_filter" not in jobs
     assert rule_inputs(out, "select_chain") == "data/search/search_full.nc"
     assert rule_inputs(out, "merge_disorder") == "data/disorder/disorder_full.nc"
     assert kept_lines(out) == []
@@ -290,7 +292,7 @@ def test_the_quick_scale_pins_the_archives_chain_unless_the_chain_changes(tmp_pa
     assert rule_inputs(out, "select_chain") == "data/search/search_full.nc" and kept_lines(out) == []
     code, out = dry_run(*quick, "chain={N: 41}")
     assert code == 0, out[-4000:]
-    assert "search_full.nc" not in rule_inputs(out, "select_chain") and "search_score" not in planned_jobs(out)
+    assert "search_full.nc" not in rule_inputs(out, "select_chain") and "/search-score-" not in out
     assert kept_lines(out) == ["kept file data/search/search_full.nc: chain.N is 40 in the file, 41 in this run; "
                                "not used, computed at the configured scale"]
 

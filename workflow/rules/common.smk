@@ -118,17 +118,18 @@ def search_seed_files(wildcards):
 
 
 def search_study_files(stage):
-    """The groups of the studies of a search's stage (``filter``: none when a seed is pinned;
-    ``score``), once the stages before have run: their chains are read from them."""
+    """The groups of the studies of a search's stage (``filter``, ``score``), once the stages before
+    have run (their chains are read from them); with a pinned seed, its score studies alone."""
 
     def files(wildcards):
         search = wildcards.search
-        pinned = SEARCH_PLANS[search].pinned
-        if stage == "filter" and pinned:
-            return []
-        checkpoints.search_candidates.get(search=search)
-        if stage == "score" and not pinned:
-            checkpoints.search_filter.get(search=search)
+        if SEARCH_PLANS[search].pinned:  # the pinned seed's chain is scored, and none is filtered
+            if stage == "filter":
+                return []
+        else:
+            checkpoints.search_candidates.get(search=search)
+            if stage == "score":
+                checkpoints.search_filter.get(search=search)
         return [f for name in plan.search_studies(search, stage) for f in study_group_files(name)]
 
     return files

@@ -269,8 +269,8 @@ def search_studies(search: str, stage: str) -> list[str]:
 
 def _search_stage_keys(search: str, stage: str, model: str, config: dict, pinned_seed: int | None) -> dict:
     """The keys of a search stage's study: its chains are the candidates (``filter``), or the
-    survivors by rank (``score``; the pinned seed when one is), read from the stage before
-    (``<results>/<search>/candidates.nc``, ``filter.nc``): call it once those exist."""
+    survivors by rank (``score``), read from the stage before (``<results>/<search>/candidates.nc``,
+    ``filter.nc``: call it once those exist); with a pinned seed, that seed's chain."""
     import xarray as xr
 
     from chainchaos.paper.criteria import Criteria
@@ -283,9 +283,12 @@ def _search_stage_keys(search: str, stage: str, model: str, config: dict, pinned
     selection = SelectionCriteria(alpha=float(chain["alpha"]), N=int(chain["N"]), **chain.get("selection", {}))
     search_plan = SearchPlan.from_config(params["search"])
     root = Path(config["results"], search)
-    seeds = xr.load_dataset(root / "candidates.nc")["seed"].values
-    if stage == "score" and not search_plan.pinned:
-        seeds = seeds[xr.load_dataset(root / "filter.nc")["survivor"].values]
+    if search_plan.pinned:
+        seeds = [search_plan.pinned_seed]
+    else:
+        seeds = xr.load_dataset(root / "candidates.nc")["seed"].values
+        if stage == "score":
+            seeds = seeds[xr.load_dataset(root / "filter.nc")["survivor"].values]
     return stage_studies(search, stage, selection, search_plan, OrbitSettings.from_config(params["search"]["settings"]),
                          Criteria.from_config(params["claims"]), int(params["site"]), seeds)[model]
 

@@ -18,6 +18,8 @@ from chainchaos.run.orbits import OrbitSettings
 from chainchaos.studies.search import rejudge
 from chainchaos.studies.search import stages as search
 from chainchaos.studies.search.selection import SelectionCriteria
+from chainchaos.studies.study.runs import run_group
+from chainchaos.studies.study.spec import load_study
 from chainchaos.workflow.tasks.keep import _stage_files
 
 IDS = ["spread-level-H1.8-hertz", "eta-H4-fput"]
@@ -33,10 +35,20 @@ def full():
     c = Criteria()
     found = search.candidates(selection, plan)
     rows = search.candidate_rows(found)
-    filters = [search.filter_group(selection, plan, settings, c, rows, g, SITE) for g in range(plan.n_filter_jobs(len(rows)))]
-    scores = [search.score_candidate(selection, plan, settings, c, rows, int(k), SITE)
-              for k in search.survivors(filters, plan)]
-    return selection, plan, settings, c, search.merge(selection, plan, settings, c, found, filters, scores)
+    assert len(rows) == 4
+    filtered = search.filter_dataset(plan, settings, c, found, _groups("filter", selection, plan, settings, c,
+                                                                        found["seed"].values))
+    ranked = filtered["survivor"].values
+    scores = search.score_datasets(plan, settings, c, found, ranked, _groups("score", selection, plan, settings, c,
+                                                                             found["seed"].values[ranked]))
+    return selection, plan, settings, c, search.merge(selection, plan, settings, c, found, [filtered], scores)
+
+
+def _groups(stage, selection, plan, settings, c, seeds) -> dict:
+    """Every group of a search stage's studies (stages.stage_studies), run in this process."""
+    studies = {model: load_study(keys) for model, keys in
+               search.stage_studies("search", stage, selection, plan, settings, c, SITE, seeds).items()}
+    return {model: [run_group(study, g) for g in range(study.n_groups)] for model, study in studies.items()}
 
 
 def _column(name):

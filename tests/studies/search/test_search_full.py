@@ -40,8 +40,15 @@ def _snakemake(config: Path, results: Path, *args, keep: bool = False):
 
 
 def _finished(results: Path) -> dict:
-    """Every stage file written so far, with its modification time and inode."""
-    return {p: (p.stat().st_mtime_ns, p.stat().st_ino) for p in sorted((results / "search_full").rglob("*.nc"))}
+    """Every stage file written so far (its own and its studies' groups), with its modification
+    time and inode."""
+    files = [*(results / "search_full").rglob("*.nc"), *(results / "studies").glob("search_full-*/groups/*.nc")]
+    return {p: (p.stat().st_mtime_ns, p.stat().st_ino) for p in sorted(files)}
+
+
+def _filter_groups(paths) -> list[Path]:
+    """The groups of the full search's filter studies (search_full-filter-<model>) among ``paths``."""
+    return [p for p in paths if p.parent.parent.name.startswith("search_full-filter-")]
 
 
 @pytest.mark.pipeline
@@ -51,15 +58,14 @@ def test_a_killed_full_search_resumes_without_redoing_a_finished_chunk(tmp_path)
     config.write_text(SMALL.format(archive=archive))
     run = subprocess.Popen(_snakemake(config, results, "keep", keep=True), cwd=ROOT, stdout=subprocess.DEVNULL,
                            stderr=subprocess.DEVNULL, start_new_session=True)
-    filters = results / "search_full" / "filter"
     deadline = time.monotonic() + 600
-    while not (filters.is_dir() and len(list(filters.glob("*.nc"))) >= 2) and time.monotonic() < deadline:
+    while len(_filter_groups(_finished(results))) < 2 and time.monotonic() < deadline:
         assert run.poll() is None, "the search ended before it could be killed"
         time.sleep(0.2)
     os.killpg(run.pid, signal.SIGKILL)  # no clean shutdown: as a node failure or a killed session
     run.wait()
     before = _finished(results)
-    assert len([p for p in before if p.parent.name == "filter"]) >= 2 and not archive.exists()
+    assert len(_filter_groups(before)) >= 2 and not archive.exists()
 
     done = subprocess.run(_snakemake(config, results, "keep", "--rerun-incomplete", keep=True), cwd=ROOT,
                           capture_output=True, text=True, timeout=900)
@@ -73,24 +79,29 @@ def test_a_killed_full_search_resumes_without_redoing_a_finished_chunk(tmp_path)
     candidates = xr.load_dataset(results / "search_full" / "candidates.nc")
     assert ds.sizes["candidate"] == candidates.sizes["candidate"] == ds.attrs["n_qualifying"]
     assert ds.attrs["seeds_scanned"] == 1500 and int(ds["scored"].sum()) == 2
-    ran = np.concatenate([xr.load_dataset(f)["candidate"].values for f in sorted(filters.glob("*.nc"))])
-    assert sorted(ran) == list(range(ds.sizes["candidate"]))  # every candidate ran stage 1, once
+    filters = _filter_groups(after)
+    for model in ("hertz", "fput"):  # every candidate ran stage 1, once per scene of each model
+        groups = [xr.load_dataset(f) for f in filters if f.parent.parent.name.endswith(f"-{model}")]
+        ran = np.concatenate([g["realization"].values[g["energy_index"].values == 0] for g in groups])
+        assert sorted(ran) == list(range(ds.sizes["candidate"])), model
     for stage in STAGES:
         assert ds.attrs[f"cost_{stage}_jobs"] >= 1 and ds.attrs[f"cost_{stage}_cpu_seconds"] > 0, stage
     assert ds.attrs["cost_search_seeds_jobs"] == 2
-    n_filter = -(-candidates.sizes["candidate"] // 2)
-    resumed = n_filter - len([p for p in before if p.parent.name == "filter"])
-    assert resumed <= ds.attrs["cost_search_filter_jobs"] <= n_filter  # a killed job may leave no benchmark
+    n_filter, n_score = 2 * -(-candidates.sizes["candidate"] // 2), 2 * 2  # per model: groups of 2 chains; 2 survivors
+    resumed = n_filter - len(_filter_groups(before))
+    # a killed job may leave no benchmark
+    assert resumed + n_score <= ds.attrs["cost_study_group_jobs"] <= n_filter + n_score
     assert ds.attrs["stage_cpus"] and ds.attrs["stage_commits"]
     # the files a pinned run does not write pass the CF checker here (tests/records/test_compliance.py)
-    assert cf_problems(archive) == [] and cf_problems(sorted(filters.glob("*.nc"))[0]) == []
+    assert cf_problems(archive) == [] and cf_problems(results / "search_full" / "filter.nc") == []
+    assert cf_problems(filters[0]) == []
 
     # `all` pins the archive's chain: its search's candidates are that chain alone, and no filter runs
     pinned = tmp_path / "all"
     dry = subprocess.run(_snakemake(config, pinned, "-n"), cwd=ROOT, capture_output=True, text=True, timeout=300)
     assert dry.returncode == 0, dry.stdout[-4000:]
     planned = dry.stdout.split("Job stats:")[-1]
-    assert "search_filter" not in planned and "\nsearch_score " in planned
+    assert "search_filter" not in planned and "/studies/search-score-hertz/groups/" in dry.stdout
     stage0 = subprocess.run(_snakemake(config, pinned, str(pinned / "search" / "candidates.nc")), cwd=ROOT,
                             capture_output=True, text=True, timeout=600)
     assert stage0.returncode == 0, (stage0.stdout + stage0.stderr)[-4000:]

@@ -191,7 +191,7 @@ def test_the_archive_sums_the_jobs_costs_per_stage_and_names_its_machines(tmp_pa
         (tmp_path / stage / "search-000.tsv").write_text(row(99, 99))  # the other search's job
     costs = archive.job_costs(tmp_path)
     assert costs["search_seeds"] == {"jobs": 2, "wall_seconds": 5.0, "cpu_seconds": 4.0}
-    assert costs["search_score"] == {"jobs": 0, "wall_seconds": 0.0, "cpu_seconds": 0.0}
+    assert costs["study_group"] == {"jobs": 0, "wall_seconds": 0.0, "cpu_seconds": 0.0}
     assert costs["total"]["jobs"] == 4 and costs["total"]["cpu_seconds"] == 13.5
     assert costs["total"]["span_seconds"] >= 10.0  # the longest job at least
 
