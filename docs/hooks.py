@@ -5,6 +5,9 @@
   and the study keys (``chainchaos.workflow.config_docs.render``, the text of config/README.md and
   studies/README.md), the command line (the ``chainchaos`` argparse parser) and the measured
   performance (every record in benchmarks/results/, written by benchmarks/record.py).
+- The Sphinx roles of the package's numpydoc docstrings (``:func:`random_chain```,
+  ``:class:`~chainchaos.run.settings.RunSettings```), which mkdocstrings leaves as text, are shown
+  as the code they mark (``~``: the last name only, as Sphinx shows it).
 - An executed example that raises fails the build, strict or not: markdown-exec logs the
   traceback as a warning (which ``strict: true`` already turns into a failure); this hook collects
   those warnings and raises after the build, naming the pages.
@@ -24,6 +27,8 @@ ROOT = Path(__file__).resolve().parents[1]
 RESULTS = ROOT / "benchmarks" / "results"
 MARKER = re.compile(r"^<!-- generated: ([a-z_]+) -->$", re.MULTILINE)
 EXEC_FAILURE = "exited with errors"
+#: A Sphinx role of a docstring as mkdocstrings renders it: the role's name, then its target as code.
+ROLE = re.compile(r":(?:py:)?(?:func|class|meth|attr|data|const|exc|mod|obj):<code>(~?)([^<]*)</code>")
 
 
 # ---------------------------------------------------------------- generated pages
@@ -202,10 +207,15 @@ def on_pre_build(config) -> None:
     _failures.messages.clear()
 
 
+def plain_roles(html: str) -> str:
+    """The page's Sphinx roles (:data:`ROLE`) as the code they mark."""
+    return ROLE.sub(lambda m: f"<code>{m.group(2).rsplit('.', 1)[-1] if m.group(1) else m.group(2)}</code>", html)
+
+
 def on_page_content(html: str, page, config, files):
     for i in range(_page_start[0], len(_failures.messages)):
         _failures.messages[i] = f"{page.file.src_uri}: {_failures.messages[i]}"
-    return html
+    return plain_roles(html)
 
 
 def on_post_build(config) -> None:

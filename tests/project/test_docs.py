@@ -73,6 +73,22 @@ def test_the_site_builds_strict(built):
     print(f"mkdocs build --strict: {seconds:.1f} s")
 
 
+def test_the_api_page_shows_the_parameters_of_every_function_and_class(built):
+    """Each function and class of docs/reference/api.md shows its parameter table (from its numpydoc
+    Parameters section) before its members, and no Sphinx role is left as text (docs/hooks.py)."""
+    result, site, _ = built
+    assert result.returncode == 0, result.stderr[-5000:]
+    page = (site / "reference/api/index.html").read_text()
+    blocks = re.split(r'(?=<h3 id="chainchaos\.)', page)[1:]
+    objects = [block for block in blocks if "module-attribute" not in block.split("</h3>", 1)[0]]
+    assert len(objects) >= 30, len(objects)
+    for block in objects:
+        name = re.match(r'<h3 id="([^"]+)"', block)[1]
+        own = block.split("<h4", 1)[0]  # before its members' headings
+        assert 'doc-section-title">Parameters:<' in own and "<table>" in own, f"{name}: no parameter table"
+    assert not re.search(r":(func|class|meth|attr|data|exc|mod):<code>", page), "a Sphinx role shown as text"
+
+
 @pytest.mark.browser
 def test_every_page_of_the_site_loads_in_chromium_without_console_errors(built):
     from browser import console_errors

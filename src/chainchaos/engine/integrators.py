@@ -42,12 +42,39 @@ def inner(**options):
     need one, and their callers' machine code is the same without. The batch engine's helpers
     keep theirs: without them its machine code changed. Without its CPython entry point a
     function cannot be called from Python (the interpreter would crash): only private names get
-    this."""
+    this.
+
+    Parameters
+    ----------
+    **options
+        Further options of ``numba.njit`` (e.g. ``inline="always"``).
+
+    Returns
+    -------
+    callable
+        The decorator.
+    """
     return njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True, **options)
 
 
 @dataclass(frozen=True)
 class Scheme:
+    """A splitting scheme: the coefficients of one step (the module docstring), an entry of ``SCHEMES``.
+
+    Parameters
+    ----------
+    name : str
+        Its key in ``SCHEMES`` and in configs (``integrator``).
+    order : int
+        Its order of accuracy: the energy error of a run scales as dt^order.
+    kicks : numpy.ndarray of shape (s + 1,)
+        The kick coefficients b_0..b_s (summing to 1; a zero kick is skipped).
+    drifts : numpy.ndarray of shape (s,)
+        The drift coefficients a_0..a_{s-1} (summing to 1).
+    reference : str
+        Where it is published.
+    """
+
     name: str
     order: int
     kicks: np.ndarray
@@ -134,6 +161,23 @@ SCHEMES: dict[str, Scheme] = _build_table()
 
 
 def get_scheme(name: str) -> Scheme:
+    """The splitting scheme called ``name``.
+
+    Parameters
+    ----------
+    name : str
+        A key of ``SCHEMES``.
+
+    Returns
+    -------
+    Scheme
+        Its entry.
+
+    Raises
+    ------
+    ParameterError
+        For a name not in ``SCHEMES`` (the message lists those that are).
+    """
     require(name in SCHEMES, "integrator", name, f"one of {sorted(SCHEMES)}")
     return SCHEMES[name]
 

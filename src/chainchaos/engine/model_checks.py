@@ -39,7 +39,24 @@ from chainchaos.system.models.base import (
 
 class ModelCheckError(ParameterError):
     """A model that fails one of :func:`check_model`'s checks: the message names the model, the
-    check and what was found."""
+    check and what was found.
+
+    A :class:`~chainchaos.errors.ParameterError` (``name`` "model", ``value`` the model's name).
+
+    Parameters
+    ----------
+    model : Model
+        The model that fails.
+    check : str
+        The check it fails, a key of :data:`CHECKS`.
+    found : str
+        What the check found, in words.
+
+    Attributes
+    ----------
+    check : str
+        As given.
+    """
 
     def __init__(self, model: Model, check: str, found: str):
         self.check = check

@@ -26,7 +26,20 @@ ENGINES = ("auto", "batch", "single")
 
 
 def check_step(dt: float, t_final: float | None = None) -> None:
-    """A step is a finite number > 0 (and, given the run's length, at most ``t_final``)."""
+    """Require a step to be a finite number > 0 (and, given the run's length, at most ``t_final``).
+
+    Parameters
+    ----------
+    dt : float
+        The time step, in the model's time unit.
+    t_final : float, optional
+        The run's length, in the same unit (None: not checked against it).
+
+    Raises
+    ------
+    ParameterError
+        For a step that is not a finite number > 0, or longer than ``t_final``.
+    """
     require(isinstance(dt, (int, float, np.floating)) and np.isfinite(dt) and dt > 0, "dt", dt, "a finite step > 0")
     if t_final is not None:
         require(dt <= t_final, "dt", dt, f"dt <= t_final = {t_final}")
@@ -120,7 +133,23 @@ class Problem:
     def restricted(self, lo: int, hi: int) -> "Problem":
         """This problem on beads lo..hi-1 of its chains, the others held at rest: its first and
         last bonds join a moving bead to one at zero displacement (the window of
-        ``chainchaos.run.window``)."""
+        ``chainchaos.run.window``).
+
+        Parameters
+        ----------
+        lo, hi : int
+            The moving beads, lo..hi-1 (0-based), 0 <= lo < hi <= N.
+
+        Returns
+        -------
+        Problem
+            A copy with ``sites = (lo, hi)``.
+
+        Raises
+        ------
+        ParameterError
+            For a problem already restricted, or a window outside the chain.
+        """
         from dataclasses import replace
 
         require(self.sites is None, "sites", self.sites, "None: a restricted problem is not restricted again")
@@ -128,6 +157,7 @@ class Problem:
 
     @property
     def lanes(self) -> int:
+        """Number of lanes: one orbit per chain."""
         return len(self.chains)
 
     @property
@@ -137,6 +167,7 @@ class Problem:
 
     @property
     def scheme(self):
+        """The splitting scheme of ``integrator`` (an entry of ``SCHEMES``)."""
         return get_scheme(self.integrator)
 
     @property
@@ -163,18 +194,59 @@ class Problem:
 
     def lane_sites(self, j: int) -> np.ndarray | None:
         """Lane j's site parameters (MAX_SITE_PARAMETERS, N), contiguous (None without a site law):
-        the single-trajectory engine's ``sites``."""
+        the single-trajectory engine's ``sites``.
+
+        Parameters
+        ----------
+        j : int
+            The lane, 0-based.
+
+        Returns
+        -------
+        numpy.ndarray or None
+            The site parameters of lane j's lattice (of the moving sites), or None for a model
+            without a site law.
+        """
         sites = self.site_parameters
         return None if sites is None else np.ascontiguousarray(sites[:, :, j])
 
     def lane(self, j: int) -> tuple[np.ndarray, np.ndarray]:
         """Lane j's inverse masses (N,) and bond parameters (MAX_BOND_PARAMETERS, N+1), contiguous:
-        the arguments of the single-trajectory engine."""
+        the arguments of the single-trajectory engine.
+
+        Parameters
+        ----------
+        j : int
+            The lane, 0-based.
+
+        Returns
+        -------
+        inv_mass : numpy.ndarray of shape (N,)
+            1 / m of the moving beads (units of 1 / the reference bead's mass).
+        bonds : numpy.ndarray of shape (MAX_BOND_PARAMETERS, N + 1)
+            The model's bond parameters (``Model.bond_parameters``) of their bonds.
+        """
         inv_mass, bonds = self.lane_parameters
         return np.ascontiguousarray(inv_mass[:, j]), np.ascontiguousarray(bonds[:, :, j])
 
     def energies(self, Q: np.ndarray, P: np.ndarray) -> np.ndarray:
-        """H of every lane's state, Q and P lane-first (B, N) (docs/conventions.md#hamiltonian)."""
+        """H of every lane's state (docs/conventions.md#hamiltonian).
+
+        Parameters
+        ----------
+        Q, P : numpy.ndarray of shape (B, N)
+            Displacements and momenta of the B lanes, lane first (units of docs/conventions.md#units).
+
+        Returns
+        -------
+        numpy.ndarray of shape (B,)
+            The total energy of every lane, in the model's energy unit.
+
+        Raises
+        ------
+        ParameterError
+            For a restricted problem (``sites`` set): its energy is that of the full states.
+        """
         require(self.sites is None, "sites", self.sites, "None (the energy of a restricted problem's chain "
                 "is that of its full states)")
         return np.array([float(total_energy(self.model, c, Q[j], P[j])) for j, c in enumerate(self.chains)])
@@ -185,7 +257,29 @@ class Problem:
         lane in SIMD blocks of the batch engine, the last block padded), "single" (the
         single-trajectory engine, lane after lane) or "auto" (blocks, and a remainder of up to
         ``batch.SERIAL_REMAINDER`` lanes beyond them on the single engine); every kind gives the
-        same numbers. Extra deviation vectors run on the batch engine only."""
+        same numbers. Extra deviation vectors run on the batch engine only.
+
+        Parameters
+        ----------
+        q, p : numpy.ndarray of shape (N, B)
+            Displacements and momenta of the lanes (units of docs/conventions.md#units).
+        dq, dp : numpy.ndarray of shape (N, B), optional
+            The deviation vectors of the tangent map (needed when ``tangent``).
+        kind : {"auto", "batch", "single"}, default "auto"
+            Which engine runs the lanes.
+        xq, xp : numpy.ndarray of shape (K, N, B), optional
+            The ``extra_vectors`` further deviation vectors (the spectrum's, GALI's).
+
+        Returns
+        -------
+        chainchaos.engine.batch.Batch
+            The engine, holding the states; it advances them in place.
+
+        Raises
+        ------
+        ParameterError
+            For an unknown ``kind``, or "single" with extra deviation vectors.
+        """
         from chainchaos.engine.batch import SERIAL_REMAINDER, Batch
         from chainchaos.kernels.simd import LANES
 

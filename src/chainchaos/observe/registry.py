@@ -48,7 +48,42 @@ NEED_REFERENCES: dict[str, str] = {
 
 class SampledRun:
     """One scene's samples, (S, N) arrays over the sample times, and what several observables
-    derive from them, each computed once on first use."""
+    derive from them, each computed once on first use.
+
+    Made by ``Samples.run`` (lane j of a sampled problem). S is the number of samples, N of
+    sites; units of docs/conventions.md#units.
+
+    Parameters
+    ----------
+    model : Model
+        The model that ran.
+    chain : Chain or KGLattice
+        The lane's lattice.
+    times : numpy.ndarray of shape (S,)
+        Sample times, in the model's time unit.
+    steps : numpy.ndarray of shape (S,), dtype int
+        Sample steps.
+    Q, P : numpy.ndarray of shape (S, N)
+        Displacements and momenta.
+    DQ, DP : numpy.ndarray of shape (S, N)
+        The mLCE deviation vector.
+    log_growth : numpy.ndarray of shape (S,)
+        ln(|v(t)| / |v(0)|) of the mLCE vector.
+    gap_steps : numpy.ndarray of shape (S, N + 1), dtype int
+        Steps each bond was open since the previous sample.
+    max_gaps : numpy.ndarray of shape (S,), dtype int
+        Largest number of simultaneously open bonds since the previous sample.
+    energy_error : numpy.ndarray of shape (S,)
+        Relative energy error (dimensionless).
+    deviation0 : numpy.ndarray of shape (2 N,) or None
+        The initial deviation vector (du, dp).
+    spectrum_growth : numpy.ndarray of shape (S, spectrum), optional
+        Accumulated ln of the norms of the spectrum's vectors, the mLCE vector's first.
+    log_gali, sali : numpy.ndarray of shape (S,), optional
+        ln GALI_k and SALI (NaN where not computed).
+    gali_order : int, default 1
+        k of GALI_k.
+    """
 
     def __init__(self, model, chain, times, steps, Q, P, DQ, DP, log_growth, gap_steps, max_gaps, energy_error,
                  deviation0, spectrum_growth=None, log_gali=None, sali=None, gali_order=1):
@@ -60,31 +95,38 @@ class SampledRun:
 
     @cached_property
     def spectrum(self) -> np.ndarray:
+        """(S, spectrum) finite-time Lyapunov exponents, in units of 1 / the model's time unit."""
         return obs.lyapunov_spectrum(self.spectrum_growth, self.times)
 
     @cached_property
     def energy_density(self) -> np.ndarray:
+        """(S, N) normalised energy density h_n (``models.energy_density``)."""
         return energy_density(self.model, self.chain, self.Q, self.P)
 
     @cached_property
     def dvd(self) -> np.ndarray:
+        """(S, N) deviation vector density w_n."""
         return obs.deviation_vector_density(self.DQ, self.DP)
 
     @cached_property
     def is_open(self) -> np.ndarray:
+        """(S, N + 1) whether each bond is open at each sample."""
         return open_bonds(self.model, self.chain, self.Q)
 
     @cached_property
     def modes(self) -> tuple[np.ndarray, np.ndarray]:
+        """The lattice's linear modes, (omega, U) of ``linear.normal_modes``."""
         return normal_modes(self.chain)
 
     @cached_property
     def mode_energy(self) -> np.ndarray:
+        """(S, N) harmonic energy E_k of every linear mode, in the model's energy unit."""
         omega, U = self.modes
         return modal_energies(self.chain, omega, U, self.Q, self.P)
 
     @cached_property
     def spectral_entropy(self) -> np.ndarray:
+        """(S,) spectral entropy S = -sum v_k ln v_k of the mode energies."""
         return obs.spectral_entropy(self.mode_energy)
 
 
@@ -97,6 +139,36 @@ def _gap_fraction(run: SampledRun) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Observable:
+    """An observable a scene file can hold: an entry of ``REGISTRY`` (``chainchaos.OBSERVABLES``).
+
+    Parameters
+    ----------
+    name : str
+        The NetCDF variable's name and the registry key.
+    dims : tuple of str
+        Its dimensions (``"time"``, ``"site"``, ``"bond"``, ``"mode"``, ...).
+    long_name : str
+        The CF ``long_name`` attribute: what it is.
+    label : str
+        Its axis label (matplotlib mathtext).
+    compute : callable
+        ``compute(run)``: its values from a :class:`SampledRun`, dimensionless.
+    needs : frozenset of str, optional
+        What the run must provide: TANGENT, SPECTRUM, ALIGNMENT, GAPS, MODES (default none).
+    attrs : callable, optional
+        ``attrs(run)``: further CF attributes (default none).
+    dtype : type, optional
+        The type it is written as (default: as computed).
+    companions : tuple of str, optional
+        Observables written whenever this one is.
+    selectable : bool, optional
+        Whether a scene may ask for it by name (default True; False: only as a companion).
+    by_default : bool, optional
+        Whether it is among a model's observables when a scene names none (default True).
+    reference : str, optional
+        The paper that defines it (the chaos indicators), for docs/reference/citing.md.
+    """
+
     name: str
     dims: tuple[str, ...]
     long_name: str
@@ -191,13 +263,37 @@ OBSERVABLES: tuple[str, ...] = tuple(name for name, o in REGISTRY.items() if o.s
 
 
 def needing(need: str) -> frozenset[str]:
-    """The selectable observables that need ``need`` (TANGENT, GAPS or MODES)."""
+    """The selectable observables that need ``need`` (TANGENT, GAPS or MODES).
+
+    Parameters
+    ----------
+    need : str
+        One of TANGENT, SPECTRUM, ALIGNMENT, GAPS, MODES.
+
+    Returns
+    -------
+    frozenset of str
+        The names of those observables.
+    """
     return frozenset(name for name in OBSERVABLES if need in REGISTRY[name].needs)
 
 
 def variables(run: SampledRun, wanted) -> dict:
-    """The Dataset variables of the ``wanted`` observables and their companions, in file order:
-    name -> (dims, values, attributes)."""
+    """The Dataset variables of the ``wanted`` observables and their companions, in file order.
+
+    Parameters
+    ----------
+    run : SampledRun
+        The sampled run.
+    wanted : iterable of str
+        Names of ``REGISTRY``.
+
+    Returns
+    -------
+    dict
+        Name to (dims, values, attributes), the attributes with ``units`` "1" and ``long_name``:
+        what ``xarray.Dataset`` takes.
+    """
     written = set(wanted) | {c for name in wanted for c in REGISTRY[name].companions}
     data = {}
     for name, o in REGISTRY.items():
@@ -210,13 +306,30 @@ def variables(run: SampledRun, wanted) -> dict:
 
 def study_observables() -> list[str]:
     """The observables a study keeps per orbit (``chainchaos.studies.study``): the selectable
-    time series that need no Lyapunov spectrum and no gap counting."""
+    time series that need no Lyapunov spectrum and no gap counting.
+
+    Returns
+    -------
+    list of str
+        Their names, in file order.
+    """
     return [name for name in OBSERVABLES if REGISTRY[name].dims == ("time",) and not REGISTRY[name].needs & {SPECTRUM, GAPS}]
 
 
 def model_observables(model: str) -> tuple:
     """The observables of ``model`` a scene computes when it names none: every one computed by
     default (not the costly chaos indicators beyond the mLCE), the gap observables only where
-    bonds open (Hertz)."""
+    bonds open (Hertz).
+
+    Parameters
+    ----------
+    model : str or Model
+        The model.
+
+    Returns
+    -------
+    tuple of str
+        Their names, in file order.
+    """
     gaps = frozenset() if get_model(model).has_gaps else needing(GAPS)
     return tuple(o for o in OBSERVABLES if REGISTRY[o].by_default and o not in gaps)

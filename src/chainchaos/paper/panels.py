@@ -10,6 +10,16 @@ from dataclasses import dataclass, field
 
 @dataclass(frozen=True)
 class Scene:
+    """A scene of the paper: one model at one energy, integrated once and drawn by its panels.
+
+    Parameters
+    ----------
+    model : str
+        A model's name (``MODELS``).
+    energy : float
+        Total energy H of the excitation, in the model's energy unit.
+    """
+
     model: str
     energy: float
 
@@ -21,6 +31,18 @@ class Scene:
 
 @dataclass(frozen=True)
 class Panel:
+    """A panel of the paper's figures: an entry of ``PANELS`` (``chainchaos.PANELS``).
+
+    Parameters
+    ----------
+    kind : str
+        What it draws, a key of ``KIND_OBSERVABLES`` (which says what it reads from its scenes).
+    scenes : tuple of Scene, optional
+        The scenes it draws from (default none: a panel of the chain or of the ensemble).
+    options : dict, optional
+        Options of its kind, e.g. ``{"times": (10.0, 1e3, 1e5)}`` for DVD profiles.
+    """
+
     kind: str
     scenes: tuple[Scene, ...] = ()
     options: dict = field(default_factory=dict)
@@ -178,6 +200,17 @@ LAYOUTS: dict[int, list[str]] = {
 
 @dataclass(frozen=True)
 class Figure:
+    """A figure of the paper: its subject and what the paper reports about its panels.
+
+    Parameters
+    ----------
+    title : str
+        Its subject, a few words.
+    reports : dict of str to str
+        By panel letters (``"ab"``: panels a and b), what the paper reports about them, math in
+        ``$...$``.
+    """
+
     title: str
     reports: dict[str, str]  # panel letters -> what the paper reports about those panels
 
@@ -259,21 +292,61 @@ FIGURES: dict[int, Figure] = {
 
 
 def panels_of_figure(figure: int) -> list[str]:
+    """The keys of ``PANELS`` of one figure.
+
+    Parameters
+    ----------
+    figure : int
+        The figure's number.
+
+    Returns
+    -------
+    list of str
+        Its panels' keys (``"2a"``, ``"2b"``, ...), sorted.
+    """
     return sorted(p for p in PANELS if int(p[:-1]) == figure)
 
 
 def scenes() -> dict[str, Scene]:
-    """Every scene any panel uses, by name."""
+    """Every scene any panel uses, by name.
+
+    Returns
+    -------
+    dict of str to Scene
+        The scenes by ``Scene.name``, in the order the panels first use them.
+    """
     return {s.name: s for panel in PANELS.values() for s in panel.scenes}
 
 
 def models() -> tuple[str, ...]:
-    """The models of the paper's scenes, in the order the panels first use them."""
+    """The models of the paper's scenes, in the order the panels first use them.
+
+    Returns
+    -------
+    tuple of str
+        The models' names.
+    """
     return tuple(dict.fromkeys(s.model for s in scenes().values()))
 
 
 def scene_observables(scene_name: str) -> list[str]:
-    """The observables a scene must compute: the union over the panels that use it."""
+    """The observables a scene must compute: the union over the panels that use it.
+
+    Parameters
+    ----------
+    scene_name : str
+        A scene's name (``Scene.name``).
+
+    Returns
+    -------
+    list of str
+        The observables' names, sorted.
+
+    Raises
+    ------
+    KeyError
+        For a scene no panel uses.
+    """
     wanted = {o for panel in PANELS.values() if scene_name in {s.name for s in panel.scenes}
               for o in KIND_OBSERVABLES[panel.kind]}
     if not wanted:

@@ -17,6 +17,28 @@ from chainchaos.system.models import model_label
 
 @dataclass(frozen=True)
 class Statement:
+    """A qualitative statement of the paper about one scene: an entry of ``STATEMENTS``.
+
+    Parameters
+    ----------
+    id : str
+        Its identifier, e.g. ``"chaos-H1.8-hertz"``.
+    scene : Scene
+        The scene it is about.
+    kind : str
+        How it is decided, a key of ``verdicts.STATEMENT_KINDS`` (``"localized"``, ``"chaotic"``,
+        ``"mlce_near"``, ...).
+    text : str
+        What the paper says, ending with the figure it cites, "(Fig. 4)" or "(Fig. 4d)".
+    value : float, optional
+        The paper's number where it gives one: a time (the model's time unit), a level of P, an
+        mLCE (units of 1 / the time unit) or eta.
+    until : float, optional
+        The end of the time window the statement is about (the model's time unit).
+    early : bool, optional
+        Whether a run shorter than the paper's can already break it (default False).
+    """
+
     id: str
     scene: Scene
     kind: str
@@ -72,17 +94,41 @@ STATEMENTS: tuple[Statement, ...] = (
 
 
 def statements_of_scene(scene_name: str) -> list[Statement]:
+    """The statements about one scene.
+
+    Parameters
+    ----------
+    scene_name : str
+        A scene's name (``Scene.name``).
+
+    Returns
+    -------
+    list of Statement
+        Its statements, in table order (empty for a scene no statement is about).
+    """
     return [s for s in STATEMENTS if s.scene.name == scene_name]
 
 
 def statement_scenes() -> dict[str, Scene]:
-    """The scenes the statements are about, by name, in table order."""
+    """The scenes the statements are about, by name, in table order.
+
+    Returns
+    -------
+    dict of str to Scene
+        The scenes by ``Scene.name``.
+    """
     return {s.scene.name: s.scene for s in STATEMENTS}
 
 
 def statement_scenes_by_model() -> dict[str, list[str]]:
     """The names of :func:`statement_scenes` by model, in table order: the scenes whose ensembles
-    one verdict job integrates together (any mix of a model's orbits shares a batch)."""
+    one verdict job integrates together (any mix of a model's orbits shares a batch).
+
+    Returns
+    -------
+    dict of str to list of str
+        By model name, its scenes' names.
+    """
     groups: dict[str, list[str]] = {}
     for name, scene in statement_scenes().items():
         groups.setdefault(scene.model, []).append(name)
@@ -108,7 +154,23 @@ STATEMENT_PANEL_KINDS = {
 def statement_panels(statement: Statement) -> list[str]:
     """The panels a statement is about: those of the figure its text cites, "(Fig. 4)" or
     "(Fig. 4d)", that show its scene, narrowed to the kinds that show its kind of statement when
-    the figure has such a panel."""
+    the figure has such a panel.
+
+    Parameters
+    ----------
+    statement : Statement
+        The statement.
+
+    Returns
+    -------
+    list of str
+        Keys of ``PANELS``.
+
+    Raises
+    ------
+    ValueError
+        For a statement whose text does not end with the figure it cites.
+    """
     cited = re.search(r"\(Fig\. (\d+)([a-z]?)\)$", statement.text)
     if cited is None:
         raise ValueError(f"statement {statement.id!r} cites no figure as (Fig. N) or (Fig. Nx) at its end")
@@ -120,4 +182,16 @@ def statement_panels(statement: Statement) -> list[str]:
 
 
 def statements_of_panel(panel_id: str) -> list[Statement]:
+    """The statements about one panel (:func:`statement_panels`).
+
+    Parameters
+    ----------
+    panel_id : str
+        A key of ``PANELS``.
+
+    Returns
+    -------
+    list of Statement
+        Its statements, in table order.
+    """
     return [s for s in STATEMENTS if panel_id in statement_panels(s)]

@@ -29,7 +29,25 @@ def sample_steps(t_final: float, dt: float, per_decade: int, t_first: float) -> 
 
     The times are t_j = 10^(e_0 + j / per_decade) with e_0 = floor(log10(max(t_first, dt))), up
     to the first t_j >= t_final, from the C library's scalar log10 and pow (chainchaos.kernels.exactmath),
-    not NumPy's vectorised ones, whose last bits depend on the CPU."""
+    not NumPy's vectorised ones, whose last bits depend on the CPU.
+
+    Parameters
+    ----------
+    t_final : float
+        The run's length (> 0), in the model's time unit.
+    dt : float
+        The time step (> 0), in the same unit.
+    per_decade : int
+        Samples per decade of time (>= 1).
+    t_first : float
+        Time of the first sample after 0 (raised to dt if smaller).
+
+    Returns
+    -------
+    numpy.ndarray of int64
+        The step indices, increasing and unique, from 0 to round(t_final / dt): sample i is at
+        time ``steps[i] * dt``.
+    """
     first = math.floor(math.log10(max(t_first, dt)))
     count = math.ceil((math.log10(t_final) - first) * per_decade) + 1
     exponents = first + np.arange(count) / per_decade
@@ -47,7 +65,38 @@ class Samples:
     With the problem's several deviation vectors: ``extra_growth`` (B, S, spectrum - 1), the
     accumulated ln of the norms of the orthonormalised vectors beyond the mLCE vector (with
     ``log_growth``, the ``spectrum_growth``), and ``log_gali`` and ``sali`` (B, S) of the mLCE
-    vector with the GALI vectors (NaN without)."""
+    vector with the GALI vectors (NaN without).
+
+    Made by :func:`sample`; lane j as the observable registry reads it is ``run(j)``. B is the
+    number of lanes, S of samples, N of sites; units of docs/conventions.md#units.
+
+    Parameters
+    ----------
+    problem : Problem
+        The problem the lanes ran.
+    steps : numpy.ndarray of shape (S,)
+        The sample steps (sample time = step dt).
+    Q, P : numpy.ndarray of shape (B, S, N)
+        Displacements and momenta at every sample.
+    DQ, DP : numpy.ndarray of shape (B, S, N)
+        The mLCE deviation vector at every sample (unit norm after each renormalisation).
+    log_growth : numpy.ndarray of shape (B, S)
+        ln(|v(t)| / |v(0)|) of the mLCE vector (dimensionless).
+    gap_steps : numpy.ndarray of shape (B, S, N + 1), dtype int
+        Steps each bond was open since the previous sample.
+    max_gaps : numpy.ndarray of shape (B, S), dtype int
+        Largest number of simultaneously open bonds since the previous sample.
+    energy_error : numpy.ndarray of shape (B, S)
+        Relative energy error abs(H(t) - H0) / abs(H0) (dimensionless).
+    H0 : numpy.ndarray of shape (B,)
+        Initial total energies, in the model's energy unit.
+    bad : numpy.ndarray of shape (B,), dtype int
+        The step at which a lane's state turned non-finite (-1: never).
+    extra_growth : numpy.ndarray of shape (B, S, spectrum - 1)
+        Accumulated ln of the norms of the spectrum's vectors beyond the mLCE vector.
+    log_gali, sali : numpy.ndarray of shape (B, S)
+        ln GALI_k and SALI of the mLCE vector with the GALI vectors (NaN without them).
+    """
 
     problem: object
     steps: np.ndarray
@@ -67,6 +116,7 @@ class Samples:
 
     @property
     def times(self) -> np.ndarray:
+        """(S,) sample times ``steps * dt``, in the model's time unit."""
         return self.steps * self.problem.dt
 
     @property
@@ -76,7 +126,21 @@ class Samples:
         return np.concatenate([self.log_growth[:, :, None], self.extra_growth], axis=2)
 
     def run(self, j: int, deviation0=None) -> SampledRun:
-        """Lane j as the sampled run the observable registry reads."""
+        """Lane j as the sampled run the observable registry reads.
+
+        Parameters
+        ----------
+        j : int
+            The lane, 0-based.
+        deviation0 : numpy.ndarray of shape (2 N,), optional
+            The lane's initial deviation vector (du, dp), recorded by the ``initial_deviation``
+            observable.
+
+        Returns
+        -------
+        chainchaos.observe.registry.SampledRun
+            Lane j's samples and its lattice, on the sample times.
+        """
         return SampledRun(self.problem.model, self.problem.chains[j], self.times, self.steps, self.Q[j], self.P[j],
                           self.DQ[j], self.DP[j], self.log_growth[j], self.gap_steps[j], self.max_gaps[j],
                           self.energy_error[j], deviation0,
@@ -103,9 +167,9 @@ def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq
     ----------
     problem : Problem
         The model, one lattice per lane (B lanes of N sites), the scheme and step.
-    q0, p0 : numpy.ndarray, shape (N, B)
+    q0, p0 : numpy.ndarray of shape (N, B)
         Initial displacements and momenta, one column per lane.
-    dq0, dp0 : numpy.ndarray, shape (N, B)
+    dq0, dp0 : numpy.ndarray of shape (N, B)
         Initial deviation vector of each lane (ignored without the problem's tangent map).
     steps : array_like of int
         Step indices of the samples, increasing from 0 (``RunSettings.sample_steps``).
@@ -114,7 +178,7 @@ def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq
     kind : {"auto", "batch", "single"}, optional
         The engine (``Problem.engine``): the SIMD batch engine, the single-trajectory one lane by
         lane, or the one that costs less (default).
-    xq0, xp0 : numpy.ndarray, shape (K, N, B), optional
+    xq0, xp0 : numpy.ndarray of shape (K, N, B), optional
         The problem's extra deviation vectors (``Problem.extra_vectors``: the spectrum's, then
         GALI's), unit vectors.
     gali_stop : float, optional
@@ -130,6 +194,13 @@ def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq
     -------
     Samples
         The lanes' states, ln|v|, energy errors and gap counts at every sample, lane first.
+
+    Raises
+    ------
+    ParameterError
+        For ``gali_stop`` without GALI vectors, or with a spectrum's.
+    SimulationError
+        From a monitor (``EnergyGuard``) that stops the run.
 
     Examples
     --------
@@ -192,7 +263,22 @@ def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq
 
 class EnergyGuard:
     """A monitor that stops the run with SimulationError, naming the lane, at a non-finite state or
-    at a relative energy error above the lane's limit (docs/conventions.md#guards)."""
+    at a relative energy error above the lane's limit (docs/conventions.md#guards).
+
+    Called as ``guard(samples, i)`` after sample i (a monitor of :func:`sample`).
+
+    Parameters
+    ----------
+    names : sequence of str
+        Each lane's name (a scene's or orbit's), which the error names.
+    limits : sequence of float
+        Each lane's bound on the relative energy error (dimensionless).
+
+    Raises
+    ------
+    SimulationError
+        When called on a sample at which a lane has turned non-finite or exceeds its bound.
+    """
 
     def __init__(self, names, limits):
         self.names, self.limits = list(names), list(limits)
@@ -210,7 +296,19 @@ class EnergyGuard:
 
 
 def progress(report):
-    """A monitor that calls ``report(t, fraction done)`` after every sample but the first."""
+    """A monitor that calls ``report(t, fraction done)`` after every sample but the first.
+
+    Parameters
+    ----------
+    report : callable
+        Called as ``report(t, fraction)``: the sample time (the model's time unit) and the
+        fraction of the steps done, from 0 to 1.
+
+    Returns
+    -------
+    callable
+        The monitor, ``monitor(samples, i)``, for :func:`sample`.
+    """
 
     def monitor(samples: Samples, i: int) -> None:
         if i > 0:

@@ -52,10 +52,28 @@ class SceneParameters(RunSettings):
         The displaced bead or site, 1-based (default 21).
     name : str, optional
         The scene's name (default ``<model>_H<energy>``).
-    t_final, dt : float
-        Final time and time step, in the model's time unit (:class:`~chainchaos.run.settings.RunSettings`).
-    integrator, samples_per_decade, t_first_sample, check_every, k4_sign, deviation_seed, max_energy_error, exponents, gali_order : optional
-        As in :class:`~chainchaos.run.settings.RunSettings`, with its defaults.
+    t_final : float
+        Final time, in the model's time unit (> 0).
+    dt : float
+        Time step, in the model's time unit (> 0, at most ``t_final``).
+    integrator : str, optional
+        A splitting scheme of ``SCHEMES`` (default ``"SRKN6b"``).
+    samples_per_decade : int, optional
+        Log-spaced samples per decade of time (default 40).
+    t_first_sample : float, optional
+        Time of the first sample after t = 0 (default 0.1, or dt if larger).
+    check_every : int, optional
+        Steps between finiteness checks and deviation-vector renormalisations (default 1000).
+    k4_sign : float, optional
+        Sign of the FPUT quartic coefficient: +1 (default) or -1.
+    deviation_seed : int, optional
+        Seed of the initial deviation vector (default 0).
+    max_energy_error : float, optional
+        The run stops (SimulationError) when its relative energy error exceeds this (default 1e-2).
+    exponents : int, optional
+        Lyapunov exponents where an observable needs the spectrum (default 0: all 2N).
+    gali_order : int, optional
+        k of GALI_k where an observable needs SALI or GALI (default 2).
 
     Examples
     --------
@@ -90,7 +108,24 @@ class SceneParameters(RunSettings):
 
 def scene_parameters(config: dict, scene, name: str, observables) -> SceneParameters:
     """A scene of the paper (``panels.Scene``) as the config runs it: the ``simulation``
-    block, the scene's own overrides (``scenes: {name: ...}``) and the observables its panels use."""
+    block, the scene's own overrides (``scenes: {name: ...}``) and the observables its panels use.
+
+    Parameters
+    ----------
+    config : dict
+        The pipeline config (its ``simulation`` block and optional ``scenes`` overrides).
+    scene : chainchaos.paper.panels.Scene
+        The scene's model and energy.
+    name : str
+        The scene's name (its key in ``scenes``).
+    observables : iterable of str
+        The observables its file holds.
+
+    Returns
+    -------
+    SceneParameters
+        The scene, validated.
+    """
     params = {**config["simulation"], **config.get("scenes", {}).get(name, {})}
     return SceneParameters(**params, model=scene.model, energy=scene.energy, observables=tuple(observables), name=name)
 
@@ -102,6 +137,19 @@ BATCH_KEYS = ("model", "integrator", "dt", "t_final", "samples_per_decade", "t_f
 
 
 def batch_key(params: SceneParameters) -> tuple:
+    """The values of ``BATCH_KEYS`` of a scene: scenes with equal keys may run in one batch.
+
+    Parameters
+    ----------
+    params : SceneParameters
+        The scene.
+
+    Returns
+    -------
+    tuple
+        Its model, scheme, step, length, sampling schedule, check interval, K4 sign, number of
+        exponents and GALI order, in the order of ``BATCH_KEYS``.
+    """
     return tuple(getattr(params, key) for key in BATCH_KEYS)
 
 
@@ -112,7 +160,27 @@ def scene_batches(scenes: dict[str, SceneParameters], per_job: int, singles: int
     needs several deviation vectors (which only the batch engine carries), go one per job: each
     then runs on the single-trajectory engine, which costs less than a mostly padded block, and
     the jobs run side by side. Counts, not the machine's SIMD width: the same scenes give the same
-    jobs on every CPU, and every scene the same numbers in any job."""
+    jobs on every CPU, and every scene the same numbers in any job.
+
+    Parameters
+    ----------
+    scenes : dict of str to SceneParameters
+        The scenes by name, in order.
+    per_job : int
+        The most scenes one job runs (>= 1).
+    singles : int, default 0
+        A group's remainder of at most this many scenes runs one per job (>= 0).
+
+    Returns
+    -------
+    dict of str to list of str
+        Each job's name, ``<model>_<n>``, to its scenes' names.
+
+    Raises
+    ------
+    ParameterError
+        For ``per_job`` < 1 or ``singles`` < 0.
+    """
     require(int(per_job) >= 1, "scene_batches.scenes_per_job", per_job, "an integer >= 1")
     require(int(singles) >= 0, "scene_batches.single_scenes", singles, "an integer >= 0")
     per_job = int(per_job)
@@ -190,8 +258,29 @@ def simulate_scenes(chain, scenes: list[SceneParameters], progress=None) -> list
     ``integrators.advance``; every lane's numbers are those of the scene integrated alone.
 
     The tangent map runs when any scene needs it and gap counting when any counts gaps (neither
-    changes the orbit); each Dataset holds only its own scene's observables. A non-finite state or
-    an energy error above a scene's ``max_energy_error`` raises SimulationError naming that scene.
+    changes the orbit); each Dataset holds only its own scene's observables.
+
+    Parameters
+    ----------
+    chain : Chain or KGLattice
+        The lattice every scene runs on.
+    scenes : list of SceneParameters
+        At least one scene; all share ``BATCH_KEYS``.
+    progress : callable, optional
+        Called as ``progress(t, fraction_done)`` after every sample but the first.
+
+    Returns
+    -------
+    list of xarray.Dataset
+        Each scene's Dataset, in order, as :func:`simulate` returns it.
+
+    Raises
+    ------
+    SimulationError
+        Naming the scene, when a state becomes non-finite or an energy error exceeds that
+        scene's ``max_energy_error``.
+    ParameterError
+        For no scenes, scenes that do not share ``BATCH_KEYS``, or a lattice of the wrong kind.
     """
     scenes = list(scenes)
     require(len(scenes) >= 1, "scenes", len(scenes), "at least one scene")

@@ -76,7 +76,14 @@ class RunSettings:
             require(isinstance(value, (int, np.integer)) and value >= least, key, value, f"an integer >= {least}")
 
     def sample_steps(self) -> np.ndarray:
-        """Step indices of the log-spaced samples, from 0 to the last step."""
+        """Step indices of the log-spaced samples, from 0 to the last step.
+
+        Returns
+        -------
+        numpy.ndarray of int
+            Increasing step indices (sample time = step dt), from 0 to round(t_final / dt)
+            (``chainchaos.run.driver.sample_steps``).
+        """
         return sample_steps(self.t_final, self.dt, self.samples_per_decade, self.t_first_sample)
 
     def problem(self, model, chains, tangent: bool, track_gaps: bool, spectrum: bool = False,
@@ -84,7 +91,28 @@ class RunSettings:
         """The ``Problem`` of ``model`` on ``chains`` (one per lane, taken with this run's
         sign of K4) at this run's scheme, step and check interval; with ``spectrum`` the
         deviation vectors of ``exponents`` Lyapunov exponents, with ``alignment`` those of
-        GALI_``gali_order``."""
+        GALI_``gali_order``.
+
+        Parameters
+        ----------
+        model : str or Model
+            The model.
+        chains : sequence of Chain or KGLattice
+            One lattice per lane.
+        tangent : bool
+            Whether the tangent map runs.
+        track_gaps : bool
+            Whether open bonds are counted.
+        spectrum : bool, default False
+            Whether the deviation vectors of the Lyapunov spectrum run.
+        alignment : bool, default False
+            Whether those of SALI / GALI run.
+
+        Returns
+        -------
+        Problem
+            The problem, validated.
+        """
         N = chains[0].N
         return Problem(model, [c.with_k4_sign(self.k4_sign) for c in chains], self.integrator, self.dt,
                        tangent=tangent, track_gaps=track_gaps, check_every=self.check_every,
@@ -95,7 +123,20 @@ class RunSettings:
         """The initial extra deviation vectors of ``problem`` (K, N) of the deviation seed
         ``deviation_seed + lane`` (lane j of an orbit set, whose first vector has that seed): the
         spectrum's, orthonormal to the first vector (``initial.initial_deviation``) and each other,
-        then GALI's, each of norm 1 (``initial.extra_deviations``)."""
+        then GALI's, each of norm 1 (``initial.extra_deviations``).
+
+        Parameters
+        ----------
+        problem : Problem
+            The problem (its N and its numbers of extra vectors).
+        lane : int, default 0
+            The lane, whose deviation seed is ``deviation_seed + lane``.
+
+        Returns
+        -------
+        xq, xp : numpy.ndarray of shape (K, N)
+            The displacement and momentum parts of the K = ``problem.extra_vectors`` vectors.
+        """
         N, seed = problem.N, self.deviation_seed + int(lane)
         spectrum = orthonormalised(np.concatenate(initial_deviation(N, seed)),
                                    np.hstack(extra_deviations(N, seed, problem.spectrum - 1, 1)))

@@ -37,7 +37,18 @@ GENERATOR = "numpy.random.default_rng (PCG64)"
 
 
 def bead_mass(r: float) -> float:
-    """m = r^3, the double nearest to the exact cube of the double r > 0."""
+    """m = r^3, the double nearest to the exact cube of the double r > 0.
+
+    Parameters
+    ----------
+    r : float
+        Reduced bead radius r = R / R_ref (> 0).
+
+    Returns
+    -------
+    float
+        The bead mass r^3, in units of the reference bead's mass, correctly rounded.
+    """
     num, den = float(r).as_integer_ratio()
     return rational(num**3, den**3)
 
@@ -54,7 +65,18 @@ BOND_LAWS = {
 
 
 def bond_mean(r_left: float, r_right: float) -> tuple[int, int]:
-    """(P, Q) with h = 2 r_l r_r / (r_l + r_r) = P / Q exactly, for radii r_l, r_r > 0."""
+    """(P, Q) with h = 2 r_l r_r / (r_l + r_r) = P / Q exactly, for radii r_l, r_r > 0.
+
+    Parameters
+    ----------
+    r_left, r_right : float
+        Reduced radii of the bond's two beads (> 0).
+
+    Returns
+    -------
+    tuple of (int, int)
+        The integers P and Q of the bond's mean h = P / Q (dimensionless), exactly.
+    """
     nl, dl = float(r_left).as_integer_ratio()
     nr, dr = float(r_right).as_integer_ratio()
     return 2 * nl * nr, nl * dr + nr * dl  # dl, dr are powers of two
@@ -71,7 +93,7 @@ class Chain:
 
     Parameters
     ----------
-    radius : array_like, shape (N,)
+    radius : array_like of shape (N,)
         Reduced bead radii r_n > 0 (units of R_ref), N >= 2.
     alpha : float
         Disorder strength, max R / min R of the draw (>= 1), recorded with the chain.
@@ -87,9 +109,9 @@ class Chain:
     ----------
     N : int
         Number of moving beads.
-    mass : numpy.ndarray, shape (N,)
+    mass : numpy.ndarray of shape (N,)
         Bead masses m_n = r_n^3 (units of the reference bead's mass).
-    A, delta, K2, K3, K4 : numpy.ndarray, shape (N + 1,)
+    A, delta, K2, K3, K4 : numpy.ndarray of shape (N + 1,)
         Per bond: the Hertz contact coefficient, the static precompression and the FPUT
         coefficients of the Taylor expansion of the Hertz law about it
         (docs/conventions.md#bond-laws).
@@ -130,37 +152,74 @@ class Chain:
 
     def bond_values(self, name: str, bonds) -> np.ndarray:
         """Bond parameter ``name`` of the bonds ``bonds`` (0..N) alone: their entries of the column,
-        without computing the rest of it where it is not known yet."""
+        without computing the rest of it where it is not known yet.
+
+        Parameters
+        ----------
+        name : str
+            The bond parameter, one of "A", "delta", "K2", "K3", "K4" (:data:`BOND_LAWS`; K4 with
+            the chain's sign).
+        bonds : iterable of int
+            Bond indices 0..N; bond b joins beads b-1 and b (the walls are 0 and N+1).
+
+        Returns
+        -------
+        numpy.ndarray
+            The parameter of those bonds, in the order given, in the units of the attribute
+            of the same name.
+        """
         if name in self.__dict__:  # computed, or set by a subclass
             return getattr(self, name)[list(bonds)]
         return self._bond_law(name, bonds)
 
     @cached_property
     def A(self) -> np.ndarray:
+        """Hertz contact coefficient A_n of every bond, shape (N + 1,) (nondimensional units)."""
         return self._bond_law("A", range(self.N + 1))
 
     @cached_property
     def delta(self) -> np.ndarray:
+        """Static overlap delta_n of every bond under F0, shape (N + 1,) (units of delta_ref)."""
         return self._bond_law("delta", range(self.N + 1))
 
     @cached_property
     def K2(self) -> np.ndarray:
+        """Quadratic FPUT coefficient K2_n of every bond, shape (N + 1,) (nondimensional units)."""
         return self._bond_law("K2", range(self.N + 1))
 
     @cached_property
     def K3(self) -> np.ndarray:
+        """Cubic FPUT coefficient K3_n of every bond, shape (N + 1,) (nondimensional units)."""
         return self._bond_law("K3", range(self.N + 1))
 
     @cached_property
     def K4(self) -> np.ndarray:
+        """Quartic FPUT coefficient K4_n of every bond, sign ``k4_sign``, shape (N + 1,)."""
         return self._bond_law("K4", range(self.N + 1))
 
     @property
     def N(self) -> int:
+        """Number of moving beads."""
         return self.radius.size
 
     def with_k4_sign(self, sign: float) -> "Chain":
-        """The same chain with K4 of sign ``sign`` (+1 the paper's, -1 the Taylor expansion)."""
+        """The same chain with K4 of sign ``sign`` (+1 the paper's, -1 the Taylor expansion).
+
+        Parameters
+        ----------
+        sign : float
+            +1 or -1.
+
+        Returns
+        -------
+        Chain
+            A copy with ``k4_sign = sign`` (the chain itself is not changed).
+
+        Raises
+        ------
+        ParameterError
+            For a sign other than +1 or -1.
+        """
         sign = float(sign)
         require(sign in (1.0, -1.0), "K4_sign", sign, "+1 (paper) or -1 (Taylor expansion)")
         other = copy.copy(self)
@@ -170,7 +229,27 @@ class Chain:
 
 
 def random_radii(seed: int, alpha: float, N: int) -> np.ndarray:
-    """Reduced radii r_n = R_n / R_ref with R_n = default_rng(seed).uniform(1, alpha, N)."""
+    """Reduced radii r_n = R_n / R_ref with R_n = default_rng(seed).uniform(1, alpha, N).
+
+    Parameters
+    ----------
+    seed : int
+        Seed of ``numpy.random.default_rng`` (>= 0).
+    alpha : float
+        Disorder strength max R / min R (>= 1).
+    N : int
+        Number of beads (>= 2).
+
+    Returns
+    -------
+    numpy.ndarray of shape (N,)
+        The reduced radii (units of R_ref = (alpha + 1) R_min / 2).
+
+    Raises
+    ------
+    ParameterError
+        For a negative or non-integer seed, N < 2 or alpha < 1.
+    """
     require(isinstance(seed, (int, np.integer)) and seed >= 0, "seed", seed, "an integer >= 0")
     require(isinstance(N, (int, np.integer)) and N >= 2, "N", N, "an integer >= 2")
     require(np.isfinite(alpha) and alpha >= 1, "alpha", alpha, "alpha >= 1")
@@ -196,6 +275,11 @@ def random_chain(seed: int, alpha: float, N: int = 40, wall_radius: float = 1.0)
     -------
     Chain
         Reduced radii, masses and the bond parameters of every model, correctly rounded.
+
+    Raises
+    ------
+    ParameterError
+        For a negative or non-integer seed, N < 2 or alpha < 1.
 
     Examples
     --------
@@ -231,6 +315,13 @@ def chain_from_radii(radii, reference_radius: float | None = None, wall_radius: 
     Returns
     -------
     Chain
+        The chain of reduced radii R_n / R_ref.
+
+    Raises
+    ------
+    ParameterError
+        For fewer than 2 radii, a radius that is not finite and > 0, a bad ``reference_radius``,
+        or an ``alpha`` below the radii's max / min.
 
     Examples
     --------
@@ -254,7 +345,26 @@ def chain_from_radii(radii, reference_radius: float | None = None, wall_radius: 
 
 class PrecompressedChain(Chain):
     """A chain whose precompression force is ``precompression`` times the reference F0, in the
-    units of the reference chain (see :func:`sonic_vacuum_chain`)."""
+    units of the reference chain (see :func:`sonic_vacuum_chain`).
+
+    delta scales as ``precompression``^(2/3) and K2, K3, K4 follow from A and the new delta; A
+    and the masses are those of :class:`Chain`.
+
+    Parameters
+    ----------
+    radius : array_like of shape (N,)
+        Reduced bead radii r_n > 0 (units of R_ref), N >= 2.
+    alpha : float
+        Disorder strength (>= 1), recorded with the chain.
+    seed : int, optional
+        Seed of the draw (None: radii given, not drawn).
+    wall_radius : float, optional
+        Reduced radius of the two wall beads (default 1).
+    k4_sign : float, optional
+        Sign of K4, +1 (default) or -1.
+    precompression : float, optional
+        The precompression force in units of the reference F0 (> 0, default 1).
+    """
 
     precompression: float = 1.0
 
@@ -276,6 +386,18 @@ class PrecompressedChain(Chain):
         object.__setattr__(self, "K4", self.k4_sign * self.A / (16.0 * delta * root))
 
     def with_k4_sign(self, sign: float) -> "PrecompressedChain":
+        """The same chain, at the same precompression, with K4 of sign ``sign``.
+
+        Parameters
+        ----------
+        sign : float
+            +1 or -1.
+
+        Returns
+        -------
+        PrecompressedChain
+            A new chain with ``k4_sign = sign``.
+        """
         return PrecompressedChain(self.radius, self.alpha, self.seed, self.wall_radius, float(sign),
                                   self.precompression)
 
@@ -297,6 +419,23 @@ def sonic_vacuum_chain(chain, factor: float = 1e-6) -> PrecompressedChain:
     reference chain onto this one, so a run at energy H and step dt here is the reference chain
     at energy H factor^(-5/3) (1e10 H) and step factor^(1/6) dt: the near-sonic-vacuum limit is
     the extreme-energy limit of the reference chain.
+
+    Parameters
+    ----------
+    chain : Chain
+        The beads (a :class:`PrecompressedChain` keeps its own factor, multiplied by ``factor``).
+    factor : float, default 1e-6
+        The new precompression force in units of the chain's own (> 0).
+
+    Returns
+    -------
+    PrecompressedChain
+        The same radii, alpha, seed, walls and K4 sign at the reduced precompression.
+
+    Raises
+    ------
+    ParameterError
+        For a factor that is not finite and > 0.
     """
     require(np.isfinite(factor) and factor > 0, "precompression factor", factor, "a factor > 0")
     return PrecompressedChain(chain.radius, chain.alpha, chain.seed, chain.wall_radius, chain.k4_sign,
@@ -306,8 +445,26 @@ def sonic_vacuum_chain(chain, factor: float = 1e-6) -> PrecompressedChain:
 def chain_at_alpha(chain, alpha: float) -> Chain:
     """The same disorder draws at another disorder strength ``alpha``: each bead keeps its
     uniform variate U_n = (R_n/R_min - 1)/(alpha_0 - 1), so R_n/R_min = 1 + (alpha - 1) U_n and
-    r_n = R_n / R_ref with R_ref = (alpha + 1) R_min / 2 (docs/conventions.md#disorder). ``chain`` itself
-    when alpha equals its own."""
+    r_n = R_n / R_ref with R_ref = (alpha + 1) R_min / 2 (docs/conventions.md#disorder).
+
+    Parameters
+    ----------
+    chain : Chain
+        A chain drawn at its own alpha > 1 (``random_chain``).
+    alpha : float
+        The new disorder strength (> 1).
+
+    Returns
+    -------
+    Chain
+        The chain at ``alpha`` (seed, walls and K4 sign kept); ``chain`` itself when alpha equals
+        its own.
+
+    Raises
+    ------
+    ParameterError
+        For alpha <= 1, or a chain of alpha 1 (no draws to rescale).
+    """
     require(np.isfinite(alpha) and alpha > 1, "alpha", alpha, "alpha > 1")
     if float(alpha) == float(chain.alpha):
         return chain
@@ -322,8 +479,9 @@ def chain_at_alpha(chain, alpha: float) -> Chain:
 
 @dataclass(frozen=True)
 class KGLattice:
-    """A disordered Klein-Gordon lattice of N sites (docs/conventions.md#klein-gordon), in its
-    Hamiltonian's own units (not the bead chains' 1/omega_max of the homogeneous chain):
+    """A disordered Klein-Gordon lattice of N sites (docs/conventions.md#klein-gordon).
+
+    In its Hamiltonian's own units (not the bead chains' 1/omega_max of the homogeneous chain):
 
         H = sum_l [ p_l^2/2 + eps_l u_l^2/2 + u_l^4/4 ] + sum_{b=1}^{N+1} (u_b - u_{b-1})^2 / (2W)
 
@@ -334,7 +492,7 @@ class KGLattice:
 
     Parameters
     ----------
-    eps : array_like, shape (N,)
+    eps : array_like of shape (N,)
         On-site linear stiffnesses eps_l (finite), N >= 2.
     W : float
         Disorder strength (> 0); every bond's harmonic coupling is 1/W.
@@ -345,9 +503,9 @@ class KGLattice:
     ----------
     N : int
         Number of sites.
-    mass : numpy.ndarray, shape (N,)
+    mass : numpy.ndarray of shape (N,)
         1 on every site.
-    K2 : numpy.ndarray, shape (N + 1,)
+    K2 : numpy.ndarray of shape (N + 1,)
         1/W on every bond.
 
     Examples
@@ -380,6 +538,7 @@ class KGLattice:
 
     @property
     def N(self) -> int:
+        """Number of sites."""
         return self.eps.size
 
     @property
@@ -390,7 +549,18 @@ class KGLattice:
 
     def with_k4_sign(self, sign: float) -> "KGLattice":
         """The lattice itself: the sign of the FPUT quartic coefficient, which runs set on every
-        chain they integrate, has no meaning for the harmonic coupling of a KG lattice."""
+        chain they integrate, has no meaning for the harmonic coupling of a KG lattice.
+
+        Parameters
+        ----------
+        sign : float
+            Ignored.
+
+        Returns
+        -------
+        KGLattice
+            ``self``.
+        """
         return self
 
 
@@ -410,6 +580,12 @@ def kg_chain(seed: int, W: float, N: int) -> KGLattice:
     Returns
     -------
     KGLattice
+        The lattice (eps drawn, masses 1, couplings 1/W), in the KG Hamiltonian's units.
+
+    Raises
+    ------
+    ParameterError
+        For a negative or non-integer seed, N < 2, or W not finite and > 0.
 
     Examples
     --------

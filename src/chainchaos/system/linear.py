@@ -118,7 +118,29 @@ def _eigh_sorted(diag, off, w, V):
 def tridiagonal_eigh(diag: np.ndarray, off: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Eigenvalues (increasing) and orthonormal eigenvectors (columns) of the symmetric tridiagonal
     matrix with diagonal ``diag`` (n) and off-diagonal ``off`` (n - 1): the implicit QL algorithm,
-    the same operations in the same order on every CPU (a drop-in for scipy's eigh_tridiagonal)."""
+    the same operations in the same order on every CPU (a drop-in for scipy's eigh_tridiagonal).
+
+    Parameters
+    ----------
+    diag : array_like of shape (n,)
+        The diagonal, finite, n >= 1.
+    off : array_like of shape (n - 1,)
+        The off-diagonal, finite.
+
+    Returns
+    -------
+    w : numpy.ndarray of shape (n,)
+        The eigenvalues, increasing (ties in the solver's order).
+    V : numpy.ndarray of shape (n, n)
+        The orthonormal eigenvectors, that of ``w[j]`` in column j.
+
+    Raises
+    ------
+    ParameterError
+        For shapes that do not fit or non-finite entries.
+    numpy.linalg.LinAlgError
+        When an eigenvalue does not converge in :data:`QL_MAX_SWEEPS` sweeps.
+    """
     diag = np.ascontiguousarray(diag, dtype=np.float64)
     off = np.ascontiguousarray(off, dtype=np.float64)
     n = diag.size
@@ -150,9 +172,10 @@ def normal_modes(chain: Chain) -> tuple[np.ndarray, np.ndarray]:
     Returns
     -------
     omega : numpy.ndarray
-        (N,) frequencies, increasing.
+        (N,) frequencies, increasing: units of omega_max for a bead chain, of the KG
+        Hamiltonian's 1 / time unit for a KGLattice.
     U : numpy.ndarray
-        (N, N) mode shapes, mode k in column k.
+        (N, N) mode shapes, mode k in column k (units of 1 / sqrt(mass)).
 
     Examples
     --------
@@ -178,7 +201,19 @@ def normal_modes(chain: Chain) -> tuple[np.ndarray, np.ndarray]:
 def harmonic_bond_energy(chain: Chain, u: np.ndarray) -> np.ndarray:
     """K2_b y_b^2 / 2 for every bond b = 1..N+1, with y_b = u_b - u_{b-1} and fixed walls.
 
-    ``u`` has the site as its first axis; further axes (e.g. modes) are carried along."""
+    Parameters
+    ----------
+    chain : Chain or KGLattice
+        The lattice (its bond stiffnesses K2).
+    u : numpy.ndarray of shape (N, ...)
+        Displacements (units of delta_ref for a bead chain), the site as the first axis; further
+        axes (e.g. modes) are carried along.
+
+    Returns
+    -------
+    numpy.ndarray of shape (N + 1, ...)
+        The harmonic energy of every bond (the model's energy unit).
+    """
     padded = np.concatenate([np.zeros((1,) + u.shape[1:]), u, np.zeros((1,) + u.shape[1:])])
     y = np.diff(padded, axis=0)
     K2 = chain.K2.reshape((-1,) + (1,) * (u.ndim - 1))
@@ -192,6 +227,27 @@ def mode_energy_density(chain: Chain, omega: np.ndarray, U: np.ndarray, conventi
     beads, the wall bonds' outer halves belonging to the walls (docs/conventions.md#mode-energy-density).
     ``period_averaged``: the mean over one period of that density and the kinetic one
     m_n omega_k^2 U_nk^2 / 2, i.e. the time-averaged energy density of the oscillating mode.
+
+    Parameters
+    ----------
+    chain : Chain or KGLattice
+        The lattice.
+    omega : numpy.ndarray of shape (N,)
+        The mode frequencies (:func:`normal_modes`).
+    U : numpy.ndarray of shape (N, N)
+        The mode shapes, mode k in column k (:func:`normal_modes`).
+    convention : {"potential", "period_averaged"}, default "potential"
+        How a mode's energy is shared among the beads.
+
+    Returns
+    -------
+    numpy.ndarray of shape (N, N)
+        h[n, k], dimensionless: each column sums to 1.
+
+    Raises
+    ------
+    ParameterError
+        For an unknown ``convention``.
     """
     require(convention in CONVENTIONS, "convention", convention, f"one of {CONVENTIONS}")
     bond = harmonic_bond_energy(chain, U)
@@ -225,7 +281,8 @@ def mode_participation(chain: Chain, convention: str = "potential") -> np.ndarra
 
     Parameters
     ----------
-    chain : Chain
+    chain : Chain or KGLattice
+        The lattice whose normal modes (:func:`normal_modes`) are counted.
     convention : {"potential", "period_averaged"}, default "potential"
         How a mode's energy is shared among the beads (docs/conventions.md#mode-energy-density).
 
@@ -239,14 +296,46 @@ def mode_participation(chain: Chain, convention: str = "potential") -> np.ndarra
 
 
 def modal_coordinates(chain: Chain, U: np.ndarray, u: np.ndarray, p: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Q = U^T M u and P = U^T p (site on the last axis of u and p, mode on the last axis of the
-    result), Q_k = sum_n m_n u_n U_nk summed over n = 1..N in order (exactmath.matmul)."""
+    """Q = U^T M u and P = U^T p, Q_k = sum_n m_n u_n U_nk summed over n = 1..N in order
+    (exactmath.matmul).
+
+    Parameters
+    ----------
+    chain : Chain or KGLattice
+        The lattice (its masses).
+    U : numpy.ndarray of shape (N, N)
+        The mode shapes, mode k in column k (:func:`normal_modes`).
+    u, p : numpy.ndarray of shape (..., N)
+        Displacements and momenta, the site on the last axis.
+
+    Returns
+    -------
+    Q, P : numpy.ndarray of shape (..., N)
+        Modal displacements and momenta, the mode on the last axis.
+    """
     return matmul(u * chain.mass, U), matmul(p, U)
 
 
 def modal_energies(chain: Chain, omega: np.ndarray, U: np.ndarray, u: np.ndarray, p: np.ndarray) -> np.ndarray:
     """Harmonic energy E_k = (P_k^2 + omega_k^2 Q_k^2) / 2 of every mode
-    (docs/conventions.md#modal-energies)."""
+    (docs/conventions.md#modal-energies).
+
+    Parameters
+    ----------
+    chain : Chain or KGLattice
+        The lattice (its masses).
+    omega : numpy.ndarray of shape (N,)
+        The mode frequencies (:func:`normal_modes`).
+    U : numpy.ndarray of shape (N, N)
+        The mode shapes (:func:`normal_modes`).
+    u, p : numpy.ndarray of shape (..., N)
+        Displacements and momenta, the site on the last axis.
+
+    Returns
+    -------
+    numpy.ndarray of shape (..., N)
+        E_k, the mode on the last axis, in the model's energy unit.
+    """
     Q, P = modal_coordinates(chain, U, u, p)
     return 0.5 * (P**2 + (omega * Q) ** 2)
 
@@ -275,7 +364,14 @@ def ensemble_participation(
     Returns
     -------
     dict of str to numpy.ndarray
-        ``mean`` and ``std`` of shape (len(alphas), N), indexed by rank k = 1..N.
+        ``mean`` and ``std`` (ddof 1) over the realizations, of shape (len(alphas), N), indexed by
+        rank k = 1..N; ``participation``, every realization's, of shape
+        (len(alphas), n_realizations, N).
+
+    Raises
+    ------
+    ParameterError
+        For fewer than 2 realizations, or an alpha below 1.
     """
     alphas = np.atleast_1d(np.asarray(alphas, dtype=float))
     require(isinstance(n_realizations, (int, np.integer)) and n_realizations >= 2,

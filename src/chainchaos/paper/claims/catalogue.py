@@ -610,7 +610,18 @@ STATEMENT_QUOTES: dict[str, tuple[str, ...]] = {
 
 def statement_rows(catalogue=CATALOGUE) -> tuple[ClaimRow, ...]:
     """A row for every statement of ``statements.STATEMENTS`` that no row of ``catalogue`` rests on,
-    decided on its scene's ensemble verdicts alone (measured: the ensemble's median value)."""
+    decided on its scene's ensemble verdicts alone (measured: the ensemble's median value).
+
+    Parameters
+    ----------
+    catalogue : sequence of ClaimRow, default CATALOGUE
+        The claims' rows; a statement one of them rests on (``ClaimRow.statements``) gets no row.
+
+    Returns
+    -------
+    tuple of ClaimRow
+        One row per remaining statement, id ``stmt-<statement id>``, in table order.
+    """
     used = {i for row in catalogue for i in row.statements}
     rows = []
     for st in statements.STATEMENTS:

@@ -9,7 +9,20 @@ import xarray as xr
 
 
 def study_dataset(study, groups: list[xr.Dataset]) -> xr.Dataset:
-    """The merged groups of ``study`` with its ensemble statistics, in one Dataset."""
+    """The merged groups of ``study`` with its ensemble statistics, in one Dataset.
+
+    Parameters
+    ----------
+    study : Study
+        The study.
+    groups : list of xarray.Dataset
+        Its groups' Datasets (``runs.run_group``), every group once.
+
+    Returns
+    -------
+    xarray.Dataset
+        What :func:`run_study` returns.
+    """
     from chainchaos.studies.study.runs import merge_groups
 
     return with_statistics(study, merge_groups(study, groups))
@@ -17,7 +30,20 @@ def study_dataset(study, groups: list[xr.Dataset]) -> xr.Dataset:
 
 def with_statistics(study, merged: xr.Dataset) -> xr.Dataset:
     """``merged`` (the study's grid, or a part of it: the statistics of a (model, energy) read
-    its own orbits only) with the ensemble statistics, in one Dataset."""
+    its own orbits only) with the ensemble statistics, in one Dataset.
+
+    Parameters
+    ----------
+    study : Study
+        The study (its ``criteria.slope_window_decades``).
+    merged : xarray.Dataset
+        Its per-orbit series, merged.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``merged`` with the statistics' variables and attributes.
+    """
     from chainchaos.studies.study.statistics import statistics
 
     stats = statistics(merged, float(study.spec["criteria"]["slope_window_decades"]))

@@ -43,7 +43,22 @@ def kept_group_path(name: str, group: int, root=None) -> Path | None:
     """Where group ``group`` of study ``name`` is kept (``snakemake --cores 2 keep --config
     keep=<name>``): ``<root>/<name>/groups/<group>.nc``, ``root`` by default ``data/studies``
     beside the ``studies/`` of :func:`studies_dir` (the workflow's config ``kept_studies``); None
-    outside a project (an installed package: nothing is kept there)."""
+    outside a project (an installed package: nothing is kept there).
+
+    Parameters
+    ----------
+    name : str
+        The study's name.
+    group : int
+        The group's index (0-based).
+    root : path, optional
+        The folder of kept studies (default ``data/studies`` beside :func:`studies_dir`).
+
+    Returns
+    -------
+    pathlib.Path or None
+        The group's file (which need not exist), or None outside a project.
+    """
     if root is None:
         try:
             root = studies_dir().parent / "data" / "studies"
@@ -54,7 +69,18 @@ def kept_group_path(name: str, group: int, root=None) -> Path | None:
 
 def studies_dir() -> Path:
     """Where a study named without a path is looked up: ``./studies`` when the working directory
-    has one, else the project's (``chainchaos.project.project_root``)."""
+    has one, else the project's (``chainchaos.project.project_root``).
+
+    Returns
+    -------
+    pathlib.Path
+        The folder.
+
+    Raises
+    ------
+    FileNotFoundError
+        Outside a project, when the working directory has no ``studies/`` either.
+    """
     here = Path.cwd() / "studies"
     if here.is_dir():
         return here
@@ -224,7 +250,20 @@ def load_study(source, root: Path | None = None) -> "Study":
 @dataclass(frozen=True)
 class Study:
     """A validated study: ``name`` and ``spec``, the file's keys with every default filled in;
-    ``directory``, where a model file it names is looked up first."""
+    ``directory``, where a model file it names is looked up first.
+
+    Made by :func:`load_study`, which checks the keys; the properties below read them resolved.
+
+    Parameters
+    ----------
+    name : str
+        The study's name (its file's stem).
+    spec : dict
+        The study file's keys, ``extends`` resolved and every default filled in
+        (``studies/README.md``).
+    directory : str, optional
+        Where a model file the study names is looked up first (default ``"."``).
+    """
 
     name: str
     spec: dict
@@ -234,6 +273,7 @@ class Study:
 
     @property
     def title(self) -> str:
+        """The study's title (``title``, or ``study <name>``)."""
         return self.spec.get("title") or f"study {self.name}"
 
     @cached_property
@@ -254,6 +294,8 @@ class Study:
 
     @property
     def seeds(self) -> list[int]:
+        """The seed of every realization: ``lattice.seeds``, or ``first_seed`` onwards (-1 for a
+        chain file's chain drawn from no seed)."""
         lattice = self.spec["lattice"]
         if lattice["chain_file"]:
             return [self.file_chain.seed if self.file_chain.seed is not None else -1]
@@ -271,10 +313,12 @@ class Study:
 
     @property
     def lanes(self) -> int:
+        """Orbits per realization and energy (``ensemble.lanes``): lane j >= 1 a perturbed copy."""
         return int(self.spec["ensemble"]["lanes"])
 
     @property
     def observables(self) -> list[str]:
+        """The per-orbit series the study keeps (``observables``), each once."""
         return list(dict.fromkeys(self.spec["observables"]))
 
     @property
@@ -296,6 +340,7 @@ class Study:
 
     @cached_property
     def file_chain(self):
+        """The chain of ``lattice.chain_file``, read (``records.io.read_chain``)."""
         from chainchaos.records.io import read_chain
 
         return read_chain(self.spec["lattice"]["chain_file"])
@@ -316,11 +361,23 @@ class Study:
         return [kg_chain(seed, float(lattice["W"]), int(lattice["N"])) for seed in self.seeds]
 
     def lattices(self, model: str) -> list:
-        """The realizations ``model`` runs on: KG lattices for a KG model, else bead chains."""
+        """The realizations ``model`` runs on: KG lattices for a KG model, else bead chains.
+
+        Parameters
+        ----------
+        model : str
+            One of the study's models.
+
+        Returns
+        -------
+        list of Chain or KGLattice
+            One lattice per realization, in the order of :attr:`seeds`.
+        """
         return self.kg_lattices if MODELS[model].lattice == "kg" else self.chains
 
     @property
     def N(self) -> int:
+        """Number of sites of every lattice."""
         lattice = self.spec["lattice"]
         return self.file_chain.N if lattice["chain_file"] else int(lattice["N"])
 
@@ -337,7 +394,18 @@ class Study:
                 for chain in self.lattices(self.models[0])]
 
     def excitation(self, realization: int = 0) -> Excitation:
-        """The excitation of realization ``realization`` (they differ only with site ``selected``)."""
+        """The excitation of realization ``realization`` (they differ only with site ``selected``).
+
+        Parameters
+        ----------
+        realization : int, default 0
+            The realization's index (0-based).
+
+        Returns
+        -------
+        chainchaos.system.initial.Excitation
+            Its kind, variable, site (1-based), mode and width (``excitation``).
+        """
         e = self.spec["excitation"]
         site = {"centre": (self.N + 1) // 2}.get(e["site"], e["site"])
         if self.selected:
@@ -432,7 +500,13 @@ class Study:
     # ---- orbits and jobs --------------------------------------------------------------------
 
     def items(self) -> list[tuple[str, int, int]]:
-        """Every (model, energy index, realization index), in the fixed order jobs are cut from."""
+        """Every (model, energy index, realization index), in the fixed order jobs are cut from.
+
+        Returns
+        -------
+        list of tuple of (str, int, int)
+            The items, model by model, then energy, then realization.
+        """
         return [(m, e, r) for m in self.models for e in range(self.energies.size) for r in range(self.realizations)]
 
     @property
@@ -442,15 +516,44 @@ class Study:
 
     @property
     def n_groups(self) -> int:
+        """Number of groups (jobs) the items are cut into, :attr:`per_job` each."""
         return max(1, math.ceil(len(self.items()) / self.per_job))
 
     def group_items(self, group: int) -> list[tuple[str, int, int]]:
+        """The items of one group (job).
+
+        Parameters
+        ----------
+        group : int
+            The group's index, 0..n_groups - 1.
+
+        Returns
+        -------
+        list of tuple of (str, int, int)
+            Its slice of :meth:`items`.
+
+        Raises
+        ------
+        ParameterError
+            For a group outside 0..n_groups - 1.
+        """
         if not 0 <= group < self.n_groups:
             raise ParameterError("group", group, f"0..{self.n_groups - 1}")
         return self.items()[group * self.per_job:(group + 1) * self.per_job]
 
     def orbits(self, items) -> list[Orbit]:
-        """The orbits of ``items``, every lane of each."""
+        """The orbits of ``items``, every lane of each.
+
+        Parameters
+        ----------
+        items : iterable of tuple of (str, int, int)
+            (model, energy index, realization index), as :meth:`items` gives them.
+
+        Returns
+        -------
+        list of chainchaos.run.orbits.Orbit
+            For each item in order, its :attr:`lanes` orbits.
+        """
         energies = self.energies
         excitations = {r: self.excitation(r) for r in sorted({r for *_, r in items})}
         return [Orbit(m, float(energies[e]), self.lattices(m)[r], excitations[r].site, lane, excitations[r])
@@ -458,5 +561,16 @@ class Study:
 
 
 def study_names(root: Path | None = None) -> list[str]:
-    """The studies in ``root`` (default :func:`studies_dir`): the stems of its YAML files."""
+    """The studies in ``root`` (default :func:`studies_dir`): the stems of its YAML files.
+
+    Parameters
+    ----------
+    root : path, optional
+        The folder (default :func:`studies_dir`).
+
+    Returns
+    -------
+    list of str
+        The study names, sorted.
+    """
     return sorted(p.stem for p in (studies_dir() if root is None else Path(root)).glob("*.yaml"))

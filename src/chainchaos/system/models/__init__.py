@@ -36,8 +36,19 @@ PACKAGE_MODELS = tuple(MODELS)
 
 
 def require_free_name(model: Model) -> None:
-    """ParameterError unless ``model``'s name is free for it: not a package model's, nor another
-    module's model's. The same model from the same modules (an edited version) may take it back."""
+    """Require ``model``'s name to be free for it: not a package model's, nor another module's
+    model's. The same model from the same modules (an edited version) may take it back.
+
+    Parameters
+    ----------
+    model : Model
+        The model to be added.
+
+    Raises
+    ------
+    ParameterError
+        For something not a Model, or a name already taken (the message names its holder).
+    """
     require(isinstance(model, Model), "model", model, "a chainchaos Model")
     earlier = MODELS.get(model.name)
     if earlier is not None and earlier is not model:
@@ -48,7 +59,18 @@ def require_free_name(model: Model) -> None:
 def add_to_registry(model: Model) -> None:
     """Put ``model`` in :data:`MODELS` (and :data:`BEAD_MODELS`) under a free name
     (:func:`require_free_name`), unchecked: the checks come first
-    (``chainchaos.engine.model_checks.add_model``)."""
+    (``chainchaos.engine.model_checks.add_model``).
+
+    Parameters
+    ----------
+    model : Model
+        The model, already checked.
+
+    Raises
+    ------
+    ParameterError
+        For a name already taken (:func:`require_free_name`).
+    """
     require_free_name(model)
     MODELS[model.name] = model
     if model.lattice == "beads":
@@ -56,7 +78,23 @@ def add_to_registry(model: Model) -> None:
 
 
 def get_model(name) -> Model:
-    """The model called ``name`` (a Model passes through)."""
+    """The model called ``name`` (a Model passes through).
+
+    Parameters
+    ----------
+    name : str or Model
+        A name of :data:`MODELS`, or a Model.
+
+    Returns
+    -------
+    Model
+        The registered model (or ``name`` itself, a Model).
+
+    Raises
+    ------
+    ParameterError
+        For a name not in the registry (the message lists those that are).
+    """
     if isinstance(name, Model):
         return name
     require(name in MODELS, "model", name, f"one of {sorted(MODELS)}, or a model of your own added with "
@@ -65,7 +103,18 @@ def get_model(name) -> Model:
 
 
 def model_label(name: str) -> str:
-    """How figures and tables name the model (e.g. 'Hertz', 'FPUT')."""
+    """How figures and tables name the model (e.g. 'Hertz', 'FPUT').
+
+    Parameters
+    ----------
+    name : str or Model
+        A registered model's name, or a Model.
+
+    Returns
+    -------
+    str
+        Its ``label``.
+    """
     return get_model(name).label
 
 
@@ -98,7 +147,22 @@ def bond_potentials(model, u, P, V):
 
 
 def bond_potential_energy(model, chain, u: np.ndarray) -> np.ndarray:
-    """Bond potentials V_b for one state u (N,) or many states u (..., N): shape (..., N+1)."""
+    """Bond potentials V_b for one state u (N,) or many states u (..., N): shape (..., N+1).
+
+    Parameters
+    ----------
+    model : str or Model
+        The model.
+    chain : Chain or KGLattice
+        A lattice of the model's kind.
+    u : numpy.ndarray of shape (..., N)
+        Displacements (units of docs/conventions.md#units), the site on the last axis.
+
+    Returns
+    -------
+    numpy.ndarray of shape (..., N + 1)
+        The potential energy of every bond, zero at rest, in the model's energy unit.
+    """
     model = get_model(model)
     u = np.ascontiguousarray(u, dtype=float)
     flat = u.reshape(-1, u.shape[-1])
@@ -119,7 +183,23 @@ def site_potentials(model, u, S, W):
 
 def site_potential_energy(model, chain, u: np.ndarray) -> np.ndarray | None:
     """On-site potentials w_n for one state u (N,) or many (..., N): shape (..., N); None for a
-    model without a site law."""
+    model without a site law.
+
+    Parameters
+    ----------
+    model : str or Model
+        The model.
+    chain : Chain or KGLattice
+        A lattice of the model's kind.
+    u : numpy.ndarray of shape (..., N)
+        Displacements, the site on the last axis.
+
+    Returns
+    -------
+    numpy.ndarray of shape (..., N), or None
+        The on-site potential energy of every site, in the model's energy unit; None without a
+        site law.
+    """
     model = get_model(model)
     if not model.has_site_law:
         return None
@@ -150,7 +230,23 @@ def energy_kernel(model, q, p, mass, bonds, V, sites=None):
 def total_energy(model, chain, u: np.ndarray, p: np.ndarray) -> np.ndarray:
     """H = sum_n p_n^2 / (2 m_n) + sum_b V_b (+ sum_n w_n with a site law), every bond counted in
     full, for one state or many (docs/conventions.md#hamiltonian); NumPy's sums (the initial state
-    is solved on it)."""
+    is solved on it).
+
+    Parameters
+    ----------
+    model : str or Model
+        The model.
+    chain : Chain or KGLattice
+        A lattice of the model's kind (its masses and parameters).
+    u, p : numpy.ndarray of shape (..., N)
+        Displacements and momenta, the site on the last axis.
+
+    Returns
+    -------
+    numpy.ndarray of shape (...)
+        The total energy H of every state, in the model's energy unit (a NumPy float for one
+        state).
+    """
     kinetic = np.sum(p**2 / (2.0 * chain.mass), axis=-1)
     H = kinetic + bond_potential_energy(model, chain, u).sum(axis=-1)
     W = site_potential_energy(model, chain, u)
@@ -160,7 +256,22 @@ def total_energy(model, chain, u: np.ndarray, p: np.ndarray) -> np.ndarray:
 def energy_density(model, chain, u: np.ndarray, p: np.ndarray) -> np.ndarray:
     """Normalised energy density h_n = H_n / sum_m H_m with
     H_n = p_n^2/(2 m_n) + (V_n + V_{n+1})/2 (the paper's Eq. 1 read literally), plus the bead's own
-    on-site potential w_n for a model with a site law."""
+    on-site potential w_n for a model with a site law.
+
+    Parameters
+    ----------
+    model : str or Model
+        The model.
+    chain : Chain or KGLattice
+        A lattice of the model's kind.
+    u, p : numpy.ndarray of shape (..., N)
+        Displacements and momenta, the site on the last axis.
+
+    Returns
+    -------
+    numpy.ndarray of shape (..., N)
+        h_n, dimensionless, summing to 1 over the last axis.
+    """
     V = bond_potential_energy(model, chain, u)
     H = p**2 / (2.0 * chain.mass) + 0.5 * (V[..., :-1] + V[..., 1:])
     W = site_potential_energy(model, chain, u)
@@ -171,7 +282,22 @@ def energy_density(model, chain, u: np.ndarray, p: np.ndarray) -> np.ndarray:
 
 def open_bonds(model, chain, u: np.ndarray) -> np.ndarray:
     """True where a bond is open, for one state u (N,) or many (..., N): shape (..., N+1); all
-    False for a model whose bonds never open. The model's opening kernel, on whole arrays."""
+    False for a model whose bonds never open. The model's opening kernel, on whole arrays.
+
+    Parameters
+    ----------
+    model : str or Model
+        The model.
+    chain : Chain or KGLattice
+        A lattice of the model's kind.
+    u : numpy.ndarray of shape (..., N)
+        Displacements, the site on the last axis.
+
+    Returns
+    -------
+    numpy.ndarray of shape (..., N + 1), dtype bool
+        Whether each bond is open.
+    """
     model = get_model(model)
     u = np.ascontiguousarray(u, dtype=float)
     walls = np.zeros(u.shape[:-1] + (1,))

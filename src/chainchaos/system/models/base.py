@@ -193,7 +193,19 @@ class Model:
 
     def bond_parameters(self, chain) -> np.ndarray:
         """The engines' bond parameter array (MAX_BOND_PARAMETERS, N+1): the model's rows, then
-        zeros."""
+        zeros.
+
+        Parameters
+        ----------
+        chain : Chain or KGLattice
+            A lattice of the model's kind (``lattice``).
+
+        Returns
+        -------
+        numpy.ndarray of shape (MAX_BOND_PARAMETERS, N + 1)
+            Row i the parameter ``parameter_names[i]`` of every bond, in the units the model's
+            law reads them; the rows beyond the model's zero.
+        """
         rows = self.parameters(chain)
         out = np.zeros((MAX_BOND_PARAMETERS, chain.N + 1))
         for i, row in enumerate(rows):
@@ -202,7 +214,19 @@ class Model:
 
     def site_parameters(self, chain) -> np.ndarray | None:
         """The engines' site parameter array (MAX_SITE_PARAMETERS, N): the site law's rows, then
-        zeros; None for a model without a site law."""
+        zeros; None for a model without a site law.
+
+        Parameters
+        ----------
+        chain : Chain or KGLattice
+            A lattice of the model's kind (``lattice``).
+
+        Returns
+        -------
+        numpy.ndarray of shape (MAX_SITE_PARAMETERS, N), or None
+            Row i the site parameter ``site.parameter_names[i]`` of every site, the rows beyond
+            the law's zero; None without a site law.
+        """
         if self.site is None:
             return None
         rows = self.site.parameters(chain)
@@ -225,7 +249,20 @@ LATTICES = {
 
 class ModelType(types.Type):
     """The Numba type of a :class:`Model`: one per model identity (its name, and the modules and
-    sources of its kernels), carrying no data at run time."""
+    sources of its kernels), carrying no data at run time.
+
+    Parameters
+    ----------
+    identity : str
+        The model's :attr:`Model.identity`, ``name@modules:digest``.
+
+    Attributes
+    ----------
+    identity : str
+        As given.
+    model_name : str
+        The model's name, the part of ``identity`` before ``@``.
+    """
 
     def __init__(self, identity: str):
         self.identity = identity
@@ -257,19 +294,88 @@ def never_open(P, left, right):
 
 
 def bond_force(model, P, left, right):
-    """f of the bond with parameters P between displacements left = u_{b-1} and right = u_b."""
+    """f of the bond with parameters P between displacements left = u_{b-1} and right = u_b.
+
+    A dispatcher for Numba-compiled code (it has no Python body): compiled with a model, it calls
+    that model's ``force`` kernel.
+
+    Parameters
+    ----------
+    model : Model
+        The model, whose Numba type selects the kernel at compile time.
+    P : tuple of float
+        The bond's parameters (a column of ``Model.bond_parameters``).
+    left, right : float or SIMD vector
+        The displacements u_{b-1} and u_b of its two beads (units of delta_ref for a bead chain).
+
+    Returns
+    -------
+    float or SIMD vector
+        The bond force f (positive in compression), in the model's force unit.
+    """
 
 
 def bond_force_stiffness(model, P, left, right):
-    """(f, k = df/dD) of the bond."""
+    """(f, k = df/dD) of the bond.
+
+    A dispatcher for Numba-compiled code, as :func:`bond_force`.
+
+    Parameters
+    ----------
+    model : Model
+        The model, whose Numba type selects the kernel at compile time.
+    P : tuple of float
+        The bond's parameters.
+    left, right : float or SIMD vector
+        The displacements u_{b-1} and u_b.
+
+    Returns
+    -------
+    tuple
+        The force f and the stiffness k = df/dD of the bond (D = left - right).
+    """
 
 
 def bond_potential(model, P, left, right):
-    """V of the bond (zero at rest)."""
+    """V of the bond (zero at rest).
+
+    A dispatcher for Numba-compiled code, as :func:`bond_force`.
+
+    Parameters
+    ----------
+    model : Model
+        The model, whose Numba type selects the kernel at compile time.
+    P : tuple of float
+        The bond's parameters.
+    left, right : float
+        The displacements u_{b-1} and u_b.
+
+    Returns
+    -------
+    float
+        The bond's potential energy V(D), in the model's energy unit.
+    """
 
 
 def bond_opening(model, P, left, right):
-    """A number that is negative where the bond is open (models without gaps: never)."""
+    """A number that is negative where the bond is open (models without gaps: never).
+
+    A dispatcher for Numba-compiled code, as :func:`bond_force`.
+
+    Parameters
+    ----------
+    model : Model
+        The model, whose Numba type selects the kernel at compile time.
+    P : tuple of float
+        The bond's parameters.
+    left, right : float
+        The displacements u_{b-1} and u_b.
+
+    Returns
+    -------
+    float
+        Negative where the bond is open; 1 for a model whose bonds never open.
+    """
 
 
 def _dispatch(stub, kernel_of):
@@ -288,26 +394,117 @@ _dispatch(bond_opening, lambda m: m.opening or never_open)
 
 def site_kick(model, S, u, f):
     """The force on a bead whose two bonds give it f = f_n - f_{n+1}: f - w'(u) with its site
-    law (parameters S, displacement u); f itself, unchanged, for a model without a site law."""
+    law (parameters S, displacement u); f itself, unchanged, for a model without a site law.
+
+    A dispatcher for Numba-compiled code (it has no Python body).
+
+    Parameters
+    ----------
+    model : Model
+        The model, whose Numba type selects the site law at compile time.
+    S : tuple of float
+        The site's parameters (a column of ``Model.site_parameters``).
+    u : float or SIMD vector
+        The bead's displacement.
+    f : float or SIMD vector
+        The force of its two bonds.
+
+    Returns
+    -------
+    float or SIMD vector
+        The bead's total force.
+    """
 
 
 def site_kick_deviation(model, S, u, dq, g):
     """The tangent force on a bead whose bonds give it g = g_n - g_{n+1}: g - w''(u) dq with its
-    site law; g itself for a model without one."""
+    site law; g itself for a model without one.
+
+    A dispatcher for Numba-compiled code (it has no Python body).
+
+    Parameters
+    ----------
+    model : Model
+        The model, whose Numba type selects the site law at compile time.
+    S : tuple of float
+        The site's parameters.
+    u : float or SIMD vector
+        The bead's displacement.
+    dq : float or SIMD vector
+        The bead's component of the deviation vector.
+    g : float or SIMD vector
+        The tangent force of its two bonds.
+
+    Returns
+    -------
+    float or SIMD vector
+        The bead's total tangent force.
+    """
 
 
 def add_site_energy(model, u, sites, H):
     """H + sum_n w(u_n) (summed in order, sites the (MAX_SITE_PARAMETERS, N) parameters); H itself
-    for a model without a site law."""
+    for a model without a site law.
+
+    A dispatcher for Numba-compiled code (it has no Python body).
+
+    Parameters
+    ----------
+    model : Model
+        The model, whose Numba type selects the site law at compile time.
+    u : numpy.ndarray of shape (N,)
+        The displacements.
+    sites : numpy.ndarray of shape (MAX_SITE_PARAMETERS, N)
+        The site parameters (``Model.site_parameters``).
+    H : float
+        The energy so far (the bonds' and the kinetic), in the model's energy unit.
+
+    Returns
+    -------
+    float
+        H plus the on-site energy.
+    """
 
 
 def site_potential(model, S, u):
-    """w(u) of one site (models with a site law only)."""
+    """w(u) of one site (models with a site law only).
+
+    A dispatcher for Numba-compiled code (it has no Python body).
+
+    Parameters
+    ----------
+    model : Model
+        A model with a site law.
+    S : tuple of float
+        The site's parameters.
+    u : float
+        The site's displacement.
+
+    Returns
+    -------
+    float
+        The on-site potential energy w(u), zero at u = 0.
+    """
 
 
 def check_sites(model, sites):
     """Nothing at run time; a compile-time error where a model with a site law is given no site
-    parameters (``sites`` None or omitted)."""
+    parameters (``sites`` None or omitted).
+
+    A dispatcher for Numba-compiled code (it has no Python body).
+
+    Parameters
+    ----------
+    model : Model
+        The model.
+    sites : numpy.ndarray or None
+        The site parameters given to the compiled function.
+
+    Raises
+    ------
+    numba.core.errors.TypingError
+        At compile time, for a model with a site law and no ``sites``.
+    """
 
 
 def _site_law(model_type) -> SiteLaw | None:
