@@ -56,7 +56,7 @@ def main(argv=None):
     gali = replace(base, alignment=True, gali_order=a.gali)
     scenes = statement_scenes()
     names = a.scenes or list(scenes)
-    warm = [Orbit(scenes[names[0]].model, scenes[names[0]].energy, chain, site, 0)]
+    warm = [Orbit(model=scenes[names[0]].model, energy=scenes[names[0]].energy, chain=chain, site=site, lane=0)]
     for s in (base, gali):
         integrate(warm, replace(s, t_final=10.0), gali_stop=stop if s.alignment else None)
 
@@ -68,7 +68,7 @@ def main(argv=None):
     totals = np.zeros(3)
     for name in names:
         sc = scenes[name]
-        orbits = [Orbit(sc.model, sc.energy, chain, site, lane) for lane in range(a.lanes)]
+        orbits = [Orbit(model=sc.model, energy=sc.energy, chain=chain, site=site, lane=lane) for lane in range(a.lanes)]
         c0, _, _ = timed(orbits, base, None)
         c1, t, full = timed(orbits, gali, None)
         c2, _, stopped = timed(orbits, gali, stop)

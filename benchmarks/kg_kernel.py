@@ -121,8 +121,8 @@ from chainchaos.run.window import Window
 from chainchaos.system.chain import kg_chain
 from chainchaos.system.initial import Excitation
 N, windowed = int(sys.argv[1]), sys.argv[2] == "1"
-orbits = [Orbit("kg", 0.4, kg_chain(s, 4.0, N), N // 2, 0, Excitation(site=N // 2, variable="momentum"))
-          for s in range(64)]
+orbits = [Orbit(model="kg", energy=0.4, chain=kg_chain(s, 4.0, N), site=N // 2,
+                excitation=Excitation(site=N // 2, variable="momentum")) for s in range(64)]
 settings = OrbitSettings(t_final=1e3, dt=0.4, integrator="ABA864", samples_per_decade=20, batch_size=32)
 integrate(orbits, settings, series={"participation": np.nan, "second_moment": np.nan, "mlce": np.nan},
           window=Window() if windowed else None)

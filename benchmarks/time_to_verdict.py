@@ -77,7 +77,8 @@ def main(argv=None):
           "| CPU s |")
     print("|---|---|---|---|---:|")
     for name, scene in statement_scenes().items():
-        orbits = [Orbit(scene.model, scene.energy, chain, site, lane) for lane in range(a.lanes)]
+        orbits = [Orbit(model=scene.model, energy=scene.energy, chain=chain, site=site, lane=lane)
+                  for lane in range(a.lanes)]
         t0 = time.process_time()
         t, runs = integrate(orbits, settings)
         cpu = time.process_time() - t0

@@ -258,7 +258,8 @@ def test_scene_spectra_pair_sum_to_zero_and_start_with_each_orbits_mlce():
     assert np.all(np.abs(final.sum(axis=1)) < 1e-12)
     assert pairing_error(np.array([2.0, 1.0, -1.0, -2.0])) == 0.0
     assert pairing_error(np.array([2.0, 1.0, -0.5, -2.0])) == 0.25
-    t, runs = integrate([Orbit("hertz", 3.0, chain, 21, lane) for lane in range(3)], settings)
+    orbits = [Orbit(model="hertz", energy=3.0, chain=chain, site=21, lane=lane) for lane in range(3)]
+    t, runs = integrate(orbits, settings)
     for j, r in enumerate(runs):
         assert np.array_equal(ds["lyapunov_spectrum"].values[j, 1:, 0], formulas.finite_time_mlce(r["log_growth"], t)[1:])
     macros = spectra_macros({"hertz_H3": ds})

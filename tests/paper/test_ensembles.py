@@ -31,8 +31,8 @@ def test_a_scene_study_holds_the_orbits_integrate_gives(alignment):
     study = load_study(spec)
     assert study.n_groups == 1 and study.lanes == lanes
     times, found = study_runs([run_group(study, 0)])
-    orbits = [Orbit("hertz", e, random_chain(s, 5.0, 40), 21, lane) for s in seeds for e in energies
-              for lane in range(lanes)]
+    orbits = [Orbit(model="hertz", energy=e, chain=random_chain(s, 5.0, 40), site=21, lane=lane)
+              for s in seeds for e in energies for lane in range(lanes)]
     t, runs = integrate(orbits, settings, gali_stop=np.log(criteria.gali_threshold))
     assert set(scene_series(alignment)) <= set(runs[0])
     for c, seed in enumerate(seeds):

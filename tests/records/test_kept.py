@@ -344,7 +344,7 @@ def test_one_disorder_trajectory_recomputed_is_bit_identical_to_the_archive():
     pick = orbits.select_excitation(realization, **runs.selection_kwargs(scan))
     energy = orbits.energy_grid(scan["disorder"])[e]
     assert energy == ds["energy"].values[e] and pick["site"] == ds["excited_site"].values[r]
-    [result] = reduced_orbits([Orbit(model, float(energy), realization, pick["site"])],
+    [result] = reduced_orbits([Orbit(model=model, energy=float(energy), chain=realization, site=pick["site"])],
                                      runs.settings_for("disorder", scan))
     kept_values = ds.sel(model=model).isel(energy=e, realization=r)
     for key, (_, dtype) in orbits.SCALARS.items():

@@ -42,7 +42,7 @@ ALIGNMENT_SERIES = {"log_gali": None, "sali": None}
 SPECTRUM_SERIES = {"lyapunov_spectrum": None, "ks_entropy": None}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Orbit:
     """One trajectory: a model, an energy, a chain, the excited bead (1-based) and a lane; with an
     ``excitation`` (``initial.Excitation``: a site, a mode or a block, in displacement or momentum)

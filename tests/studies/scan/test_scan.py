@@ -95,7 +95,7 @@ def test_selection_rule_picks_a_localized_high_mode_near_the_centre(chain):
 def test_engines_agree_and_criteria_follow_their_definitions(chain):
     settings = StudySettings(t_final=400.0, dt=0.02, samples_per_decade=8, p_delocalized=6.0,
                                  chaos_growth_margin=2.0, final_samples=20)
-    trajs = [Orbit(m, E, chain, 21) for m in ("hertz", "fput", "toda") for E in (0.2, 3.0)]
+    trajs = [Orbit(model=m, energy=E, chain=chain, site=21) for m in ("hertz", "fput", "toda") for E in (0.2, 3.0)]
     a = reduced_orbits(trajs, settings)
     b = reduced_orbits(trajs, StudySettings(**{**settings.__dict__, "engine": "single"}))
     for ra, rb in zip(a, b):
@@ -193,7 +193,7 @@ def test_a_scan_orbit_of_the_study_is_the_scans_trajectory(chain, chain_file):
     """The study path and the orbits integrated alone give the same numbers, orbit by orbit, to the bit."""
     study, groups = scan_as_study("energy_scan", chain_file)
     g = groups[0]
-    trajs = [Orbit(str(m), float(study.energies[e]), chain, 21)
+    trajs = [Orbit(model=str(m), energy=float(study.energies[e]), chain=chain, site=21)
              for m, e in zip(g["model"].values, g["energy_index"].values)]
     for i, r in enumerate(reduced_orbits(trajs, settings_for("energy_scan", CFG))):
         for key in ("participation_final", "mlce_final", "eta_final", "chaos_onset", "max_gaps", "u0"):

@@ -90,7 +90,7 @@ def test_lanes_perturb_u0_at_the_set_level_and_lane_zero_is_the_scene(chain):
     assert lane_factor(0, s) == 1.0
     f = [lane_factor(j, s) for j in range(1, 8)]
     assert all(0 < abs(x - 1) <= 1e-9 for x in f) and len(set(f)) == 7
-    t, runs = integrate([Orbit("fput", 0.25, chain, 21, j) for j in range(3)], s)
+    t, runs = integrate([Orbit(model="fput", energy=0.25, chain=chain, site=21, lane=j) for j in range(3)], s)
     u0 = [r["u0"] for r in runs]
     assert u0[1] != u0[0] and abs(u0[1] / u0[0] - 1) <= 1e-9
     # the schedule: log-spaced samples plus the dense tail over the last decade

@@ -27,7 +27,8 @@ def scene_spectra(chain, model: str, energy: float, site: int, settings: OrbitSe
     relative energy error and, per exponent, the median over the lanes at the last sample. The
     orbits run through ``orbits.integrate`` with ``spectrum`` on; ``progress(done, total)``."""
     settings = replace(settings, spectrum=True)
-    t, runs = integrate([Orbit(model, energy, chain, site, lane) for lane in range(lanes)], settings, progress)
+    orbits = [Orbit(model=model, energy=energy, chain=chain, site=site, lane=lane) for lane in range(lanes)]
+    t, runs = integrate(orbits, settings, progress)
     require(all(r["valid"] for r in runs), "scene", f"{model} at H = {energy:g}",
             f"orbits with an initial state whose energy error stays <= {settings.max_energy_error:g}")
     spectra = np.stack([r["lyapunov_spectrum"] for r in runs])

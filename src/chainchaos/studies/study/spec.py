@@ -556,7 +556,8 @@ class Study:
         """
         energies = self.energies
         excitations = {r: self.excitation(r) for r in sorted({r for *_, r in items})}
-        return [Orbit(m, float(energies[e]), self.lattices(m)[r], excitations[r].site, lane, excitations[r])
+        return [Orbit(model=m, energy=float(energies[e]), chain=self.lattices(m)[r], site=excitations[r].site,
+                      lane=lane, excitation=excitations[r])
                 for m, e, r in items for lane in range(self.lanes)]
 
 
