@@ -96,7 +96,8 @@ def batch_rate(name, chain, B, steps, dt, integrator, tangent, repeats):
     q, p, dq, dp = states(name, chain, B)
     best = np.inf
     for r in range(repeats + 1):
-        problem = Problem(name, [chain] * B, integrator, dt, tangent, get_model(name).has_gaps, check_every=1000)
+        problem = Problem(name, [chain] * B, integrator=integrator, dt=dt, tangent=tangent,
+                          track_gaps=get_model(name).has_gaps, check_every=1000)
         b = Batch(problem, q, p, dq, dp)
         n = 10 if r == 0 else steps
         t0 = time.process_time()

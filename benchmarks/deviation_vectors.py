@@ -32,8 +32,8 @@ def seconds_per_step(name, chain, k, kind, steps, repeats, dt=5e-3, check_every=
     q, p = (np.stack(a, 1) for a in zip(*[initial_state(model, chain, float(E), 21)[:2] for E in energies]))
     dq, dp = (np.tile(a[:, None], (1, LANES)) for a in initial_deviation(chain.N, 0))
     spectrum, gali = (k, 1) if kind == "spectrum" else (1, k)
-    problem = Problem(model, [chain] * LANES, "SRKN6b", dt, True, model.has_gaps, check_every,
-                      spectrum=spectrum, gali=gali)
+    problem = Problem(model, [chain] * LANES, integrator="SRKN6b", dt=dt, tangent=True, track_gaps=model.has_gaps,
+                      check_every=check_every, spectrum=spectrum, gali=gali)
     x = np.random.default_rng(1).uniform(-1, 1, (problem.extra_vectors, chain.N, LANES)) / np.sqrt(2 * chain.N)
     best = np.inf
     for r in range(repeats + 1):

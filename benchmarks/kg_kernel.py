@@ -59,7 +59,8 @@ def start(N: int, B: int):
 def time_engine(N: int, kind: str, integrator: str, steps: int, tangent: bool, repeats: int):
     """(best CPU ns per site and step per trajectory, final state of lane 0) of one engine."""
     B = LANES if kind == "batch" else 1
-    problem = Problem("kg", [kg_chain(0, W, N)] * B, integrator, DT, tangent=tangent, check_every=CHECK_EVERY)
+    problem = Problem("kg", [kg_chain(0, W, N)] * B, integrator=integrator, dt=DT, tangent=tangent,
+                      check_every=CHECK_EVERY)
     state = start(N, B)
     problem.engine(*state, kind=kind).advance(2)  # compilation or cache load, not timed
     best, engine = np.inf, None
@@ -157,7 +158,7 @@ def spreading(args, exe=None) -> list[dict]:
     print("|---:|---:|---:|---:|---:|")
     for N in (512, 1024, 2048, 4096):
         chains = [kg_chain(s, W, N) for s in range(LANES)]
-        problem = Problem("kg", chains, args.integrator, DT, check_every=CHECK_EVERY)
+        problem = Problem("kg", chains, integrator=args.integrator, dt=DT, check_every=CHECK_EVERY)
         q, p, dq, dp = (np.zeros((N, LANES)) for _ in range(4))
         for j, c in enumerate(chains):
             q[:, j], p[:, j], _ = Excitation(site=N // 2, variable="momentum").state(problem.model, c, 0.4)

@@ -68,7 +68,7 @@ def test_every_lane_matches_the_single_engine(name, integrator):
     sites = [21, 21, 15, 30, 20]
     gaps = get_model(name).has_gaps
     q, p, dq, dp = lanes(name, chains, energies, sites)
-    batch = Batch(Problem(name, chains, integrator, dt=0.01, tangent=True, track_gaps=gaps, check_every=37),
+    batch = Batch(Problem(name, chains, integrator=integrator, dt=0.01, tangent=True, track_gaps=gaps, check_every=37),
                   q, p, dq, dp)
     batch.advance(600)
     batch.advance(400)
@@ -135,6 +135,6 @@ def test_every_scheme_runs_in_the_batch_engine():
     chain = random_chain(879, 5.0)
     q, p, dq, dp = lanes("hertz", [chain], [1.0], [21])
     for name in SCHEMES:
-        b = Batch(Problem("hertz", [chain], name, dt=0.01), q, p, dq, dp)
+        b = Batch(Problem("hertz", [chain], integrator=name, dt=0.01), q, p, dq, dp)
         b.advance(50)
         assert np.isfinite(b.q).all() and b.bad[0] == -1

@@ -23,7 +23,8 @@ def _run(model, chain, q, p, t_final, dt, spectrum=1, gali=1, per_decade=5, t_fi
     """One orbit with its mLCE vector, ``spectrum - 1`` orthonormalised and ``gali - 1``
     normalised extra vectors, sampled log-spaced to t_final."""
     N = chain.N
-    problem = Problem(model, [chain], "SRKN6b", dt, True, False, check_every, spectrum=spectrum, gali=gali)
+    problem = Problem(model, [chain], integrator="SRKN6b", dt=dt, tangent=True, track_gaps=False,
+                      check_every=check_every, spectrum=spectrum, gali=gali)
     dq, dp = initial_deviation(N, seed)
     xq, xp = (x[:, :, None] for x in RunSettings(t_final=t_final, dt=dt, deviation_seed=seed).extra_deviations(problem))
     steps = driver.sample_steps(t_final, dt, per_decade, t_first)
@@ -182,7 +183,8 @@ def _regular_and_chaotic(lanes_each=LANES):
     chain = random_chain(879, 5.0)
     model = get_model("hertz")
     energies = [3.0] * lanes_each + [0.05] * lanes_each
-    problem = Problem(model, [chain] * len(energies), "SRKN6b", 0.01, True, False, 10, gali=3)
+    problem = Problem(model, [chain] * len(energies), integrator="SRKN6b", dt=0.01, tangent=True, track_gaps=False,
+                      check_every=10, gali=3)
     N, B = chain.N, len(energies)
     Q, P, DQ, DP = (np.zeros((N, B)) for _ in range(4))
     for j, H in enumerate(energies):

@@ -32,8 +32,8 @@ def times(t_final=1e5, per_decade=20):
 
 
 def inputs(scenes=None, criteria=None, **kw) -> fw.Inputs:
-    return fw.Inputs(dict(scenes or {}), kw.pop("chain", None), kw.pop("ensemble", None), criteria or Criteria(),
-                     kw.pop("site", 21), **kw)
+    return fw.Inputs(scenes=dict(scenes or {}), chain=kw.pop("chain", None), ensemble=kw.pop("ensemble", None),
+                     criteria=criteria or Criteria(), site=kw.pop("site", 21), **kw)
 
 
 # ------------------------------------------------------------------ the catalogue

@@ -37,7 +37,8 @@ def _problem(model="hertz", lanes=3, tangent=True, track_gaps=None, dt=0.01, che
     chain = random_chain(879, 5.0)
     model = get_model(model)
     track_gaps = model.has_gaps if track_gaps is None else track_gaps
-    problem = Problem(model, [chain] * lanes, "SRKN6b", dt, tangent, track_gaps, check_every)
+    problem = Problem(model, [chain] * lanes, integrator="SRKN6b", dt=dt, tangent=tangent, track_gaps=track_gaps,
+                      check_every=check_every)
     N = chain.N
     q0, p0, dq0, dp0 = (np.zeros((N, lanes)) for _ in range(4))
     for j, energy in enumerate((0.5, 1.8, 3.0, 0.25, 1.0)[:lanes]):
@@ -115,7 +116,8 @@ def test_the_progress_reporter_prints_at_most_every_interval_and_always_the_end(
 @pytest.mark.parametrize("lanes", [1, LANES - 1, LANES, LANES + 1, LANES + SERIAL_REMAINDER + 1])
 def test_every_engine_kind_gives_the_same_numbers(lanes):
     """The engine choice changes where lanes run, never a number (bit for bit, by design)."""
-    problem = Problem("hertz", [random_chain(879 + j, 5.0) for j in range(lanes)], "SRKN6b", 0.02, True, True, 7)
+    problem = Problem("hertz", [random_chain(879 + j, 5.0) for j in range(lanes)], integrator="SRKN6b", dt=0.02,
+                      tangent=True, track_gaps=True, check_every=7)
     q0 = np.zeros((problem.N, lanes))
     q0[20] = np.linspace(0.05, 0.3, lanes)
     dq0 = np.ones((problem.N, lanes)) / np.sqrt(problem.N)

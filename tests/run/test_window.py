@@ -34,14 +34,15 @@ def _start(model, chains, site, energy, variable):
 
 
 def _run(model, chains, scheme, dt, t_final, start, window=None):
-    problem = Problem(model, chains, scheme, dt, tangent=True, track_gaps=model == "hertz", check_every=100)
+    problem = Problem(model, chains, integrator=scheme, dt=dt, tangent=True, track_gaps=model == "hertz",
+                      check_every=100)
     return sample(problem, *start, sample_steps(t_final, dt, 5, 1.0), window=window)
 
 
 def test_a_problem_restricted_to_the_whole_chain_is_the_problem():
     chains, site, energy, variable, scheme, dt, _ = CASES["kg"]
     start = _start("kg", chains, site, energy, variable)
-    whole = Problem("kg", chains, scheme, dt, check_every=7)
+    whole = Problem("kg", chains, integrator=scheme, dt=dt, check_every=7)
     a, b = whole.engine(*start), whole.restricted(0, whole.N).engine(*start)
     a.advance(500)
     b.advance(500)
@@ -67,7 +68,7 @@ def test_the_window_follows_the_packet_not_the_chain():
     N = 4096
     chains = [kg_chain(s, 4.0, N) for s in range(2)]
     start = _start("kg", chains, N // 2, 0.4, "momentum")
-    engine = WindowedEngine(Problem("kg", chains, "ABA864", 0.4, check_every=100), Window(), *start)
+    engine = WindowedEngine(Problem("kg", chains, integrator="ABA864", dt=0.4, check_every=100), Window(), *start)
     engine.advance(2500)  # t = 1e3
     lo, hi = engine.span
     assert len(engine.spans) > 1 and lo < N // 2 - 64 and hi > N // 2 + 64  # it grew with the packet ...

@@ -260,7 +260,7 @@ def test_both_engines_agree_bit_for_bit_on_kg(name, integrator):
     q, p = np.stack([s[0] for s in states], 1), np.stack([s[1] for s in states], 1)
     dq, dp = initial_deviation(N, 3)
     dq, dp = np.tile(dq[:, None], (1, 5)), np.tile(dp[:, None], (1, 5))
-    problem = Problem(name, lattices, integrator, dt=0.05, check_every=37)
+    problem = Problem(name, lattices, integrator=integrator, dt=0.05, check_every=37)
     runs = {}
     for kind in ("batch", "single", "auto"):
         b = problem.engine(q, p, dq, dp, kind)

@@ -52,7 +52,7 @@ def test_every_model_runs_through_simulate_and_sample_on_its_lattice(model):
     assert ds.attrs["model"] == model and ds.attrs["max_energy_error"] < 1e-6
     assert ds.sizes["site"] == N and np.isfinite(ds["participation"]).all()
     # the same orbit through the problem object and the driver
-    problem = Problem(model, [chain], params.integrator, params.dt)
+    problem = Problem(model, [chain], integrator=params.integrator, dt=params.dt)
     q, p, _ = initial_state(MODELS[model], chain, params.energy, 8)
     dq, dp = initial_deviation(N, 0)
     samples = sample(problem, q[:, None], p[:, None], dq[:, None], dp[:, None], params.sample_steps())

@@ -11,7 +11,7 @@ sampling driver (``chainchaos.run.driver``), the measured runs of ``chainchaos.s
 benchmark all start from one.
 """
 
-from dataclasses import dataclass
+from dataclasses import KW_ONLY, dataclass
 from functools import cached_property
 
 import numpy as np
@@ -88,6 +88,7 @@ class Problem:
 
     model: object
     chains: tuple
+    _: KW_ONLY
     integrator: str = "SRKN6b"
     dt: float = 5e-4
     tangent: bool = True

@@ -8,7 +8,7 @@ value may lie from the paper's. Times are in units of 1/omega_max.
 from dataclasses import dataclass, field, fields
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Tolerances:
     """How far a measured value may lie from the paper's and still count as reproduced.
 
@@ -72,7 +72,7 @@ class Tolerances:
     threshold_factor: float = 1.5
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Criteria:
     """The choices of the measurements (config block ``claims:``; times in units of 1/omega_max).
 

@@ -15,7 +15,7 @@ from chainchaos.paper.panels import FP, HZ, PANELS, Scene, panels_of_figure
 from chainchaos.system.models import model_label
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class Statement:
     """A qualitative statement of the paper about one scene: an entry of ``STATEMENTS``.
 
@@ -52,11 +52,14 @@ def _pair(scene: Scene, localized: bool, chaotic: bool, where: str) -> tuple[Sta
     label = model_label(scene.model)
     tag = f"H{scene.energy:g}-{scene.model}"
     return (
-        Statement(f"{'loc' if localized else 'deloc'}-{tag}", scene, "localized" if localized else "delocalized",
-                  f"{label} $H = {scene.energy:g}$: {'localized' if localized else 'delocalized'} at the end "
-                  f"({where})", early=localized),
-        Statement(f"{'chaos' if chaotic else 'regular'}-{tag}", scene, "chaotic" if chaotic else "regular",
-                  f"{label} $H = {scene.energy:g}$: {'chaotic' if chaotic else 'regular'} ({where})",
+        Statement(id=f"{'loc' if localized else 'deloc'}-{tag}", scene=scene,
+                  kind="localized" if localized else "delocalized",
+                  text=f"{label} $H = {scene.energy:g}$: {'localized' if localized else 'delocalized'} at the end "
+                       f"({where})",
+                  early=localized),
+        Statement(id=f"{'chaos' if chaotic else 'regular'}-{tag}", scene=scene,
+                  kind="chaotic" if chaotic else "regular",
+                  text=f"{label} $H = {scene.energy:g}$: {'chaotic' if chaotic else 'regular'} ({where})",
                   early=not chaotic),
     )
 
@@ -64,31 +67,31 @@ def _pair(scene: Scene, localized: bool, chaotic: bool, where: str) -> tuple[Sta
 STATEMENTS: tuple[Statement, ...] = (
     *_pair(HZ[0.25], True, False, "Fig. 2"),
     *_pair(HZ[0.5], True, True, "Fig. 4"),
-    Statement("chaos-late-H0.5-hertz", HZ[0.5], "regular_until",
-              "Hertz $H = 0.5$: chaotic only in the last decade, regular up to $t = 10^4$ (Fig. 4d)",
+    Statement(id="chaos-late-H0.5-hertz", scene=HZ[0.5], kind="regular_until",
+              text="Hertz $H = 0.5$: chaotic only in the last decade, regular up to $t = 10^4$ (Fig. 4d)",
               until=1e4, early=True),
-    Statement("spread-level-H1.8-hertz", HZ[1.8], "participation_below_until",
-              "Hertz $H = 1.8$: $P < 3$ up to $t \\approx 2\\times 10^2$ (Fig. 4c)", value=3.0, until=2e2,
+    Statement(id="spread-level-H1.8-hertz", scene=HZ[1.8], kind="participation_below_until",
+              text="Hertz $H = 1.8$: $P < 3$ up to $t \\approx 2\\times 10^2$ (Fig. 4c)", value=3.0, until=2e2,
               early=True),
-    Statement("spread-onset-H1.8-hertz", HZ[1.8], "spreading_onset_near",
-              "Hertz $H = 1.8$: $P$ starts to grow at $t \\approx 2\\times 10^2$ (Fig. 4c)", value=2e2),
+    Statement(id="spread-onset-H1.8-hertz", scene=HZ[1.8], kind="spreading_onset_near",
+              text="Hertz $H = 1.8$: $P$ starts to grow at $t \\approx 2\\times 10^2$ (Fig. 4c)", value=2e2),
     *_pair(HZ[1.8], False, True, "Fig. 4"),
-    Statement("chaos-onset-H1.8-hertz", HZ[1.8], "chaos_onset_near",
-              "Hertz $H = 1.8$: chaotic from $t \\approx 2\\times 10^2$ (Fig. 4d)", value=2e2),
-    Statement("spread-until-H1.8-hertz", HZ[1.8], "saturation_near",
-              "Hertz $H = 1.8$: $P$ grows until $t \\approx 4\\times 10^3$ (Fig. 4c)", value=4e3),
-    Statement("mlce-H1.8-hertz", HZ[1.8], "mlce_near",
-              "Hertz $H = 1.8$: $\\Lambda$ levels off near $10^{-3}$ (Fig. 4d)", value=1e-3),
+    Statement(id="chaos-onset-H1.8-hertz", scene=HZ[1.8], kind="chaos_onset_near",
+              text="Hertz $H = 1.8$: chaotic from $t \\approx 2\\times 10^2$ (Fig. 4d)", value=2e2),
+    Statement(id="spread-until-H1.8-hertz", scene=HZ[1.8], kind="saturation_near",
+              text="Hertz $H = 1.8$: $P$ grows until $t \\approx 4\\times 10^3$ (Fig. 4c)", value=4e3),
+    Statement(id="mlce-H1.8-hertz", scene=HZ[1.8], kind="mlce_near",
+              text="Hertz $H = 1.8$: $\\Lambda$ levels off near $10^{-3}$ (Fig. 4d)", value=1e-3),
     *_pair(HZ[3.0], False, True, "Fig. 8"),
     *_pair(FP[0.25], True, False, "Fig. 2"),
     *_pair(FP[0.5], True, False, "Fig. 4"),
     *_pair(FP[1.8], True, False, "Fig. 4"),
     *_pair(FP[2.9], False, True, "Fig. 6"),
-    Statement("chaos-onset-H2.9-fput", FP[2.9], "chaos_onset_near",
-              "FPUT $H = 2.9$: chaotic from $t \\approx 4\\times 10^3$ (Fig. 6d)", value=4e3),
+    Statement(id="chaos-onset-H2.9-fput", scene=FP[2.9], kind="chaos_onset_near",
+              text="FPUT $H = 2.9$: chaotic from $t \\approx 4\\times 10^3$ (Fig. 6d)", value=4e3),
     *_pair(FP[4.0], True, True, "Fig. 6"),
-    Statement("eta-H4-fput", FP[4.0], "eta_near",
-              "FPUT $H = 4$: $\\eta \\approx 0.82$ for most of the run (Fig. 9c)", value=0.82),
+    Statement(id="eta-H4-fput", scene=FP[4.0], kind="eta_near",
+              text="FPUT $H = 4$: $\\eta \\approx 0.82$ for most of the run (Fig. 9c)", value=0.82),
     *_pair(FP[8.7381], False, True, "Fig. 6"),
 )
 

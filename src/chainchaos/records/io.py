@@ -144,8 +144,8 @@ def read_chain(path, k4_sign: float = 1.0) -> Chain:
                              "write one with 'chainchaos chain'") from err
     try:
         seed = int(attrs["seed"])
-        return Chain(radius, float(attrs["alpha"]), None if seed < 0 else seed,
-                     float(attrs.get("wall_radius", 1.0)), float(k4_sign))
+        return Chain(radius, float(attrs["alpha"]), seed=None if seed < 0 else seed,
+                     wall_radius=float(attrs.get("wall_radius", 1.0)), k4_sign=float(k4_sign))
     except (ValueError, TypeError) as err:  # ParameterError is a ValueError
         raise ChainFileError(f"chain file {name} holds no valid chain: {err}") from err
 

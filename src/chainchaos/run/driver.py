@@ -57,7 +57,7 @@ def sample_steps(t_final: float, dt: float, per_decade: int, t_first: float) -> 
     return steps
 
 
-@dataclass
+@dataclass(kw_only=True)
 class Samples:
     """The record of a problem's lanes on the sample steps, lane first: states (B, S, N), ln|v|,
     energy error and largest number of open gaps (B, S), gap counts (B, S, N+1); ``bad`` (B,) is
@@ -221,10 +221,11 @@ def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq
         engine = WindowedEngine(problem, window, q0, p0, dq0, dp0, kind)
     N, B, S = problem.N, problem.lanes, len(steps)
     Q, P, DQ, DP = (np.empty((B, S, N)) for _ in range(4))
-    samples = Samples(problem, np.asarray(steps), Q, P, DQ, DP, np.zeros((B, S)),
-                      np.zeros((B, S, N + 1), dtype=np.int64), np.zeros((B, S), dtype=np.int64), np.zeros((B, S)),
-                      np.zeros(B), engine.bad, np.zeros((B, S, problem.spectrum - 1)), np.full((B, S), np.nan),
-                      np.full((B, S), np.nan))
+    samples = Samples(problem=problem, steps=np.asarray(steps), Q=Q, P=P, DQ=DQ, DP=DP, log_growth=np.zeros((B, S)),
+                      gap_steps=np.zeros((B, S, N + 1), dtype=np.int64),
+                      max_gaps=np.zeros((B, S), dtype=np.int64), energy_error=np.zeros((B, S)),
+                      H0=np.zeros(B), bad=engine.bad, extra_growth=np.zeros((B, S, problem.spectrum - 1)),
+                      log_gali=np.full((B, S), np.nan), sali=np.full((B, S), np.nan))
     Q[:, 0], P[:, 0], DQ[:, 0], DP[:, 0] = engine.q.T, engine.p.T, engine.dq.T, engine.dp.T
     aligning = np.full(B, problem.gali > 1)
     if gali_stop is not None:

@@ -114,7 +114,7 @@ class RunSettings:
             The problem, validated.
         """
         N = chains[0].N
-        return Problem(model, [c.with_k4_sign(self.k4_sign) for c in chains], self.integrator, self.dt,
+        return Problem(model, [c.with_k4_sign(self.k4_sign) for c in chains], integrator=self.integrator, dt=self.dt,
                        tangent=tangent, track_gaps=track_gaps, check_every=self.check_every,
                        spectrum=(self.exponents or 2 * N) if spectrum else 1,
                        gali=self.gali_order if alignment else 1)

@@ -54,7 +54,8 @@ def _measured_runs(model, chain) -> None:
     q[1] = 0.1
     for track_gaps in sorted({False, model.has_gaps}):
         for tangent in (True, False):
-            problem = Problem(model, [chain], "verlet", 0.1, tangent, track_gaps, check_every=1)
+            problem = Problem(model, [chain], integrator="verlet", dt=0.1, tangent=tangent, track_gaps=track_gaps,
+                              check_every=1)
             CheckedRun(problem, q, p, q, p).advance(1, 1, np.zeros(1))
     for tangent in (True, False):
         fun = RightHandSide(model, chain, tangent)

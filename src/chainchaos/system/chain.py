@@ -23,7 +23,7 @@ given double radii (exact integer arithmetic, chainchaos.kernels.exactmath): the
 """
 
 import copy
-from dataclasses import dataclass, field
+from dataclasses import KW_ONLY, dataclass, field
 from functools import cached_property
 from typing import ClassVar
 
@@ -128,6 +128,7 @@ class Chain:
 
     radius: np.ndarray
     alpha: float
+    _: KW_ONLY
     seed: int | None = None
     wall_radius: float = 1.0
     k4_sign: float = 1.0
@@ -288,7 +289,7 @@ def random_chain(seed: int, alpha: float, N: int = 40, wall_radius: float = 1.0)
     >>> chain.N, chain.alpha
     (40, 5.0)
     """
-    return Chain(random_radii(seed, alpha, N), float(alpha), int(seed), wall_radius)
+    return Chain(random_radii(seed, alpha, N), float(alpha), seed=int(seed), wall_radius=wall_radius)
 
 
 def chain_from_radii(radii, reference_radius: float | None = None, wall_radius: float = 1.0,
@@ -340,7 +341,7 @@ def chain_from_radii(radii, reference_radius: float | None = None, wall_radius: 
         # the radii were drawn from [R_min, alpha R_min]: their spread is at most alpha (to rounding)
         require(np.isfinite(alpha) and alpha >= spread * (1 - 1e-12), "alpha", alpha,
                 f"a number >= max/min of the radii = {spread:.17g}")
-    return Chain(R / ref, spread if alpha is None else float(alpha), None, wall_radius)
+    return Chain(R / ref, spread if alpha is None else float(alpha), seed=None, wall_radius=wall_radius)
 
 
 class PrecompressedChain(Chain):
@@ -370,7 +371,7 @@ class PrecompressedChain(Chain):
 
     def __init__(self, radius, alpha, seed=None, wall_radius=1.0, k4_sign=1.0, precompression=1.0):
         object.__setattr__(self, "precompression", float(precompression))
-        super().__init__(radius, alpha, seed, wall_radius, k4_sign)
+        super().__init__(radius, alpha, seed=seed, wall_radius=wall_radius, k4_sign=k4_sign)
 
     def __post_init__(self):
         super().__post_init__()
@@ -471,7 +472,7 @@ def chain_at_alpha(chain, alpha: float) -> Chain:
     require(chain.alpha > 1, "chain alpha", chain.alpha, "alpha > 1 (a disordered chain)")
     U = (chain.radius * (chain.alpha + 1.0) / 2.0 - 1.0) / (chain.alpha - 1.0)
     radius = (1.0 + (alpha - 1.0) * U) / ((alpha + 1.0) / 2.0)
-    return Chain(radius, float(alpha), chain.seed, chain.wall_radius, chain.k4_sign)
+    return Chain(radius, float(alpha), seed=chain.seed, wall_radius=chain.wall_radius, k4_sign=chain.k4_sign)
 
 
 # ---- the disordered Klein-Gordon lattice (models.klein_gordon) --------------------------------

@@ -65,8 +65,10 @@ def evaluate_row(row: ClaimRow, inputs: Inputs) -> Claim:
         missing = [n for n in scenes if n not in inputs.scenes]
         what = (f"scene(s) {', '.join(missing)} missing" if missing
                 else f"the scenes lack {', '.join(row.variables)}")
-        return Claim(row.id, row.where, row.statement, row.paper, None, "--", row.unit, criterion, UNTESTABLE,
-                     what, scenes, inputs.max_energy_error(scenes), inputs.t_final(scenes), t_required)
+        return Claim(id=row.id, where=row.where, statement=row.statement, paper=row.paper, measured=None,
+                     measured_text="--", unit=row.unit, criterion=criterion, verdict=UNTESTABLE,
+                     reason=what, scenes=scenes, max_energy_error=inputs.max_energy_error(scenes),
+                     t_final=inputs.t_final(scenes), t_required=t_required)
     measurement = MEASURES[row.measure](inputs, *scenes, **row.args)
     context = _context(row, inputs, measurement)
     measured = None if measurement is None else measurement.value
@@ -101,9 +103,11 @@ def evaluate_row(row: ClaimRow, inputs: Inputs) -> Claim:
         evidence = search_evidence(inputs, row.statements)
         reason = "; ".join(x for x in (_reason_differs(row, inputs, measurement), evidence) if x) or \
             "the measured value lies outside the tolerance"
-    return Claim(row.id, row.where, row.statement, row.paper, measured, _measured_text(row, measurement, context),
-                 row.unit, criterion, verdict, reason, scenes, inputs.max_energy_error(scenes), t_final, t_required,
-                 fraction, tuple(row.statements))
+    return Claim(id=row.id, where=row.where, statement=row.statement, paper=row.paper, measured=measured,
+                 measured_text=_measured_text(row, measurement, context), unit=row.unit, criterion=criterion,
+                 verdict=verdict, reason=reason, scenes=scenes,
+                 max_energy_error=inputs.max_energy_error(scenes), t_final=t_final, t_required=t_required,
+                 fraction=fraction, statements=tuple(row.statements))
 
 
 def evaluate_claims(scenes: dict, chain: xr.Dataset, ensemble: xr.Dataset,
@@ -118,7 +122,7 @@ def evaluate_claims(scenes: dict, chain: xr.Dataset, ensemble: xr.Dataset,
     that has an ensemble verdict."""
     if energy_scan is not None:
         scenes = {**scenes, ENERGY_SCAN: energy_scan}
-    inputs = Inputs(scenes, chain, ensemble, criteria or Criteria(), excited_site, dict(verdicts or {}), search,
-                    disorder)
+    inputs = Inputs(scenes=scenes, chain=chain, ensemble=ensemble, criteria=criteria or Criteria(), site=excited_site,
+                    verdicts=dict(verdicts or {}), search=search, disorder=disorder)
     rows = [*CATALOGUE, *(row for row in STATEMENT_ROWS if statement_result(inputs, row.statements[0]) is not None)]
     return [evaluate_row(row, inputs) for row in rows]

@@ -45,7 +45,7 @@ REPRODUCED, DIFFERS, UNDECIDED, UNTESTABLE = VERDICTS
 ENERGY_SCAN = "energy_scan"
 
 
-@dataclass
+@dataclass(kw_only=True)
 class Claim:
     """One statement of the paper and what the pipeline measured for it (a line of claims.csv)."""
 
@@ -194,7 +194,7 @@ class ClaimRow:
 # --------------------------------------------------------------------------------------------
 
 
-@dataclass
+@dataclass(kw_only=True)
 class Inputs:
     """The stored results a claim is measured on, and the criteria of the measurements."""
 

@@ -34,7 +34,7 @@ from chainchaos.system.models import get_model
 IVP_METHODS = ("RK45", "DOP853")
 
 
-@dataclass
+@dataclass(kw_only=True)
 class RunResult:
     """Outcome of one measured run (see the module docstring for quantities and units)."""
 
@@ -94,7 +94,8 @@ def run_scheme(model, chain, energy: float, scheme: str, dt: float, t_final: flo
     chunk = max(1, int(round(check_interval / dt)))
     model = get_model(model)
     # a model whose bonds never open has no gaps to count: its statistics stay zero
-    problem = Problem(model, [chain], scheme, dt, tangent, track_gaps and model.has_gaps, check_every=chunk)
+    problem = Problem(model, [chain], integrator=scheme, dt=dt, tangent=tangent,
+                      track_gaps=track_gaps and model.has_gaps, check_every=chunk)
     s = problem.scheme
     segments = [_check_plan(n_probe, chunk), _check_plan(n_total - n_probe, chunk)]
     n_checks = sum(n for seg in segments for n, _ in seg)

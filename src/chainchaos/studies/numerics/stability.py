@@ -150,7 +150,7 @@ def energy_drift(model, chain, energy: float, scheme: str, dt: float, t_final: f
     ``progress(t, fraction)`` is called after every window.
     """
     chunk = max(1, int(round(check_interval / dt)))
-    problem = Problem(model, [chain], scheme, dt, tangent=False, check_every=chunk)
+    problem = Problem(model, [chain], integrator=scheme, dt=dt, tangent=False, check_every=chunk)
     model = problem.model
     q, p, _ = initial_state(model, chain, energy, excited_site)
     run = CheckedRun(problem, q, p)

@@ -19,7 +19,7 @@ from chainchaos.paper.verdicts import HOLDS, UNTESTABLE
 ONSET, LEVEL = "chaos-onset-H1.8-hertz", "mlce-H1.8-hertz"
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class JointStatements:
     """Over the scored candidates: ``holds`` (candidate x statement, bool), ``testable`` (the
     statement was decided on some scored candidate), the co-occurrence counts ``both`` (statement
@@ -59,8 +59,8 @@ def joint_statements(ds: xr.Dataset) -> JointStatements:
     holds = verdict == HOLDS
     testable = (verdict != UNTESTABLE).any(axis=0)
     both = holds.T.astype(np.int64) @ holds.astype(np.int64)
-    return JointStatements([str(s) for s in ds.statement.values], holds, testable, both,
-                           ds["score"].values[scored], float(ds.attrs["chosen_score"]))
+    return JointStatements(statements=[str(s) for s in ds.statement.values], holds=holds, testable=testable, both=both,
+                           score=ds["score"].values[scored], chosen_score=float(ds.attrs["chosen_score"]))
 
 
 def unbroken_counts(ds: xr.Dataset) -> np.ndarray:

@@ -17,7 +17,7 @@ from chainchaos.system.chain import Chain, random_chain
 from chainchaos.system.linear import mode_energy_density, normal_modes, participation_number
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class SelectionCriteria:
     alpha: float = 5.0
     N: int = 40

@@ -58,7 +58,7 @@ from chainchaos.studies.study.spec import load_study
 SEARCH_RESULT_VERSION = 2  # 2: spread-level-H1.8-hertz and eta-H4-fput follow their sentences
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class SearchPlan:
     """The sizes of a search (config blocks ``search:`` and ``search_full:``). ``candidates``:
     how many chains that pass the linear rule are searched, None for all of them."""
