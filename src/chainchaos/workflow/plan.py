@@ -448,17 +448,6 @@ def kept_targets(keep: str | None, config: dict, study=None) -> list[str]:
     return [str(kept_group_path(keep, g, config["kept_studies"])) for g in range(study.n_groups)]
 
 
-def search_jobs(search_plan, stage: str, n_candidates: int = 0, selection=None) -> int:
-    """How many jobs a stage of a search has: ``seeds`` (chunks of seeds, from the linear rule
-    ``selection``), ``filter`` (groups of candidates; none when a seed is pinned) or ``score``
-    (survivors; one, the pinned seed's)."""
-    if stage == "seeds":
-        return search_plan.n_seed_jobs(selection)
-    if stage == "filter":
-        return 0 if search_plan.pinned else search_plan.n_filter_jobs(n_candidates)
-    return search_plan.n_score_jobs(1 if search_plan.pinned else n_candidates)
-
-
 def beyond_inputs(results: str, shown: dict) -> dict[str, str]:
     """The manuscript's inputs for the section Beyond the paper: its generated body and the figures
     it shows (``shown``: study -> figures), keyed as the manuscript task reads them."""
@@ -502,7 +491,8 @@ def rejudge_files(config: dict, search_full_plan, n_candidates: int, stage: str)
     if stage == "filter":
         search_plan = rejudge.filter_plan(search_plan, rejudge.check_ids(config.get("rejudge") or []))
     root = Path(config["search"]["archive"]).parent / "rejudge" / stage
-    return [str(root / f"{k:03d}.nc") for k in range(search_jobs(search_plan, stage, n_candidates))]
+    jobs = search_plan.n_filter_jobs(n_candidates) if stage == "filter" else search_plan.n_score_jobs(n_candidates)
+    return [str(root / f"{k:03d}.nc") for k in range(jobs)]
 
 
 def still_to_make(paths) -> str:
