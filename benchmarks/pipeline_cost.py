@@ -25,13 +25,16 @@ import xarray as xr
 from chainchaos.records.provenance import machine_line
 
 #: Parts of the pipeline, by the rules whose jobs they are, matched against "<rule>/<job>" (first
-#: match wins), in table order. The scans' orbits run in the jobs of their studies (study_group).
+#: match wins), in table order. Every ensemble's orbits run in the jobs of its study (study_group):
+#: the scans', the search's stages' (<search>-filter-<model>, <search>-score-<model>) and the
+#: verdicts' (verdicts_<model>).
 PARTS = (
     ("kernel compilation", r"compile_kernels"),
-    ("realization search: linear rule and filter", r"search_(candidates|filter)"),
-    ("realization search: scores", r"search_score|search_merge|select_chain"),
+    ("realization search: linear rule and filter",
+     r"search_(seeds|candidates|filter)|study_group/search(_full)?-filter-"),
+    ("realization search: scores", r"search_merge|select_chain|study_group/search(_full)?-score-"),
     ("scenes", r"simulate_scenes"),
-    ("ensemble verdicts", r"ensemble_verdicts"),
+    ("ensemble verdicts", r"ensemble_verdicts|study_group/verdicts_"),
     ("energy scan", r"study_group/energy_scan-|merge_energy_scan"),
     ("disorder statistics", r"study_group/disorder(_full)?-|merge_disorder"),
     ("studies", r"study_|plot_study"),
