@@ -453,7 +453,7 @@ class Batch:
     a block once ``vectors_on`` (B,) is False for all its lanes (:meth:`stop_vectors`).
     """
 
-    def __init__(self, problem, q, p, dq=None, dp=None, *, serial_lanes: int = 0, xq=None, xp=None):
+    def __init__(self, problem, q, p, dq=None, dp=None, serial_lanes: int = 0, xq=None, xp=None):
         self.problem, self.model, self.scheme = problem, problem.model, problem.scheme
         self.inv_mass, self.bonds = problem.lane_parameters
         self._sites = () if problem.site_parameters is None else (problem.site_parameters,)

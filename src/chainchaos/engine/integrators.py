@@ -57,7 +57,7 @@ def inner(**options):
     return njit(cache=True, no_cpython_wrapper=True, no_cfunc_wrapper=True, **options)
 
 
-@dataclass(frozen=True, kw_only=True)
+@dataclass(frozen=True)
 class Scheme:
     """A splitting scheme: the coefficients of one step (the module docstring), an entry of ``SCHEMES``.
 
@@ -116,7 +116,7 @@ def _build_table() -> dict[str, Scheme]:
         kicks, drifts = np.asarray(kicks, float), np.asarray(drifts, float)
         assert kicks.size == drifts.size + 1
         assert abs(kicks.sum() - 1) < 1e-14 and abs(drifts.sum() - 1) < 1e-14, name
-        table[name] = Scheme(name=name, order=order, kicks=kicks, drifts=drifts, reference=reference)
+        table[name] = Scheme(name, order, kicks, drifts, reference)
 
     add("verlet", 2, [0.5, 0.5], [1.0], "velocity Verlet (Stormer-Verlet, kick-drift-kick)")
 

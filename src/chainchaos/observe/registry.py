@@ -85,7 +85,7 @@ class SampledRun:
         k of GALI_k.
     """
 
-    def __init__(self, *, model, chain, times, steps, Q, P, DQ, DP, log_growth, gap_steps, max_gaps, energy_error,
+    def __init__(self, model, chain, times, steps, Q, P, DQ, DP, log_growth, gap_steps, max_gaps, energy_error,
                  deviation0, spectrum_growth=None, log_gali=None, sali=None, gali_order=1):
         self.model, self.chain, self.times, self.steps = model, chain, times, steps
         self.Q, self.P, self.DQ, self.DP = Q, P, DQ, DP

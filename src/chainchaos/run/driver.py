@@ -141,12 +141,11 @@ class Samples:
         chainchaos.observe.registry.SampledRun
             Lane j's samples and its lattice, on the sample times.
         """
-        return SampledRun(model=self.problem.model, chain=self.problem.chains[j], times=self.times, steps=self.steps,
-                          Q=self.Q[j], P=self.P[j], DQ=self.DQ[j], DP=self.DP[j], log_growth=self.log_growth[j],
-                          gap_steps=self.gap_steps[j], max_gaps=self.max_gaps[j], energy_error=self.energy_error[j],
-                          deviation0=deviation0,
-                          spectrum_growth=np.column_stack([self.log_growth[j], self.extra_growth[j]]),
-                          log_gali=self.log_gali[j], sali=self.sali[j], gali_order=self.problem.gali)
+        return SampledRun(self.problem.model, self.problem.chains[j], self.times, self.steps, self.Q[j], self.P[j],
+                          self.DQ[j], self.DP[j], self.log_growth[j], self.gap_steps[j], self.max_gaps[j],
+                          self.energy_error[j], deviation0,
+                          np.column_stack([self.log_growth[j], self.extra_growth[j]]), self.log_gali[j], self.sali[j],
+                          self.problem.gali)
 
 
 def _alignment(engine, samples: Samples, i: int, lanes) -> None:
@@ -219,7 +218,7 @@ def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq
     else:
         from chainchaos.run.window import WindowedEngine
 
-        engine = WindowedEngine(problem, window, q0, p0, dq0, dp0, kind=kind)
+        engine = WindowedEngine(problem, window, q0, p0, dq0, dp0, kind)
     N, B, S = problem.N, problem.lanes, len(steps)
     Q, P, DQ, DP = (np.empty((B, S, N)) for _ in range(4))
     samples = Samples(problem=problem, steps=np.asarray(steps), Q=Q, P=P, DQ=DQ, DP=DP, log_growth=np.zeros((B, S)),

@@ -96,7 +96,7 @@ class WindowedEngine:
     """The engine of a problem run on a growing window (:class:`Window`); built from full-chain
     states q, p, dq, dp (N, B), read as the driver reads ``batch.Batch``."""
 
-    def __init__(self, problem, window: Window, q, p, dq, dp, *, kind: str = "auto"):
+    def __init__(self, problem, window: Window, q, p, dq, dp, kind: str = "auto"):
         require(problem.extra_vectors == 0, "window", window,
                 "None with Lyapunov spectrum or GALI vectors (only the mLCE vector runs on a window)")
         self.problem, self.window, self.kind = problem, window, kind

@@ -369,7 +369,7 @@ class PrecompressedChain(Chain):
 
     precompression: float = 1.0
 
-    def __init__(self, radius, alpha, *, seed=None, wall_radius=1.0, k4_sign=1.0, precompression=1.0):
+    def __init__(self, radius, alpha, seed=None, wall_radius=1.0, k4_sign=1.0, precompression=1.0):
         object.__setattr__(self, "precompression", float(precompression))
         super().__init__(radius, alpha, seed=seed, wall_radius=wall_radius, k4_sign=k4_sign)
 
@@ -399,8 +399,8 @@ class PrecompressedChain(Chain):
         PrecompressedChain
             A new chain with ``k4_sign = sign``.
         """
-        return PrecompressedChain(self.radius, self.alpha, seed=self.seed, wall_radius=self.wall_radius,
-                                  k4_sign=float(sign), precompression=self.precompression)
+        return PrecompressedChain(self.radius, self.alpha, self.seed, self.wall_radius, float(sign),
+                                  self.precompression)
 
 
 def sonic_vacuum_chain(chain, factor: float = 1e-6) -> PrecompressedChain:
@@ -439,9 +439,8 @@ def sonic_vacuum_chain(chain, factor: float = 1e-6) -> PrecompressedChain:
         For a factor that is not finite and > 0.
     """
     require(np.isfinite(factor) and factor > 0, "precompression factor", factor, "a factor > 0")
-    return PrecompressedChain(chain.radius, chain.alpha, seed=chain.seed, wall_radius=chain.wall_radius,
-                              k4_sign=chain.k4_sign,
-                              precompression=float(factor) * getattr(chain, "precompression", 1.0))
+    return PrecompressedChain(chain.radius, chain.alpha, chain.seed, chain.wall_radius, chain.k4_sign,
+                              float(factor) * getattr(chain, "precompression", 1.0))
 
 
 def chain_at_alpha(chain, alpha: float) -> Chain:

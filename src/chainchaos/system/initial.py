@@ -75,7 +75,7 @@ EXCITATION_KINDS = ("site", "mode", "block")
 EXCITATION_VARIABLES = ("displacement", "momentum")
 
 
-@dataclass(frozen=True, kw_only=True)
+@dataclass(frozen=True)
 class Excitation:
     """A localized initial state of total energy H, everything else at rest.
 

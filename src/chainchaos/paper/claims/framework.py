@@ -23,7 +23,7 @@ from __future__ import annotations
 import math
 import re
 import string
-from dataclasses import KW_ONLY, asdict, dataclass, field
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
 import xarray as xr
@@ -126,7 +126,6 @@ class Measurement:
 
     value: float | None              # the headline number (claims.csv ``measured``)
     details: dict = field(default_factory=dict)  # further numbers, named, for the checks and texts
-    _: KW_ONLY                       # the rest named at every call
     case: str = ""                   # which of the row's measured texts applies (e.g. "never")
     decided: bool = True             # False: the numbers cannot decide the claim (nothing to test)
     split: str = ""                  # why two chaos indicators lead to different answers (undecided)
