@@ -273,15 +273,10 @@ def _search_stage_keys(search: str, stage: str, model: str, config: dict, pinned
     ``filter.nc``: call it once those exist); with a pinned seed, that seed's chain."""
     import xarray as xr
 
-    from chainchaos.paper.criteria import Criteria
-    from chainchaos.run.orbits import OrbitSettings
-    from chainchaos.studies.search.selection import SelectionCriteria
-    from chainchaos.studies.search.stages import SearchPlan, stage_studies
+    from chainchaos.studies.search.stages import stage_studies
+    from chainchaos.workflow.tasks.search import search_parts
 
-    params = search_params(search, config, pinned_seed)
-    chain = params["chain"]
-    selection = SelectionCriteria(alpha=float(chain["alpha"]), N=int(chain["N"]), **chain.get("selection", {}))
-    search_plan = SearchPlan.from_config(params["search"])
+    selection, search_plan, settings, criteria, site = search_parts(search_params(search, config, pinned_seed))
     root = Path(config["results"], search)
     if search_plan.pinned:
         seeds = [search_plan.pinned_seed]
@@ -289,8 +284,7 @@ def _search_stage_keys(search: str, stage: str, model: str, config: dict, pinned
         seeds = xr.load_dataset(root / "candidates.nc")["seed"].values
         if stage == "score":
             seeds = seeds[xr.load_dataset(root / "filter.nc")["survivor"].values]
-    return stage_studies(search, stage, selection, search_plan, OrbitSettings.from_config(params["search"]["settings"]),
-                         Criteria.from_config(params["claims"]), int(params["site"]), seeds)[model]
+    return stage_studies(search, stage, selection, search_plan, settings, criteria, site, seeds)[model]
 
 
 def load_run_study(name: str, config: dict, pinned_seed: int | None = None):

@@ -135,17 +135,24 @@ def stage_studies(search: str, stage: str, selection: SelectionCriteria, plan: S
     ``plan.lanes`` orbits per scene to ``settings.t_final``, one chain per job. ``scenes``: only
     these statement scenes."""
     require(stage in STUDY_STAGES, "stage", stage, f"one of {STUDY_STAGES}")
-    of = statements.statement_scenes()
-    names = _scene_names(scenes)
     filtering = stage == "filter"
     run = OrbitSettings(**{**vars(settings), "t_final": float(plan.filter_t_final), "alignment": False}) \
         if filtering else settings
+    return _scene_studies(lambda model: study_name(search, stage, model), selection, seeds, run,
+                          1 if filtering else plan.lanes, site, criteria,
+                          f"Realization search ({search}), stage {stage}", plan.candidates_per_job if filtering else 1,
+                          scenes)
+
+
+def _scene_studies(name, selection: SelectionCriteria, seeds, settings: OrbitSettings, lanes: int, site: int,
+                   criteria: Criteria, title: str, per_job: int | None, scenes=None) -> dict[str, dict]:
+    """``model ->`` the study (``paper.ensembles.scenes_study``) of its statement scenes on the
+    chains of ``seeds``, named ``name(model)``; ``per_job`` chains per job (None: all)."""
+    of = statements.statement_scenes()
+    names = _scene_names(scenes)
     lattice = {"seeds": [int(seed) for seed in seeds], "N": int(selection.N), "alpha": float(selection.alpha)}
-    return {model: scenes_study(study_name(search, stage, model), model,
-                                [of[name].energy for name in names if of[name].model == model], lattice, run,
-                                1 if filtering else plan.lanes, site, criteria,
-                                f"Realization search ({search}), stage {stage}: the {model} scenes of its chains",
-                                plan.candidates_per_job if filtering else 1)
+    return {model: scenes_study(name(model), model, [of[n].energy for n in names if of[n].model == model], lattice,
+                                settings, lanes, site, criteria, f"{title}: the {model} scenes of its chains", per_job)
             for model in search_models(scenes)}
 
 
@@ -198,14 +205,9 @@ def _outcomes(seeds: list[int], selection: SelectionCriteria, site: int, lanes: 
     study (``paper.ensembles.scenes_study``, ``studies.study.runs.run_group``): the re-judging of
     a kept search (``rejudge``) runs them so. ``scenes``: run only these statement scenes; an
     orbit's numbers do not depend on which others run beside it."""
-    groups = {}
-    lattice = {"seeds": [int(seed) for seed in seeds], "N": int(selection.N), "alpha": float(selection.alpha)}
-    of = statements.statement_scenes()
-    for model in search_models(scenes) if seeds else ():
-        energies = [of[name].energy for name in _scene_names(scenes) if of[name].model == model]
-        study = load_study(scenes_study(f"search-{model}", model, energies, lattice, settings, lanes, site, criteria,
-                                        f"Realization search: {model} scenes"))
-        groups[model] = [run_group(study, 0, progress)]
+    studies = _scene_studies(lambda model: f"search-{model}", selection, seeds, settings, lanes, site, criteria,
+                             "Realization search", None, scenes) if len(seeds) else {}
+    groups = {model: [run_group(load_study(keys), 0, progress)] for model, keys in studies.items()}
     return judge(groups, len(seeds), lanes, criteria, scenes)
 
 
