@@ -219,6 +219,102 @@ def exp10(x):
     return _elementwise(_exp10_loop, x, _exp10_scalar)
 
 
+# ---- sine and cosine, in + - * only -----------------------------------------------------------
+
+# fdlibm's k_sin.c and k_cos.c (Sun Microsystems, 1993): minimax coefficients of sin x and cos x on
+# |x| <= pi/4, and pi/2 in three parts (e_rem_pio2.c): PIO2_1 its first 33 bits, PIO2_2 the next 33,
+# PIO2_2T the rest, so that fn * PIO2_1 and fn * PIO2_2 are exact for integers |fn| < 2^20.
+S1, S2, S3 = -1.66666666666666324348e-01, 8.33333333332248946124e-03, -1.98412698298579493134e-04
+S4, S5, S6 = 2.75573137070700676789e-06, -2.50507602534068634195e-08, 1.58969099521155010221e-10
+C1, C2, C3 = 4.16666666666666019037e-02, -1.38888888888741095749e-03, 2.48015872894767294178e-05
+C4, C5, C6 = -2.75573143513906633035e-07, 2.08757232129817482790e-09, -1.13596475577881948265e-11
+INVPIO2 = 6.36619772367581382433e-01
+PIO2_1, PIO2_2, PIO2_2T = 1.57079632673412561417e+00, 6.07710050630396597660e-11, 2.02226624879595063154e-21
+#: Arguments up to this size are reduced exactly enough for an error of about 1 ulp (fdlibm's
+#: "medium" range, |fn| < 2^19); beyond it the reduction loses accuracy, but not determinism.
+SINCOS_ACCURATE = 2.0**19 * 1.5707963267948966
+#: 1.5 * 2^52: (y + _ROUND) - _ROUND is y rounded to the nearest integer (ties to even), |y| < 2^51.
+_ROUND = 6755399441055744.0
+
+
+@njit(cache=True)
+def _nearest_integer(y):
+    return (y + _ROUND) - _ROUND
+
+
+@njit(cache=True)
+def sincos(x):
+    """(sin x, cos x) of a double, or lane by lane of a SIMD vector (``kernels.simd``), in + - *
+    only: the same bits on every IEEE-754 machine and at every vector width, unlike the C
+    library's ``sin``/``cos`` and NumPy's vector versions, whose code depends on the CPU. What the
+    DNLS on-site rotation (``engine.split``) turns by.
+
+    fdlibm's algorithm without its branches: x = fn pi/2 + r with fn the nearest integer to
+    x 2/pi, r = y0 + y1 a head and tail (x - fn PIO2_1 exact; the rest by an exact two-sum);
+    sin r and cos r by fdlibm's kernels (k_sin.c; k_cos.c in FreeBSD's form
+    w + (((1 - w) - z/2) + (z R - r y1)), w = 1 - z/2, which needs no branch); then the quadrant
+    m = fn mod 4 turns (sin r, cos r) by m pi/2 through the factors cos(m pi/2), sin(m pi/2) in
+    {-1, 0, 1}, exact products. Error about 1 ulp (``tests/kernels/test_sincos.py``) for
+    |x| <= :data:`SINCOS_ACCURATE`; NaN for a NaN or infinite x.
+
+    Parameters
+    ----------
+    x : float or SIMD vector
+        The angle, in radians.
+
+    Returns
+    -------
+    tuple
+        (sin x, cos x), floats or vectors like x.
+    """
+    fn = _nearest_integer(x * INVPIO2)
+    a = x - fn * PIO2_1  # exact: fn * PIO2_1 has at most 53 bits and lies within a factor 2 of x
+    b = fn * (0.0 - PIO2_2)  # exact
+    y0 = a + b  # two-sum: y0 + e = a + b exactly
+    bb = y0 - a
+    e = (a - (y0 - bb)) + (b - bb)
+    y1 = e + fn * (0.0 - PIO2_2T)
+    z = y0 * y0
+    v = z * y0
+    rs = S2 + z * (S3 + z * (S4 + z * (S5 + z * S6)))
+    sine = y0 - ((z * (0.5 * y1 - v * rs) - y1) - v * S1)
+    rc = z * (C1 + z * (C2 + z * (C3 + z * (C4 + z * (C5 + z * C6)))))
+    hz = 0.5 * z
+    w = 1.0 - hz
+    cosine = w + (((1.0 - w) - hz) + (z * rc - y0 * y1))
+    m = fn - 4.0 * _nearest_integer(fn * 0.25 - 0.375)  # fn mod 4, in {0, 1, 2, 3}
+    odd = m - 2.0 * _nearest_integer(m * 0.5 - 0.25)  # m mod 2
+    c = (1.0 - odd) * (1.0 - m)  # cos(m pi/2): 1, 0, -1, 0
+    s = odd * (2.0 - m)  # sin(m pi/2): 0, 1, 0, -1
+    return s * cosine + c * sine, c * cosine - s * sine
+
+
+@njit(cache=True)
+def _sincos_loop(x, sine, cosine):
+    for i in range(x.size):
+        sine[i], cosine[i] = sincos(x[i])
+
+
+def sin_cos(x) -> tuple[np.ndarray, np.ndarray]:
+    """sin x and cos x of every element (:func:`sincos`): arrays of x's shape.
+
+    Parameters
+    ----------
+    x : array_like
+        Angles, in radians.
+
+    Returns
+    -------
+    sine, cosine : numpy.ndarray
+        Of x's shape, float64.
+    """
+    a = np.asarray(x, dtype=np.float64)
+    flat = np.ascontiguousarray(a).reshape(-1)
+    sine, cosine = np.empty_like(flat), np.empty_like(flat)
+    _sincos_loop(flat, sine, cosine)
+    return sine.reshape(a.shape), cosine.reshape(a.shape)
+
+
 # ---- products and norms, summed in index order -----------------------------------------------
 
 
