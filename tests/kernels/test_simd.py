@@ -7,7 +7,7 @@ from numba import njit
 from chainchaos.engine import model_checks
 from chainchaos.kernels.simd import LANES, vbelow, vload, vnext, vprev, vstore
 from chainchaos.system.chain import random_chain
-from chainchaos.system.models import MODELS
+from chainchaos.system.models import BOND_MODELS as MODELS
 
 # normal numbers, signed zeros, subnormals, infinities and NaN in every operand position
 SPECIAL = np.array([1.5, -2.25, 0.0, -0.0, 5e-324, -1e-310, np.inf, -np.inf, np.nan, 3.0e300, -7.0, 0.125])

@@ -15,7 +15,7 @@ from numba import njit
 
 from chainchaos.errors import ParameterError
 from chainchaos.system.chain import kg_chain, random_chain
-from chainchaos.system.models import MAX_BOND_PARAMETERS, MODELS, energy_kernel, get_model, model_label, total_energy
+from chainchaos.system.models import BOND_MODELS, MAX_BOND_PARAMETERS, MODELS, energy_kernel, get_model, model_label, total_energy
 from chainchaos.system.models.base import bond_force, bond_force_stiffness, bond_potential
 
 CHAIN = random_chain(879, 5.0, 40)
@@ -53,7 +53,7 @@ def law(model, D):
     return V, f, k
 
 
-@pytest.mark.parametrize("name", sorted(MODELS))
+@pytest.mark.parametrize("name", sorted(BOND_MODELS))
 def test_force_is_the_derivative_of_the_potential_and_stiffness_that_of_the_force(name):
     model = MODELS[name]
     D = np.random.default_rng(0).uniform(-0.3, 0.3, CHAIN.N + 1) * CHAIN.delta
@@ -64,7 +64,7 @@ def test_force_is_the_derivative_of_the_potential_and_stiffness_that_of_the_forc
     np.testing.assert_allclose((fp - fm) / (2 * h), k, rtol=1e-7, atol=1e-12)
 
 
-@pytest.mark.parametrize("name", sorted(MODELS))
+@pytest.mark.parametrize("name", sorted(BOND_MODELS))
 def test_every_model_is_at_rest_at_zero_compression_with_the_linear_stiffness_K2(name):
     V, f, k = law(MODELS[name], np.zeros(CHAIN.N + 1))
     np.testing.assert_allclose(V, 0.0, atol=1e-15)
@@ -72,7 +72,7 @@ def test_every_model_is_at_rest_at_zero_compression_with_the_linear_stiffness_K2
     np.testing.assert_allclose(k, CHAIN.K2, rtol=1e-15)
 
 
-@pytest.mark.parametrize("name", sorted(MODELS))
+@pytest.mark.parametrize("name", sorted(BOND_MODELS))
 def test_every_model_fits_the_engines_and_is_labelled(name):
     model = MODELS[name]
     assert model.name == name and get_model(name) is model and model_label(name) == model.label
@@ -83,7 +83,7 @@ def test_every_model_fits_the_engines_and_is_labelled(name):
     assert total_energy(model, chain, np.zeros(chain.N), np.zeros(chain.N)) == 0.0
 
 
-@pytest.mark.parametrize("name", sorted(MODELS))
+@pytest.mark.parametrize("name", sorted(BOND_MODELS))
 def test_the_compiled_energy_is_the_energy(name):
     """energy_kernel (sums in order) and total_energy (NumPy's sums) differ only in rounding."""
     model = MODELS[name]

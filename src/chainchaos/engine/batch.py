@@ -455,18 +455,18 @@ class Batch:
 
     def __init__(self, problem, q, p, dq=None, dp=None, serial_lanes: int = 0, xq=None, xp=None):
         self.problem, self.model, self.scheme = problem, problem.model, problem.scheme
-        self.inv_mass, self.bonds = problem.lane_parameters
-        self._sites = () if problem.site_parameters is None else (problem.site_parameters,)
+        self._take_parameters(problem)
         self.q = np.ascontiguousarray(q, dtype=float).copy()
         self.p = np.ascontiguousarray(p, dtype=float).copy()
         shape = self.q.shape
-        require(self.p.shape == shape == self.inv_mass.shape, "state shape", shape, f"(N, B) = {self.inv_mass.shape}")
+        require(self.p.shape == shape == (problem.N, problem.lanes), "state shape", shape,
+                f"(N, B) = {(problem.N, problem.lanes)}")
         self.dq = np.zeros(shape) if dq is None else np.ascontiguousarray(dq, dtype=float).copy()
         self.dp = np.zeros(shape) if dp is None else np.ascontiguousarray(dp, dtype=float).copy()
         N, B = shape
         require(0 <= int(serial_lanes) <= B, "serial_lanes", serial_lanes, f"an integer from 0 to the {B} lanes")
         self.block_lanes = B - int(serial_lanes)
-        self._serial = {j: problem.lane(j) for j in range(self.block_lanes, B)}
+        self._serial = {j: self._serial_lane(j) for j in range(self.block_lanes, B)}
         K = problem.extra_vectors
         require(not (K and serial_lanes), "serial_lanes", serial_lanes, "0 with several deviation vectors per orbit")
         self.xq = np.zeros((K, N, B)) if xq is None else np.ascontiguousarray(xq, dtype=float).copy()
@@ -490,13 +490,9 @@ class Batch:
         absolute step count), the others are unaffected."""
         if n_steps <= 0:
             return
-        pr = self.problem
         bad = np.full(self.size, -1, dtype=np.int64)
         if self.block_lanes:
-            advance_batch(self.model, self.q, self.p, self.dq, self.dp, self.inv_mass, self.bonds, self.scheme.kicks,
-                          self.scheme.drifts, pr.dt, int(n_steps), pr.tangent, pr.check_every, pr.track_gaps,
-                          self.gap_steps, self.log_growth, self.max_gaps, bad, self.block_lanes, self.xq, self.xp,
-                          pr.spectrum - 1, self.x_growth, self.vectors_on, *self._sites)
+            self._advance_blocks(int(n_steps), bad)
         for j, lane in self._serial.items():
             bad[j] = self._advance_serial(j, lane, int(n_steps))
         newly = (bad >= 0) & (self.bad < 0)
@@ -515,6 +511,23 @@ class Batch:
         require(self.problem.spectrum == 1, "stop_vectors", self.problem.spectrum,
                 "a problem without Lyapunov spectrum vectors")
         self.vectors_on[np.asarray(lanes, dtype=np.int64)] = False
+
+    def _take_parameters(self, problem) -> None:
+        """The lanes' parameters the compiled engines read."""
+        self.inv_mass, self.bonds = problem.lane_parameters
+        self._sites = () if problem.site_parameters is None else (problem.site_parameters,)
+
+    def _serial_lane(self, j: int) -> tuple:
+        """What the single-trajectory engine reads of lane j."""
+        return self.problem.lane(j)
+
+    def _advance_blocks(self, n_steps: int, bad: np.ndarray) -> None:
+        """The first ``block_lanes`` lanes by n_steps on ``advance_batch``, their failures in ``bad``."""
+        pr = self.problem
+        advance_batch(self.model, self.q, self.p, self.dq, self.dp, self.inv_mass, self.bonds, self.scheme.kicks,
+                      self.scheme.drifts, pr.dt, n_steps, pr.tangent, pr.check_every, pr.track_gaps,
+                      self.gap_steps, self.log_growth, self.max_gaps, bad, self.block_lanes, self.xq, self.xp,
+                      pr.spectrum - 1, self.x_growth, self.vectors_on, *self._sites)
 
     def _advance_serial(self, j: int, lane: tuple, n_steps: int) -> int:
         """Lane j on the single-trajectory engine; returns its ``bad`` of this call."""

@@ -17,9 +17,14 @@ from functools import cached_property
 import numpy as np
 
 from chainchaos.engine.integrators import get_scheme
+from chainchaos.engine.split_schemes import get_split_scheme
 from chainchaos.errors import require
 from chainchaos.system.models import get_model, total_energy
 from chainchaos.system.models.base import LATTICES
+from chainchaos.system.models.split import norm
+
+#: The scheme of a bond model's problem that names none.
+DEFAULT_SCHEME = "SRKN6b"
 
 #: The engines a problem runs on (:meth:`Problem.engine`).
 ENGINES = ("auto", "batch", "single")
@@ -56,7 +61,8 @@ class Problem:
     chains : sequence of Chain or KGLattice
         One lattice per lane, all of the model's kind and of one N.
     integrator : str, optional
-        A splitting scheme of ``SCHEMES`` (default ``"SRKN6b"``).
+        A splitting scheme of ``SCHEMES`` for a bond model, of ``SPLIT_SCHEMES`` for a split
+        model (default None: ``"SRKN6b"``, or the split model's own ``integrator``).
     dt : float, optional
         Time step, in the model's time unit (default 5e-4).
     tangent : bool, optional
@@ -89,7 +95,7 @@ class Problem:
     model: object
     chains: tuple
     _: KW_ONLY
-    integrator: str = "SRKN6b"
+    integrator: str | None = None
     dt: float = 5e-4
     tangent: bool = True
     track_gaps: bool = False
@@ -101,7 +107,9 @@ class Problem:
     def __post_init__(self):
         object.__setattr__(self, "model", get_model(self.model))
         object.__setattr__(self, "chains", tuple(self.chains))
-        get_scheme(self.integrator)
+        if self.integrator is None:
+            object.__setattr__(self, "integrator", self.model.integrator if self.model.is_split else DEFAULT_SCHEME)
+        self.scheme
         require(len(self.chains) >= 1, "chains", len(self.chains), "at least one chain")
         wrong = sorted({type(c).__name__ for c in self.chains if getattr(c, "kind", None) != self.model.lattice})
         require(not wrong, "chains", wrong, f"for model {self.model.name!r}, {LATTICES[self.model.lattice]}")
@@ -168,8 +176,9 @@ class Problem:
 
     @property
     def scheme(self):
-        """The splitting scheme of ``integrator`` (an entry of ``SCHEMES``)."""
-        return get_scheme(self.integrator)
+        """The splitting scheme of ``integrator``: an entry of ``SCHEMES``, or of ``SPLIT_SCHEMES``
+        for a split model."""
+        return get_split_scheme(self.integrator) if self.model.is_split else get_scheme(self.integrator)
 
     @property
     def _span(self) -> slice:
@@ -177,7 +186,10 @@ class Problem:
 
     @cached_property
     def lane_parameters(self) -> tuple[np.ndarray, np.ndarray]:
-        """inv_mass (N, B) and the model's bond parameters (MAX_BOND_PARAMETERS, N+1, B), C-contiguous."""
+        """inv_mass (N, B) and the model's bond parameters (MAX_BOND_PARAMETERS, N+1, B), C-contiguous
+        (a bond model's: a split model has neither)."""
+        require(not self.model.is_split, "model", self.model.name, "a bond model (a split model has no masses and "
+                "bonds: its site_parameters are all its engines read)")
         lo, hi = self.sites or (0, self.chains[0].N)
         inv_mass = np.ascontiguousarray(np.stack([1.0 / c.mass[lo:hi] for c in self.chains], axis=1))
         bonds = np.ascontiguousarray(np.stack([self.model.bond_parameters(c)[:, lo:hi + 1] for c in self.chains],
@@ -188,7 +200,7 @@ class Problem:
     def site_parameters(self) -> np.ndarray | None:
         """The model's site parameters (MAX_SITE_PARAMETERS, N, B), C-contiguous, next to
         ``lane_parameters``; None for a model without a site law."""
-        if not self.model.has_site_law:
+        if not (self.model.has_site_law or self.model.is_split):
             return None
         return np.ascontiguousarray(np.stack([self.model.site_parameters(c)[:, self._span] for c in self.chains],
                                              axis=2))
@@ -252,6 +264,28 @@ class Problem:
                 "is that of its full states)")
         return np.array([float(total_energy(self.model, c, Q[j], P[j])) for j, c in enumerate(self.chains)])
 
+    def norms(self, Q: np.ndarray, P: np.ndarray) -> np.ndarray:
+        """The norm S = sum_l (q_l^2 + p_l^2)/2 of every lane's state (a split model's second
+        conserved quantity).
+
+        Parameters
+        ----------
+        Q, P : numpy.ndarray of shape (B, N)
+            The lanes' real canonical coordinates, lane first.
+
+        Returns
+        -------
+        numpy.ndarray of shape (B,)
+            The norm of every lane.
+
+        Raises
+        ------
+        ParameterError
+            For a bond model, which conserves no norm.
+        """
+        require(self.model.is_split, "model", self.model.name, "a split model (a bond model conserves no norm)")
+        return np.atleast_1d(norm(Q, P))
+
     def engine(self, q, p, dq=None, dp=None, kind: str = "auto", xq=None, xp=None):
         """The engine of this problem from the states q, p (and deviations dq, dp), each (N, B),
         and its ``extra_vectors`` deviation vectors xq, xp (K, N, B): ``kind`` "batch" (every
@@ -282,6 +316,7 @@ class Problem:
             For an unknown ``kind``, or "single" with extra deviation vectors.
         """
         from chainchaos.engine.batch import SERIAL_REMAINDER, Batch
+        from chainchaos.engine.split import SplitBatch
         from chainchaos.kernels.simd import LANES
 
         require(kind in ENGINES, "engine", kind, f"one of {ENGINES}")
@@ -290,4 +325,5 @@ class Problem:
         remainder = self.lanes % LANES
         serial = {"batch": 0, "single": self.lanes,
                   "auto": remainder if remainder <= SERIAL_REMAINDER and not self.extra_vectors else 0}[kind]
-        return Batch(self, q, p, dq, dp, serial_lanes=serial, xq=xq, xp=xp)
+        engine = SplitBatch if self.model.is_split else Batch
+        return engine(self, q, p, dq, dp, serial_lanes=serial, xq=xq, xp=xp)

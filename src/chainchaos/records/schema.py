@@ -37,9 +37,11 @@ def registries(own_models: bool = True) -> dict[str, list]:
     the schema."""
     from chainchaos.engine.integrators import SCHEMES
     from chainchaos.observe.registry import study_observables
-    from chainchaos.system.models import MODELS, PACKAGE_MODELS
+    from chainchaos.system.models import BOND_MODELS, PACKAGE_MODELS
 
-    models = list(MODELS) if own_models else list(PACKAGE_MODELS)
+    # the split models (DNLS) run from Python (Problem, sample); studies and the pipeline's
+    # configs do not take them yet
+    models = list(BOND_MODELS) if own_models else [m for m in PACKAGE_MODELS if m in BOND_MODELS]
     return {"models": models, "schemes": list(SCHEMES), "study_observables": study_observables()}
 
 

@@ -599,3 +599,125 @@ def kg_chain(seed: int, W: float, N: int) -> KGLattice:
     require(isinstance(N, (int, np.integer)) and N >= 2, "N", N, "an integer >= 2")
     eps = np.random.default_rng(int(seed)).uniform(0.5, 1.5, int(N))
     return KGLattice(eps, W, int(seed))
+
+
+# ---- the disordered DNLS lattice (models.dnls) ------------------------------------------------
+
+
+@dataclass(frozen=True)
+class DNLSLattice:
+    """A disordered discrete nonlinear Schroedinger (DNLS) lattice of N sites
+    (docs/conventions.md#dnls).
+
+    In real canonical coordinates psi_l = (q_l + i p_l) / sqrt(2):
+
+        H = sum_l [ eps_l (q_l^2 + p_l^2)/2 + beta (q_l^2 + p_l^2)^2 / 8 ]
+            - sum_l (q_l q_{l+1} + p_l p_{l+1}),
+
+    with fixed ends psi_0 = psi_{N+1} = 0; the norm S = sum_l (q_l^2 + p_l^2)/2 is conserved
+    with H. Made by :func:`dnls_chain`.
+
+    Parameters
+    ----------
+    eps : array_like of shape (N,)
+        On-site energies eps_l (finite), N >= 2.
+    W : float
+        Disorder strength (> 0): eps_l is drawn uniform in [-W/2, W/2].
+    beta : float, optional
+        Nonlinearity (finite, default 1); the linear lattice has beta = 0.
+    seed : int, optional
+        Seed of the draw (None: eps given, not drawn).
+
+    Attributes
+    ----------
+    N : int
+        Number of sites.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from chainchaos import DNLSLattice
+    >>> lattice = DNLSLattice(np.zeros(8), W=4.0, beta=0.72)   # an ordered DNLS chain of 8 sites
+    >>> lattice.N, lattice.beta
+    (8, 0.72)
+    """
+
+    kind: ClassVar[str] = "dnls"  # the lattice kind of the DNLS models (models.base.LATTICES)
+
+    eps: np.ndarray
+    W: float
+    beta: float = 1.0
+    seed: int | None = None
+
+    def __post_init__(self):
+        eps = np.ascontiguousarray(self.eps, dtype=float)
+        require(eps.ndim == 1 and eps.size >= 2, "N", eps.size, "N >= 2 sites")
+        require(bool(np.all(np.isfinite(eps))), "eps", eps.tolist(), "finite on-site energies")
+        require(isinstance(self.W, (int, float, np.floating)) and np.isfinite(self.W) and self.W > 0, "W", self.W,
+                "a finite disorder strength W > 0")
+        require(isinstance(self.beta, (int, float, np.floating)) and np.isfinite(self.beta), "beta", self.beta,
+                "a finite nonlinearity beta")
+        object.__setattr__(self, "eps", eps)
+        object.__setattr__(self, "W", float(self.W))
+        object.__setattr__(self, "beta", float(self.beta))
+
+    @property
+    def N(self) -> int:
+        """Number of sites."""
+        return self.eps.size
+
+    def with_k4_sign(self, sign: float) -> "DNLSLattice":
+        """The lattice itself (the FPUT quartic sign, which runs set on every chain, has no
+        meaning here).
+
+        Parameters
+        ----------
+        sign : float
+            Ignored.
+
+        Returns
+        -------
+        DNLSLattice
+            ``self``.
+        """
+        return self
+
+
+def dnls_chain(seed: int, W: float, N: int, beta: float = 1.0) -> DNLSLattice:
+    """The disordered DNLS lattice of disorder strength W drawn with ``seed``: eps_l =
+    default_rng(seed).uniform(-W/2, W/2, N), nonlinearity beta (docs/conventions.md#dnls).
+
+    Parameters
+    ----------
+    seed : int
+        Seed of ``numpy.random.default_rng``: the same seed gives the same lattice everywhere.
+    W : float
+        Disorder strength (> 0).
+    N : int
+        Number of sites (>= 2).
+    beta : float, optional
+        Nonlinearity (default 1).
+
+    Returns
+    -------
+    DNLSLattice
+        The lattice, in the DNLS Hamiltonian's units (hopping 1).
+
+    Raises
+    ------
+    ParameterError
+        For a negative or non-integer seed, N < 2, W not finite and > 0, or beta not finite.
+
+    Examples
+    --------
+    >>> from chainchaos import dnls_chain
+    >>> lattice = dnls_chain(seed=1, W=4.0, N=64, beta=0.72)
+    >>> lattice.N, bool(-2 <= lattice.eps.min() and lattice.eps.max() <= 2)
+    (64, True)
+    """
+    require(isinstance(seed, (int, np.integer)) and seed >= 0, "seed", seed, "an integer >= 0")
+    require(isinstance(N, (int, np.integer)) and N >= 2, "N", N, "an integer >= 2")
+    require(isinstance(W, (int, float, np.floating)) and np.isfinite(W) and W > 0, "W", W,
+            "a finite disorder strength W > 0")
+    eps = np.random.default_rng(int(seed)).uniform(-0.5 * W, 0.5 * W, int(N))
+    return DNLSLattice(eps, W, beta, int(seed))

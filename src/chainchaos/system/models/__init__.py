@@ -11,20 +11,27 @@ import numpy as np
 from numba import njit
 
 from chainchaos.errors import require
-from chainchaos.system.models import fput, harmonic, hertz, klein_gordon, toda
+from chainchaos.system.models import dnls, fput, harmonic, hertz, klein_gordon, toda
 from chainchaos.system.models.base import (MAX_BOND_PARAMETERS, MAX_SITE_PARAMETERS, Model, SiteLaw, add_site_energy,
                                            bond_force, bond_force_stiffness, bond_potential, check_sites,
                                            site_potential)
+from chainchaos.system.models.split import SplitModel, split_energy
 
-#: Every model, by name.
-MODELS: dict[str, Model] = {m.name: m for m in (
+#: Every model, by name: the bond models (``base.Model``) and the split ones (``split.SplitModel``).
+MODELS: dict[str, Model | SplitModel] = {m.name: m for m in (
     hertz.MODEL,
     fput.MODEL,
     harmonic.MODEL,
     toda.MODEL,
     klein_gordon.MODEL,
     klein_gordon.LINEAR_MODEL,
+    dnls.MODEL,
+    dnls.LINEAR_MODEL,
 )}
+
+#: The bond models (``base.Model``: H = T(p) + V(q), the kick-drift engines), beside the split
+#: ones (``split.SplitModel``).
+BOND_MODELS: dict[str, Model] = {name: m for name, m in MODELS.items() if not m.is_split}
 
 #: The models of bead chains (``chain.Chain``: their parameters come from the bead radii), the
 #: ones the granular studies, the CLI's chain files and the paper's pipeline run.
@@ -57,7 +64,7 @@ def require_free_name(model: Model) -> None:
 
 
 def add_to_registry(model: Model) -> None:
-    """Put ``model`` in :data:`MODELS` (and :data:`BEAD_MODELS`) under a free name
+    """Put ``model`` in :data:`MODELS` (and :data:`BOND_MODELS`, :data:`BEAD_MODELS`) under a free name
     (:func:`require_free_name`), unchecked: the checks come first
     (``chainchaos.engine.model_checks.add_model``).
 
@@ -73,6 +80,8 @@ def add_to_registry(model: Model) -> None:
     """
     require_free_name(model)
     MODELS[model.name] = model
+    if not model.is_split:
+        BOND_MODELS[model.name] = model
     if model.lattice == "beads":
         BEAD_MODELS[model.name] = model
 
@@ -82,20 +91,20 @@ def get_model(name) -> Model:
 
     Parameters
     ----------
-    name : str or Model
-        A name of :data:`MODELS`, or a Model.
+    name : str, Model or SplitModel
+        A name of :data:`MODELS`, or a model.
 
     Returns
     -------
-    Model
-        The registered model (or ``name`` itself, a Model).
+    Model or SplitModel
+        The registered model (or ``name`` itself, a model).
 
     Raises
     ------
     ParameterError
         For a name not in the registry (the message lists those that are).
     """
-    if isinstance(name, Model):
+    if isinstance(name, (Model, SplitModel)):
         return name
     require(name in MODELS, "model", name, f"one of {sorted(MODELS)}, or a model of your own added with "
                                            "chainchaos.add_model")
@@ -230,13 +239,13 @@ def energy_kernel(model, q, p, mass, bonds, V, sites=None):
 def total_energy(model, chain, u: np.ndarray, p: np.ndarray) -> np.ndarray:
     """H = sum_n p_n^2 / (2 m_n) + sum_b V_b (+ sum_n w_n with a site law), every bond counted in
     full, for one state or many (docs/conventions.md#hamiltonian); NumPy's sums (the initial state
-    is solved on it).
+    is solved on it). For a split model, its own H (``split.split_energy``).
 
     Parameters
     ----------
-    model : str or Model
+    model : str, Model or SplitModel
         The model.
-    chain : Chain or KGLattice
+    chain : Chain, KGLattice or DNLSLattice
         A lattice of the model's kind (its masses and parameters).
     u, p : numpy.ndarray of shape (..., N)
         Displacements and momenta, the site on the last axis.
@@ -247,6 +256,9 @@ def total_energy(model, chain, u: np.ndarray, p: np.ndarray) -> np.ndarray:
         The total energy H of every state, in the model's energy unit (a NumPy float for one
         state).
     """
+    model = get_model(model)
+    if model.is_split:
+        return split_energy(model, chain, u, p)
     kinetic = np.sum(p**2 / (2.0 * chain.mass), axis=-1)
     H = kinetic + bond_potential_energy(model, chain, u).sum(axis=-1)
     W = site_potential_energy(model, chain, u)
@@ -310,7 +322,7 @@ def open_bonds(model, chain, u: np.ndarray) -> np.ndarray:
 
 assert MAX_SITE_PARAMETERS == 2  # the site tuples of site_potentials and base.add_site_energy
 
-__all__ = ["BEAD_MODELS", "MAX_BOND_PARAMETERS", "MAX_SITE_PARAMETERS", "MODELS", "PACKAGE_MODELS", "Model", "SiteLaw",
+__all__ = ["BEAD_MODELS", "BOND_MODELS", "MAX_BOND_PARAMETERS", "MAX_SITE_PARAMETERS", "MODELS", "PACKAGE_MODELS", "Model", "SiteLaw",
            "add_to_registry", "bond_forces", "require_free_name",
            "bond_potential_energy", "bond_potentials", "energy_density", "energy_kernel", "get_model", "model_label",
            "open_bonds", "site_potential_energy", "site_potentials", "total_energy"]

@@ -33,6 +33,7 @@ import sys
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import ClassVar
 
 import numpy as np
 from numba import njit, types
@@ -166,6 +167,9 @@ class Model:
     lattice: str = "beads"  # what ``parameters`` read: a bead Chain ("beads") or a KGLattice ("kg")
     identity: str = field(init=False, repr=False, default="")  # name, kernels' modules and sources
 
+    #: A bond model is integrated by the kick-drift schemes (``models.split`` for the others).
+    is_split: ClassVar[bool] = False
+
     def __post_init__(self):
         require(0 < len(self.parameter_names) <= MAX_BOND_PARAMETERS, "parameter_names",
                 self.parameter_names, f"1 to {MAX_BOND_PARAMETERS} bond parameters")
@@ -244,6 +248,7 @@ class Model:
 LATTICES = {
     "beads": "a bead Chain: chainchaos.random_chain(seed, alpha, N), chain_from_radii(radii) or a chain file",
     "kg": "a KGLattice: chainchaos.kg_chain(seed, W, N)",
+    "dnls": "a DNLSLattice: chainchaos.dnls_chain(seed, W, N, beta)",
 }
 
 
