@@ -347,3 +347,27 @@ def test_same_bits_in_an_emulated_avx2_build():
                           cwd=ROOT, env=env, capture_output=True, text=True, timeout=900)
     assert done.returncode == 0, (done.stdout + done.stderr)[-4000:]
     assert " passed" in done.stdout and "failed" not in done.stdout
+
+
+def dnls_orbit():
+    """(q, p, ln|v|) at t = 100 of a DNLS orbit (dnls_chain(7, 4, 32, beta 2), norm 1 on site 16,
+    s9ABC6 at dt 0.05 with the tangent map) on the batch engine: its on-site rotations run
+    exactmath.sincos, so they, too, must give the same bits on every CPU."""
+    from chainchaos.engine.problem import Problem
+    from chainchaos.system.chain import dnls_chain
+
+    N = 32
+    q, p = np.zeros((N, 1)), np.zeros((N, 1))
+    q[15] = math.sqrt(2.0)
+    dq, dp = initial_deviation(N, 0)
+    engine = Problem("dnls", [dnls_chain(7, 4.0, N, beta=2.0)], dt=0.05).engine(q, p, dq[:, None], dp[:, None], "batch")
+    engine.advance(2000)
+    return engine.q[:, 0], engine.p[:, 0], float(engine.log_growth[0])
+
+
+def test_dnls_orbit_bit_for_bit():
+    q, p, log_growth = dnls_orbit()
+    assert (log_growth.hex(), digest_arrays({"q": q, "p": p})) == DNLS_ORBIT
+
+
+DNLS_ORBIT = ("0x1.17d170bb39131p+1", "bfe557fa862b22c8b97f53e5265da04a43b2f68318008c000e0aaf83e1085f60")
