@@ -143,3 +143,17 @@ def test_an_unknown_engine_kind_is_refused_by_name():
     problem, state = _problem(lanes=1)
     with pytest.raises(ParameterError, match="engine.*'gpu'.*auto"):
         driver.sample(problem, *state, [0, 1], kind="gpu")
+
+
+def test_the_energy_guard_stops_a_split_model_at_its_norm_error():
+    """The norm of a split model is guarded by the energy's rule: the lane named, the bound given."""
+    from types import SimpleNamespace
+
+    from chainchaos.errors import SimulationError
+    from chainchaos.run.driver import EnergyGuard
+
+    samples = SimpleNamespace(bad=np.array([-1]), times=np.array([0.0, 5.0]), energy_error=np.array([[0.0, 1e-9]]),
+                              norm_error=np.array([[0.0, 2e-3]]), problem=SimpleNamespace(dt=0.1))
+    EnergyGuard(["dnls_S1"], [1e-2])(samples, 1)
+    with pytest.raises(SimulationError, match="relative norm error"):
+        EnergyGuard(["dnls_S1"], [1e-3])(samples, 1)

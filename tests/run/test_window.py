@@ -3,8 +3,9 @@
 Exact: a problem restricted to the whole chain is the problem (bit for bit). Against the
 whole chain: a windowed run, started with the same deviation vector (on the excited site),
 equals the whole chain's run to less than the integrator's own error at that step (the
-difference between the runs at dt and dt/2), on the Klein-Gordon chain (a site law) and on the
-Hertz chain (bonds that open, gap counts too). Cost: on a long KG chain the window stays the
+difference between the runs at dt and dt/2), on the Klein-Gordon chain (a site law), on the
+Hertz chain (bonds that open, gap counts too) and on the DNLS chain (a split model, its window
+following the norm). Cost: on a long KG chain the window stays the
 packet's width, not N."""
 
 import numpy as np
@@ -15,12 +16,13 @@ from chainchaos.errors import ParameterError, StudyError
 from chainchaos.run.driver import sample, sample_steps
 from chainchaos.run.window import Window, WindowedEngine, restricted_deviation
 from chainchaos.studies.study.spec import load_study
-from chainchaos.system.chain import kg_chain, random_chain
+from chainchaos.system.chain import dnls_chain, kg_chain, random_chain
 from chainchaos.system.initial import Excitation, initial_deviation
 
 CASES = {  # model: chains, excited site, energy, variable, scheme, dt, t_final
     "kg": ([kg_chain(s, 4.0, 256) for s in range(4)], 128, 0.4, "momentum", "ABA864", 0.2, 1e3),
     "hertz": ([random_chain(s, 5.0, 300) for s in range(4)], 150, 1.8, "displacement", "SRKN6b", 0.01, 1e2),
+    "dnls": ([dnls_chain(s, 4.0, 256, beta=1.0) for s in range(4)], 128, 1.0, "displacement", "ABC4", 0.1, 1e3),
 }
 
 

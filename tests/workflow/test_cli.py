@@ -11,7 +11,7 @@ import pytest
 import xarray as xr
 
 from chainchaos import chain_from_radii, normal_modes, random_chain
-from chainchaos.observe.registry import ALIGNMENT, GAPS, OBSERVABLES, SPECTRUM, needing
+from chainchaos.observe.registry import ALIGNMENT, GAPS, NORM, OBSERVABLES, SPECTRUM, needing
 from chainchaos.records.io import read_chain
 from chainchaos.run.scenes import SceneParameters, model_observables
 from chainchaos.system.models import BEAD_MODELS
@@ -94,7 +94,7 @@ def test_default_observables_follow_the_model(model):
     indicators = needing(SPECTRUM) | needing(ALIGNMENT)  # costly: computed when asked for by name
     spreading = {"second_moment", "compactness", "edge_energy"}  # the studies' measures: asked for by name
     assert (set(OBSERVABLES) - set(params.observables)) == \
-        indicators | spreading | (set() if model == "hertz" else needing(GAPS))
+        indicators | spreading | needing(NORM) | (set() if model == "hertz" else needing(GAPS))
 
 
 @pytest.mark.parametrize("model", sorted(BEAD_MODELS))

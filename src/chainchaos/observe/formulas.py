@@ -52,6 +52,14 @@ def compactness(P: np.ndarray, m2: np.ndarray) -> np.ndarray:
         return P * P / m2
 
 
+def norm_density(q: np.ndarray, p: np.ndarray) -> np.ndarray:
+    """z_n = (q_n^2 + p_n^2) / sum_m (q_m^2 + p_m^2) = |psi_n|^2 / S, over the last axis: the
+    distribution whose spreading the DNLS literature measures (its energy density may be
+    negative)."""
+    x = q * q + p * p
+    return x / x.sum(axis=-1, keepdims=True)
+
+
 def deviation_vector_density(dq: np.ndarray, dp: np.ndarray) -> np.ndarray:
     """DVD w_n = (dq_n^2 + dp_n^2) / sum_m (dq_m^2 + dp_m^2) (the paper's Eq. 9)."""
     w = dq**2 + dp**2

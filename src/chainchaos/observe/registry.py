@@ -25,6 +25,8 @@ from chainchaos.system.linear import modal_energies, normal_modes, participation
 from chainchaos.system.models import energy_density, get_model, open_bonds
 
 TANGENT, GAPS, MODES = "tangent", "gaps", "modes"
+#: Need of the observables of a split model's second conserved quantity, the norm.
+NORM = "norm"
 #: Needs of the chaos indicators beyond the mLCE: deviation vectors kept orthonormal (the
 #: Lyapunov spectrum) or only normalised (SALI and GALI); both need the tangent map.
 SPECTRUM, ALIGNMENT = "spectrum", "alignment"
@@ -83,15 +85,18 @@ class SampledRun:
         ln GALI_k and SALI (NaN where not computed).
     gali_order : int, default 1
         k of GALI_k.
+    norm_error : numpy.ndarray of shape (S,), optional
+        Relative norm error of a split model (None for a bond model).
     """
 
     def __init__(self, model, chain, times, steps, Q, P, DQ, DP, log_growth, gap_steps, max_gaps, energy_error,
-                 deviation0, spectrum_growth=None, log_gali=None, sali=None, gali_order=1):
+                 deviation0, spectrum_growth=None, log_gali=None, sali=None, gali_order=1, norm_error=None):
         self.model, self.chain, self.times, self.steps = model, chain, times, steps
         self.Q, self.P, self.DQ, self.DP = Q, P, DQ, DP
         self.log_growth, self.gap_steps, self.max_gaps = log_growth, gap_steps, max_gaps
         self.energy_error, self.deviation0 = energy_error, deviation0
         self.spectrum_growth, self.log_gali, self.sali, self.gali_order = spectrum_growth, log_gali, sali, gali_order
+        self.norm_error = norm_error
 
     @cached_property
     def spectrum(self) -> np.ndarray:
@@ -102,6 +107,19 @@ class SampledRun:
     def energy_density(self) -> np.ndarray:
         """(S, N) normalised energy density h_n (``models.energy_density``)."""
         return energy_density(self.model, self.chain, self.Q, self.P)
+
+    @cached_property
+    def norm_density(self) -> np.ndarray:
+        """(S, N) normalised norm density z_n = |psi_n|^2 / S of a split model
+        (``obs.norm_density``)."""
+        return obs.norm_density(self.Q, self.P)
+
+    @cached_property
+    def density(self) -> np.ndarray:
+        """(S, N) the distribution whose spreading the packet observables measure: the norm
+        density of a split model (its energy density may be negative), the energy density of a
+        bond model."""
+        return self.norm_density if self.model.is_split else self.energy_density
 
     @cached_property
     def dvd(self) -> np.ndarray:
@@ -128,6 +146,12 @@ class SampledRun:
     def spectral_entropy(self) -> np.ndarray:
         """(S,) spectral entropy S = -sum v_k ln v_k of the mode energies."""
         return obs.spectral_entropy(self.mode_energy)
+
+
+def _density(run: SampledRun) -> dict:
+    """The attribute that says a packet observable of a split model is taken on its norm density
+    (none for a bond model's, on the energy density its long_name names)."""
+    return {"density": "norm density |psi_n|^2 / S"} if run.model.is_split else {}
 
 
 def _gap_fraction(run: SampledRun) -> np.ndarray:
@@ -198,20 +222,21 @@ REGISTRY: dict[str, Observable] = _registry(
     Observable(name="energy_density", dims=("time", "site"), long_name="normalised energy density h_n", label=r"$h_n$",
                compute=lambda run: run.energy_density),
     Observable(name="participation", dims=("time",), long_name="participation number P = 1/sum h_n^2", label=r"$P$",
-               compute=lambda run: participation_number(run.energy_density, axis=-1)),
+               compute=lambda run: participation_number(run.density, axis=-1), attrs=_density),
     Observable(name="energy_centre", dims=("time",), long_name="energy centre X = sum n h_n", label=r"$X$",
-               compute=lambda run: obs.energy_centre(run.energy_density)),
+               compute=lambda run: obs.energy_centre(run.density), attrs=_density),
     Observable(name="second_moment", dims=("time",),
                long_name="second moment m2 = sum_n (n - X)^2 h_n of the energy distribution", label=r"$m_2$",
-               compute=lambda run: obs.second_moment(run.energy_density), by_default=False),
+               compute=lambda run: obs.second_moment(run.density), attrs=_density, by_default=False),
     Observable(name="compactness", dims=("time",),
                long_name="compactness index zeta = P^2 / m2 of the energy distribution", label=r"$\zeta$",
-               compute=lambda run: obs.compactness(participation_number(run.energy_density, axis=-1),
-                                                   obs.second_moment(run.energy_density)),
-               by_default=False),
+               compute=lambda run: obs.compactness(participation_number(run.density, axis=-1),
+                                                   obs.second_moment(run.density)),
+               attrs=_density, by_default=False),
     Observable(name="edge_energy", dims=("time",),
                long_name=f"fraction of the energy within {obs.EDGE_MARGIN} sites of either end",
-               label=r"$E_{\rm edge}/H$", compute=lambda run: obs.edge_energy(run.energy_density), by_default=False),
+               label=r"$E_{\rm edge}/H$", compute=lambda run: obs.edge_energy(run.density), attrs=_density,
+               by_default=False),
     Observable(name="mlce", dims=("time",), long_name="finite-time maximum Lyapunov characteristic exponent Lambda(t)",
                label=r"$\Lambda$ [$\omega_{\max}$]",
                compute=lambda run: obs.finite_time_mlce(run.log_growth, run.times), needs=frozenset({TANGENT}),
@@ -274,6 +299,11 @@ REGISTRY: dict[str, Observable] = _registry(
                selectable=False),
     Observable(name="energy_error", dims=("time",), long_name="relative energy error |H(t) - H(0)| / H(0)",
                label=r"$|\Delta H| / H$", compute=lambda run: run.energy_error),
+    Observable(name="norm_density", dims=("time", "site"),
+               long_name="normalised norm density z_n = |psi_n|^2 / sum_m |psi_m|^2 (a split model's)",
+               label=r"$z_n$", compute=lambda run: run.norm_density, needs=frozenset({NORM})),
+    Observable(name="norm_error", dims=("time",), long_name="relative norm error |S(t) - S(0)| / S(0)",
+               label=r"$|\Delta S| / S$", compute=lambda run: run.norm_error, needs=frozenset({NORM})),
 )
 
 #: The observables a scene may ask for, in file order.
@@ -349,5 +379,9 @@ def model_observables(model: str) -> tuple:
     tuple of str
         Their names, in file order.
     """
-    gaps = frozenset() if get_model(model).has_gaps else needing(GAPS)
-    return tuple(o for o in OBSERVABLES if REGISTRY[o].by_default and o not in gaps)
+    model = get_model(model)
+    if model.is_split:  # the norm density replaces the energy density, which may be negative
+        left_out = needing(GAPS) | needing(MODES) | {"energy_density"}
+    else:
+        left_out = (frozenset() if model.has_gaps else needing(GAPS)) | needing(NORM)
+    return tuple(o for o in OBSERVABLES if REGISTRY[o].by_default and o not in left_out)

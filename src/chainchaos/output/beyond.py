@@ -120,7 +120,8 @@ def body(named: dict[str, xr.Dataset], figures: dict[str, list[str]], missing: t
            r"\centering\small", r"\fitwidth{" + beyond_table(named).rstrip() + "}", r"\end{table}"]
     out.append("Runs (the kept groups' job time, CPU or else wall): " + "; ".join(
         f"\\texttt{{{tex_text(name)}}} {ds.attrs['cost_s'] / 60:.0f} {ds.attrs['cost_kind']}-min, largest relative energy error "
-        f"${tex_scientific(float(ds['energy_error_max'].max()))}$" for name, ds in named.items()) + ".\n")
+        f"${tex_scientific(float(ds['energy_error_max'].max()))}$" + _norm_error(ds) for name, ds in named.items())
+               + ".\n")
     if missing:
         out.append("Not kept yet, so not shown: " + ", ".join(f"\\texttt{{{tex_text(m)}}}" for m in missing)
                    + " (\\texttt{snakemake --cores 2 keep --config keep=<name>}).\n")
@@ -133,6 +134,13 @@ def body(named: dict[str, xr.Dataset], figures: dict[str, list[str]], missing: t
                     (f"\\caption{{\\label{{fig:beyond-{study}-{figure}}}Study \\texttt{{{label}}}: its {figure} "
                      f"figure ({FIGURE_TEXT[figure]}).}}"), r"\end{figure}"]
     return "\n".join(out) + "\n"
+
+
+def _norm_error(ds: xr.Dataset) -> str:
+    """", largest relative norm error ..." of a split model's study (nothing for a bond model's)."""
+    if "norm_error_max" not in ds:
+        return ""
+    return f", largest relative norm error ${tex_scientific(float(ds['norm_error_max'].max()))}$"
 
 
 FIGURE_TEXT = {

@@ -32,17 +32,21 @@ CONSTRAINTS = {
 def registries(own_models: bool = True) -> dict[str, list]:
     """The names a key marked ``x-registry: <registry>`` in the schema may take: the models of
     ``chainchaos.system.models`` (with ``own_models``, those added in this process too; without,
-    the package's, as its documentation lists them) and the schemes of
+    the package's, as its documentation lists them; ``models`` the bond models the paper's
+    pipeline runs, ``study_models`` every model) and the schemes (``study_schemes`` with the split
+    models' three-part schemes) of
     ``chainchaos.engine.integrators``, so that a new model or scheme is allowed without an edit to
     the schema."""
     from chainchaos.engine.integrators import SCHEMES
+    from chainchaos.engine.split_schemes import SPLIT_SCHEMES
     from chainchaos.observe.registry import study_observables
-    from chainchaos.system.models import BOND_MODELS, PACKAGE_MODELS
+    from chainchaos.system.models import BOND_MODELS, MODELS, PACKAGE_MODELS
 
-    # the split models (DNLS) run from Python (Problem, sample); studies and the pipeline's
-    # configs do not take them yet
+    # the paper's pipeline (scenes, scans, numerics) runs bond models; a study runs any model
     models = list(BOND_MODELS) if own_models else [m for m in PACKAGE_MODELS if m in BOND_MODELS]
-    return {"models": models, "schemes": list(SCHEMES), "study_observables": study_observables()}
+    study_models = list(MODELS) if own_models else list(PACKAGE_MODELS)
+    return {"models": models, "study_models": study_models, "schemes": list(SCHEMES),
+            "study_schemes": list(SCHEMES) + list(SPLIT_SCHEMES), "study_observables": study_observables()}
 
 
 def _fill_registry_enums(node, names: dict[str, list]) -> None:

@@ -96,6 +96,8 @@ class Samples:
         Accumulated ln of the norms of the spectrum's vectors beyond the mLCE vector.
     log_gali, sali : numpy.ndarray of shape (B, S)
         ln GALI_k and SALI of the mLCE vector with the GALI vectors (NaN without them).
+    norm_error : numpy.ndarray of shape (B, S) or None
+        Relative norm error abs(S(t) - S0) / S0 of a split model (DNLS), None for a bond model.
     """
 
     problem: object
@@ -113,6 +115,7 @@ class Samples:
     extra_growth: np.ndarray
     log_gali: np.ndarray
     sali: np.ndarray
+    norm_error: np.ndarray | None = None
 
     @property
     def times(self) -> np.ndarray:
@@ -145,7 +148,7 @@ class Samples:
                           self.DQ[j], self.DP[j], self.log_growth[j], self.gap_steps[j], self.max_gaps[j],
                           self.energy_error[j], deviation0,
                           np.column_stack([self.log_growth[j], self.extra_growth[j]]), self.log_gali[j], self.sali[j],
-                          self.problem.gali)
+                          self.problem.gali, None if self.norm_error is None else self.norm_error[j])
 
 
 def _alignment(engine, samples: Samples, i: int, lanes) -> None:
@@ -225,7 +228,8 @@ def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq
                       gap_steps=np.zeros((B, S, N + 1), dtype=np.int64),
                       max_gaps=np.zeros((B, S), dtype=np.int64), energy_error=np.zeros((B, S)),
                       H0=np.zeros(B), bad=engine.bad, extra_growth=np.zeros((B, S, problem.spectrum - 1)),
-                      log_gali=np.full((B, S), np.nan), sali=np.full((B, S), np.nan))
+                      log_gali=np.full((B, S), np.nan), sali=np.full((B, S), np.nan),
+                      norm_error=np.zeros((B, S)) if problem.model.is_split else None)
     Q[:, 0], P[:, 0], DQ[:, 0], DP[:, 0] = engine.q.T, engine.p.T, engine.dq.T, engine.dp.T
     aligning = np.full(B, problem.gali > 1)
     if gali_stop is not None:
@@ -242,6 +246,7 @@ def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq
 
     alignment(0)
     samples.H0[:] = problem.energies(Q[:, 0], P[:, 0])
+    S0 = problem.norms(Q[:, 0], P[:, 0]) if problem.model.is_split else None
     if problem.track_gaps:
         samples.max_gaps[:, 0] = [open_bonds(problem.model, c, Q[j, 0]).sum() for j, c in enumerate(problem.chains)]
     for monitor in monitors:
@@ -257,6 +262,8 @@ def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq
         samples.max_gaps[:, i] = engine.max_gaps
         with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
             samples.energy_error[:, i] = np.abs(problem.energies(Q[:, i], P[:, i]) - samples.H0) / np.abs(samples.H0)
+            if S0 is not None:
+                samples.norm_error[:, i] = np.abs(problem.norms(Q[:, i], P[:, i]) - S0) / S0
         for monitor in monitors:
             monitor(samples, i)
     return samples
@@ -264,7 +271,8 @@ def sample(problem, q0, p0, dq0, dp0, steps, monitors=(), kind: str = "auto", xq
 
 class EnergyGuard:
     """A monitor that stops the run with SimulationError, naming the lane, at a non-finite state or
-    at a relative energy error above the lane's limit (docs/conventions.md#guards).
+    at a relative energy error above the lane's limit, or a relative norm error above it for a
+    split model (docs/conventions.md#guards).
 
     Called as ``guard(samples, i)`` after sample i (a monitor of :func:`sample`).
 
@@ -293,6 +301,9 @@ class EnergyGuard:
         for j, (name, limit) in enumerate(zip(self.names, self.limits)):
             if not samples.energy_error[j, i] <= limit:
                 raise SimulationError(name, samples.times[i], "relative energy error", samples.energy_error[j, i],
+                                      f"{limit:g}")
+            if samples.norm_error is not None and not samples.norm_error[j, i] <= limit:
+                raise SimulationError(name, samples.times[i], "relative norm error", samples.norm_error[j, i],
                                       f"{limit:g}")
 
 

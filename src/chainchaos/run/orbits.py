@@ -170,6 +170,8 @@ def _decades(progress, before: int, batch: int, total: int):
 def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, gali_stop, wanted,
                      window, monitors=()) -> list[dict]:
     model = get_model(name)
+    if model.is_split:  # its second conserved quantity, recorded and judged as the energy
+        wanted = {**wanted, "norm_error": np.inf}
     problem = settings.problem(model, [o.chain for o in orbits], tangent=True, track_gaps=model.has_gaps,
                                spectrum=settings.spectrum, alignment=settings.alignment)
     N, B, K = problem.N, problem.lanes, problem.extra_vectors
@@ -202,7 +204,8 @@ def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, ga
             "u0": float(u0s[j]),
             "max_gaps": int(run.max_gaps.max()) if model.has_gaps else -1,
             "valid": bool(ok0[j] and samples.bad[j] < 0
-                          and np.all(series["energy_error"] <= settings.max_energy_error)),
+                          and np.all(series["energy_error"] <= settings.max_energy_error)
+                          and np.all(series.get("norm_error", 0.0) <= settings.max_energy_error)),
         })
     return out
 

@@ -17,6 +17,7 @@ from chainchaos.errors import require, require_finite_positive
 from chainchaos.observe.registry import (
     ALIGNMENT,
     GAPS,
+    NORM,
     OBSERVABLES,
     SPECTRUM,
     TANGENT,
@@ -101,6 +102,10 @@ class SceneParameters(RunSettings):
             gaps = sorted(needing(GAPS) & set(self.observables))
             require(not gaps, "observables", gaps,
                     f"gap observables only with a model whose bonds open: {[m for m in MODELS if MODELS[m].has_gaps]}")
+        if not get_model(self.model).is_split:
+            norm = sorted(needing(NORM) & set(self.observables))
+            require(not norm, "observables", norm,
+                    f"norm observables only with a split model: {[m for m in MODELS if MODELS[m].is_split]}")
         self.observables = tuple(o for o in OBSERVABLES if o in set(self.observables) | {"energy_error"})
         if not self.name:
             self.name = f"{self.model}_H{self.energy:g}"

@@ -10,7 +10,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from chainchaos.engine.integrators import get_scheme
+from chainchaos.engine.integrators import SCHEMES
+from chainchaos.engine.split_schemes import SPLIT_SCHEMES
 from chainchaos.engine.problem import Problem, check_step
 from chainchaos.errors import require, require_finite_positive
 from chainchaos.run.driver import sample_steps
@@ -35,7 +36,8 @@ class RunSettings:
     dt : float
         Time step (> 0, at most ``t_final``).
     integrator : str, optional
-        A splitting scheme of ``SCHEMES`` (default ``"SRKN6b"``).
+        A splitting scheme of ``SCHEMES``, or of ``SPLIT_SCHEMES`` for a split model (default
+        ``"SRKN6b"``; the problem refuses a scheme of the other kind).
     samples_per_decade : int, optional
         Log-spaced samples per decade of time (default 40).
     t_first_sample : float, optional
@@ -67,7 +69,8 @@ class RunSettings:
     gali_order: int = 2  # k of GALI_k where an observable needs SALI or GALI
 
     def __post_init__(self):
-        get_scheme(self.integrator)
+        require(self.integrator in SCHEMES or self.integrator in SPLIT_SCHEMES, "integrator", self.integrator,
+                f"one of {sorted(SCHEMES)}, or for a split model (DNLS) one of {sorted(SPLIT_SCHEMES)}")
         require_finite_positive(self, "t_final", "t_first_sample", "max_energy_error")
         check_step(self.dt, self.t_final)
         require(self.k4_sign in (1, -1), "k4_sign", self.k4_sign, "+1 (paper) or -1 (Taylor expansion)")

@@ -77,7 +77,10 @@ def restricted_deviation(dq: np.ndarray, dp: np.ndarray, lo: int, hi: int) -> tu
 
 def site_weights(problem, q, p, dq, dp) -> tuple[np.ndarray, np.ndarray]:
     """Per site and lane of a (windowed) problem, (n, B) each: the energy
-    H_n = p_n^2/(2 m_n) + (V_n + V_{n+1})/2 (+ w_n) and the deviation vector's dq_n^2 + dp_n^2."""
+    H_n = p_n^2/(2 m_n) + (V_n + V_{n+1})/2 (+ w_n) (a split model's norm (q_n^2 + p_n^2)/2: its
+    energy density may be negative) and the deviation vector's dq_n^2 + dp_n^2."""
+    if problem.model.is_split:
+        return 0.5 * (q * q + p * p), dq * dq + dp * dp
     inv_mass, bonds = problem.lane_parameters
     n, B = q.shape
     H = 0.5 * p * p * inv_mass

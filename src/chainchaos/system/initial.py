@@ -9,7 +9,7 @@ import numpy as np
 
 from chainchaos.errors import ParameterError, require
 from chainchaos.kernels.exactmath import gram_schmidt, norm
-from chainchaos.system.models import total_energy
+from chainchaos.system.models import get_model, total_energy
 
 U0_LIMIT = 1e6
 
@@ -70,14 +70,18 @@ def initial_state(model: int, chain, energy: float, site: int) -> tuple[np.ndarr
     return u, np.zeros(chain.N), u0
 
 
-#: What an :class:`Excitation` may excite, and in which variable.
+#: What an :class:`Excitation` may excite, in which variable, and the phases of a block.
 EXCITATION_KINDS = ("site", "mode", "block")
 EXCITATION_VARIABLES = ("displacement", "momentum")
+EXCITATION_PHASES = ("alternating", "random")
+#: The stream of ``numpy.random.default_rng([seed, PHASE_STREAM])`` a block's random phases come from.
+PHASE_STREAM = 3
 
 
 @dataclass(frozen=True)
 class Excitation:
-    """A localized initial state of total energy H, everything else at rest.
+    """A localized initial state of total energy H (of norm S for a split model), everything else
+    at rest.
 
     ``kind``: ``site`` (bead ``site`` alone), ``mode`` (linear mode ``mode``, 1-based by increasing
     frequency, its shape U_k of ``linear.normal_modes``), or ``block`` (``width`` beads centred on
@@ -87,7 +91,15 @@ class Excitation:
     of the block gets the same kinetic energy). The amplitude a > 0 is fixed by H(a pattern) =
     energy: in momentum exactly, a = sqrt(2 H / sum_n s_n^2 / m_n); in displacement by the
     root-finder of :func:`initial_displacement`, which the paper's single displaced bead (kind
-    ``site``, ``displacement``) gives to the bit.
+    ``site``, ``displacement``) gives to the bit. ``phases`` ``random`` gives a block random
+    signs instead (a bond model) from ``default_rng([seed, PHASE_STREAM])``.
+
+    A split model (DNLS) takes the amount as the norm S: a site psi_site = sqrt(S) (q = sqrt(2 S),
+    p = 0); a block of ``width`` sites the norm density S / width on each, psi_l = sqrt(S / width)
+    exp(i phi_l) with phases phi_l alternating 0, pi, 0, ... or (``random``) uniform in [0, 2 pi)
+    from the same generator (their cosine and sine from ``exactmath.sin_cos``: the same bits
+    everywhere); ``variable`` does not apply, and a mode is not offered (its shape would need the
+    DNLS eigenvectors).
     """
 
     kind: str = "site"
@@ -95,11 +107,17 @@ class Excitation:
     site: int = 1
     mode: int = 1
     width: int = 1
+    phases: str = "alternating"
+    seed: int = 0
 
     def __post_init__(self):
         require(self.kind in EXCITATION_KINDS, "excitation kind", self.kind, f"one of {list(EXCITATION_KINDS)}")
         require(self.variable in EXCITATION_VARIABLES, "excitation variable", self.variable,
                 f"one of {list(EXCITATION_VARIABLES)}")
+        require(self.phases in EXCITATION_PHASES, "excitation phases", self.phases,
+                f"one of {list(EXCITATION_PHASES)}")
+        require(isinstance(self.seed, (int, np.integer)) and self.seed >= 0, "excitation seed", self.seed,
+                "an integer >= 0")
         for key in ("site", "mode", "width"):
             value = getattr(self, key)
             require(isinstance(value, (int, np.integer)) and value >= 1, f"excitation {key}", value,
@@ -134,12 +152,38 @@ class Excitation:
         s = np.zeros(chain.N)
         first, last = self.beads()
         signs = np.where(np.arange(last - first + 1) % 2 == 0, 1.0, -1.0)
+        if self.phases == "random":
+            signs = np.where(self._generator().uniform(size=last - first + 1) < 0.5, 1.0, -1.0)
         s[first - 1:last] = signs * (np.sqrt(chain.mass[first - 1:last]) if self.variable == "momentum" else 1.0)
         return s
 
+    def _generator(self) -> np.random.Generator:
+        return np.random.default_rng([int(self.seed), PHASE_STREAM])
+
+    def split_state(self, chain, norm: float) -> tuple[np.ndarray, np.ndarray, float]:
+        """(q, p, a) of a split model's lattice: norm S = ``norm`` on the site or block, a = its
+        amplitude sqrt(2 S / width) in q, p (the class docstring)."""
+        require(self.kind != "mode", "excitation kind", self.kind, "site or block for a split model (DNLS)")
+        self.check(chain.N)
+        first, last = self.beads()
+        width = last - first + 1
+        a = math.sqrt(2.0 * norm / width)
+        q, p = np.zeros(chain.N), np.zeros(chain.N)
+        if self.phases == "random":
+            from chainchaos.kernels.exactmath import sin_cos
+
+            sine, cosine = sin_cos(self._generator().uniform(0.0, 2.0 * math.pi, width))
+            q[first - 1:last], p[first - 1:last] = a * cosine, a * sine
+        else:
+            q[first - 1:last] = a * np.where(np.arange(width) % 2 == 0, 1.0, -1.0)
+        return q, p, a
+
     def state(self, model, chain, energy: float) -> tuple[np.ndarray, np.ndarray, float]:
-        """(u, p, a): the excited state with H = ``energy`` and its amplitude a."""
+        """(u, p, a): the excited state with H = ``energy`` (norm S = ``energy`` for a split
+        model) and its amplitude a."""
         require(np.isfinite(energy) and energy > 0, "energy", energy, "a finite energy > 0")
+        if get_model(model).is_split:
+            return self.split_state(chain, energy)
         s = self.pattern(chain)
         zeros = np.zeros(chain.N)
         if self.variable == "momentum":

@@ -186,6 +186,10 @@ def laws(merged: xr.Dataset, spec: dict, settings, N: int) -> xr.Dataset:
     error = merged["energy_error_max"].where(merged["valid"] == 1).max(dim=("realization", "lane"))
     data["energy_error_max"] = (("model", "energy"), error.values,
                                 {"units": "1", "long_name": "largest relative energy error of the valid orbits"})
+    if "norm_error" in merged:  # a split model's second conserved quantity, reported as the energy
+        norm = merged["norm_error"].max(dim="time").where(merged["valid"] == 1).max(dim=("realization", "lane"))
+        data["norm_error_max"] = (("model", "energy"), norm.values,
+                                  {"units": "1", "long_name": "largest relative norm error of the valid orbits"})
     ds = xr.Dataset(data, coords={"model": merged["model"], "energy": merged["energy"],
                                   "law": ("law", _strings([LAW_SERIES[f["series"]] for f in fits]),
                                           {"long_name": "the law, by the series it fits"})})

@@ -33,17 +33,19 @@ ORBIT_INDEX = {"model": "model of the bond law", "energy_index": "index of the o
 TIME_COMMENT = "nondimensional time, unit 1/omega_max of the homogeneous linear chain"
 KG_TIME_COMMENT = ("nondimensional time of the Klein-Gordon Hamiltonian H = sum p^2/2 + eps_l u^2/2 + u^4/4 + "
                    "(u_l+1 - u_l)^2/(2W) (masses 1), not 1/omega_max")
+DNLS_TIME_COMMENT = ("nondimensional time of the DNLS Hamiltonian H = sum eps_l |psi_l|^2 + beta |psi_l|^4 / 2 - "
+                     "(psi_l+1 psi_l^* + c.c.) (hopping 1), not 1/omega_max")
 
 
 def time_comment(study) -> str:
     """The unit of time of ``study``'s files: bead chains use 1/omega_max of the homogeneous
-    chain, Klein-Gordon lattices the time of their Hamiltonian."""
-    kinds = {MODELS[m].lattice == "kg" for m in study.models}
-    if kinds == {True}:
-        return KG_TIME_COMMENT
-    if kinds == {False}:
-        return TIME_COMMENT
-    return f"bead models: {TIME_COMMENT}; Klein-Gordon models: {KG_TIME_COMMENT}"
+    chain, Klein-Gordon and DNLS lattices the time of their Hamiltonian."""
+    comments = {"beads": TIME_COMMENT, "kg": KG_TIME_COMMENT, "dnls": DNLS_TIME_COMMENT}
+    kinds = [k for k in comments if any(MODELS[m].lattice == k for m in study.models)]
+    if len(kinds) == 1:
+        return comments[kinds[0]]
+    names = {"beads": "bead models", "kg": "Klein-Gordon models", "dnls": "DNLS models"}
+    return "; ".join(f"{names[k]}: {comments[k]}" for k in kinds)
 
 #: Version of the numbers a study group computes (kept groups record it, chainchaos.records.kept):
 #: bump only when a change of code changes them (a bit-identity test tells).
@@ -52,9 +54,20 @@ STUDY_RESULT_VERSION = 1
 _PRESENTATION = ("title", "extends", "figures", "compare_with", "laws")
 
 
+#: Keys added to the study schema after studies were first kept, with their defaults: a key at its
+#: default is left out of the numbers' key, so that a file kept before the key existed (whose
+#: numbers are those of the default) stays usable.
+ADDED_DEFAULTS = {("lattice", "beta"): 1.0, ("excitation", "phases"): "alternating"}
+
+
 def numbers_spec(study) -> dict:
-    """The keys of ``study`` its orbits' numbers depend on: all but those of its presentation."""
-    return {k: v for k, v in study.spec.items() if k not in _PRESENTATION}
+    """The keys of ``study`` its orbits' numbers depend on: all but those of its presentation,
+    and but the :data:`ADDED_DEFAULTS` at their defaults."""
+    spec = {k: dict(v) if isinstance(v, dict) else v for k, v in study.spec.items() if k not in _PRESENTATION}
+    for (block, key), default in ADDED_DEFAULTS.items():
+        if spec.get(block, {}).get(key, default) == default:
+            spec.get(block, {}).pop(key, None)
+    return spec
 
 
 def group_settings(study, group: int) -> dict:
@@ -70,8 +83,10 @@ def _fill(dtype: str):
 
 def kept_series(study) -> list[str]:
     """The series a study's files hold per orbit: the ones asked for, then those its verdicts
-    read, then the energy error."""
-    return list(dict.fromkeys([*study.observables, "participation", "log_growth", "energy_error"]))
+    read, then the energy error (and a split model's norm error)."""
+    split = any(MODELS[m].is_split for m in study.models)
+    return list(dict.fromkeys([*study.observables, "participation", "log_growth", "energy_error",
+                               *(["norm_error"] if split else [])]))
 
 
 def run_group(study, group: int, progress=None) -> xr.Dataset:

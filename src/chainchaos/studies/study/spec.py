@@ -20,7 +20,9 @@ from pathlib import Path
 
 import numpy as np
 
+from chainchaos.engine.integrators import SCHEMES
 from chainchaos.engine.model_checks import load_model
+from chainchaos.engine.split_schemes import SPLIT_SCHEMES
 from chainchaos.errors import ParameterError, StudyError
 from chainchaos.observe.registry import study_observables
 from chainchaos.project import project_root
@@ -31,7 +33,7 @@ from chainchaos.studies.study.orbits import (
     energy_grid,
     select_excitation,
 )
-from chainchaos.system.chain import kg_chain, random_chain
+from chainchaos.system.chain import dnls_chain, kg_chain, random_chain
 from chainchaos.system.initial import Excitation
 from chainchaos.system.models import BEAD_MODELS, MODELS
 
@@ -360,8 +362,16 @@ class Study:
         lattice = self.spec["lattice"]
         return [kg_chain(seed, float(lattice["W"]), int(lattice["N"])) for seed in self.seeds]
 
+    @cached_property
+    def dnls_lattices(self) -> list:
+        """One DNLS lattice per realization (disorder strength W, nonlinearity beta), in the order
+        of :attr:`seeds`."""
+        lattice = self.spec["lattice"]
+        return [dnls_chain(seed, float(lattice["W"]), int(lattice["N"]), float(lattice["beta"])) for seed in self.seeds]
+
     def lattices(self, model: str) -> list:
-        """The realizations ``model`` runs on: KG lattices for a KG model, else bead chains.
+        """The realizations ``model`` runs on: KG lattices for a KG model, DNLS lattices for a
+        DNLS model, else bead chains.
 
         Parameters
         ----------
@@ -370,10 +380,11 @@ class Study:
 
         Returns
         -------
-        list of Chain or KGLattice
+        list of Chain, KGLattice or DNLSLattice
             One lattice per realization, in the order of :attr:`seeds`.
         """
-        return self.kg_lattices if MODELS[model].lattice == "kg" else self.chains
+        kind = MODELS[model].lattice
+        return {"kg": self.kg_lattices, "dnls": self.dnls_lattices}[kind] if kind != "beads" else self.chains
 
     @property
     def N(self) -> int:
@@ -411,7 +422,7 @@ class Study:
         if self.selected:
             site = self.picks[realization]["site"]
         return Excitation(kind=e["kind"], variable=e["variable"], site=int(site), mode=int(e["mode"]),
-                          width=int(e["width"]))
+                          width=int(e["width"]), phases=e["phases"], seed=max(self.seeds[realization], 0))
 
     @property
     def series(self) -> dict:
@@ -442,6 +453,13 @@ class Study:
             for model in self.models:
                 if chain_file and MODELS[model].lattice != "beads":
                     raise ParameterError("model", model, f"a bead model with a chain file: {sorted(BEAD_MODELS)}")
+            split = SPLIT_SCHEMES if MODELS[self.models[0]].is_split else SCHEMES
+            integrator = self.spec["integration"].get("integrator", "SRKN6b")
+            if integrator not in split:
+                raise ParameterError("integrator", integrator, f"a scheme of the models' kind: one of {sorted(split)}")
+            if len({MODELS[m].is_split for m in self.models}) > 1:
+                raise ParameterError("model", self.models, "bond models only or split models only (their files hold "
+                                     "different series: a split model's norm error)")
 
         def observables():
             allowed = study_observables()
