@@ -23,7 +23,7 @@ from chainchaos.observe.registry import (
     variables,
 )
 from chainchaos.run.driver import sample, sample_steps
-from chainchaos.system.chain import kg_chain, random_chain
+from chainchaos.system.chain import dnls_chain, kg_chain, random_chain
 from chainchaos.system.models import MODELS, get_model
 
 
@@ -69,9 +69,10 @@ def warm_up(models=None) -> str:
     (``chainchaos.studies.numerics``) of ``models`` use (default: every registered model).
     Returns the cache directory. A model not warmed up here compiles in the first job that runs
     it."""
-    chains = {"beads": random_chain(0, 2.0, 4), "kg": kg_chain(0, 4.0, 4)}  # a lattice of each kind
+    chains = {"beads": random_chain(0, 2.0, 4), "kg": kg_chain(0, 4.0, 4), "dnls": dnls_chain(0, 4.0, 4)}
     for model in map(get_model, MODELS if models is None else models):
         chain = chains[model.lattice]
         _sampled_runs(model, chain)
-        _measured_runs(model, chain)
+        if not model.is_split:  # the measured runs of the numerics are the bond models'
+            _measured_runs(model, chain)
     return os.environ.get("NUMBA_CACHE_DIR", "")

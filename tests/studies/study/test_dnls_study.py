@@ -51,3 +51,11 @@ def test_the_kept_studies_are_keyed_by_todays_settings():
             path = kept_group_path(name, group)
             if path is not None and path.exists():
                 assert kept.why_not_usable(path, group_settings(study, group), STUDY_RESULT_VERSION, "remake") is None
+
+
+def test_the_kernels_of_a_split_model_are_warmed_up_for_the_workflow():
+    """compile_kernels (the workflow's warm-up) runs a split model's engines and observables (not
+    the numerics' measured runs, which are the bond models')."""
+    from chainchaos.run.warmup import warm_up
+
+    warm_up(["dnls"])

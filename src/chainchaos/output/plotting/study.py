@@ -17,7 +17,7 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.ticker import FixedLocator, NullLocator
 
-from chainchaos.output.plotting.style import PAGE_WIDTH, context, model_colour
+from chainchaos.output.plotting.style import PAGE_WIDTH, amount_symbol, context, model_colour, scene_label
 from chainchaos.system.models import model_label
 
 LOG_T = r"$\log_{10} t$"
@@ -56,7 +56,7 @@ def _mean_with_band(ax, x, stats, name, model, k, energy, label=True):
     q = stats[f"quantile_log10_{name}"].sel(model=model).isel(energy=k)
     colour = _energy_colour(k)
     ax.fill_between(x, q.sel(quantile=0.25).values, q.sel(quantile=0.75).values, color=colour, alpha=0.18, lw=0)
-    ax.plot(x, mean, color=colour, lw=1.0, label=f"$H = {energy:g}$" if label else None)
+    ax.plot(x, mean, color=colour, lw=1.0, label=f"${amount_symbol(model)} = {energy:g}$" if label else None)
 
 
 def spreading_figure(stats, title: str = ""):
@@ -127,7 +127,7 @@ def fractions_figure(stats, title: str = ""):
             ax.xaxis.set_minor_locator(NullLocator())
             ax.set_xticklabels([f"{e:g}" for e in E])
             ax.set_ylim(-0.05, 1.05)
-            ax.set_xlabel(r"$H$")
+            ax.set_xlabel(f"${amount_symbol(model)}$")
             ax.set_ylabel("fraction of realizations")
             ax.set_title(model_label(model))
         axes[0, 0].legend(fontsize="small", title="Wilson 95% bands", title_fontsize="small")
@@ -151,7 +151,7 @@ def comparison_figure(named_stats: dict, title: str = ""):
                     kw = {"color": model_colour(model), "ls": STUDY_STYLES[s % len(STUDY_STYLES)], "lw": 0.9,
                           "alpha": 0.45 + 0.55 * (k + 1) / n}
                     for i, (ax, (variable, _)) in enumerate(zip(axes, series)):
-                        label = f"{name}: {model_label(model)}, $H = {energy:g}$" if i == 0 else None
+                        label = f"{name}: {scene_label(model, energy)}" if i == 0 else None
                         ax.plot(x, stats[f"mean_log10_{variable}"].sel(model=model).isel(energy=k).values,
                                 label=label, **kw)
         for ax, (_, ylabel) in zip(axes, series):

@@ -166,9 +166,14 @@ def model_colour(model: str) -> str:
     return get_model(model).colour
 
 
+def amount_symbol(model: str) -> str:
+    """What an excitation of ``model`` is given by: its energy H, or the norm S of a split model."""
+    return "S" if get_model(model).is_split else "H"
+
+
 def scene_label(model: str, energy: float) -> str:
-    """E.g. ``Hertz, $H = 0.25$``."""
-    return f"{model_label(model)}, $H = {energy:g}$"
+    """E.g. ``Hertz, $H = 0.25$`` (``DNLS, $S = 21$``)."""
+    return f"{model_label(model)}, ${amount_symbol(model)} = {energy:g}$"
 
 
 def time_text(t: float) -> str:
