@@ -237,12 +237,12 @@ SINCOS_ACCURATE = 2.0**19 * 1.5707963267948966
 _ROUND = 6755399441055744.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _nearest_integer(y):
     return (y + _ROUND) - _ROUND
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def sincos(x):
     """(sin x, cos x) of a double, or lane by lane of a SIMD vector (``kernels.simd``), in + - *
     only: the same bits on every IEEE-754 machine and at every vector width, unlike the C
