@@ -152,3 +152,27 @@ def test_a_study_that_names_no_law_gets_a_laws_file_without_laws(tmp_path):
     assert ds.sizes["law"] == 0 and ds["energy_error_max"].item() == 1e-7
     back = xr.load_dataset(write_netcdf(ds, tmp_path / "laws.nc"))
     assert back.sizes["law"] == 0 and set(back.data_vars) == set(ds.data_vars)
+
+
+def test_the_local_derivative_of_a_crossover_and_its_band():
+    """m2 ~ t^(1/2) up to t = 1e3, then ~ t^(1/3): away from the kink the local derivative is the
+    exponent; realizations differing by a constant factor give a band of zero width, noisy ones
+    a band around the mean's derivative; the largest value is 1/2, before the kink."""
+    from chainchaos.studies.study.laws import local_derivative
+
+    t = 10.0 ** np.arange(0, 6.01, 0.1)
+    law = np.where(t < 1e3, t**0.5, 1e3**0.5 * (t / 1e3) ** (1 / 3))
+    rng = np.random.default_rng(0)
+    shifted = law * 10.0 ** rng.uniform(-0.3, 0.3, (16, 1))
+    found = local_derivative(t, shifted, window_decades=1.0, t_min=1.0, bootstrap=200, seed=0)
+    early, late = (t > 3) & (t < 300), t > 3e3
+    np.testing.assert_allclose(found["slope"][early], 0.5, atol=1e-12)
+    np.testing.assert_allclose(found["slope"][late & np.isfinite(found["slope"])], 1 / 3, atol=1e-12)
+    np.testing.assert_allclose(found["upper"] - found["lower"], 0.0, atol=1e-12, equal_nan=True)
+    assert found["max"] == pytest.approx(0.5, abs=1e-12) and found["t_max"] < 1e3
+    noisy = shifted * 10.0 ** rng.normal(0, 0.05, shifted.shape)
+    band = local_derivative(t, noisy, window_decades=1.0, t_min=1.0, bootstrap=200, seed=0)
+    inside = np.isfinite(band["slope"])
+    assert np.all(band["lower"][inside] <= band["upper"][inside]) and np.nanmax(band["upper"] - band["lower"]) > 0.01
+    cut = local_derivative(t, shifted, window_decades=1.0, t_min=1.0, bootstrap=10, seed=0, t_walls=1e4)
+    assert np.all(np.isnan(cut["slope"][t >= 1e4]))

@@ -59,6 +59,25 @@ def _mean_with_band(ax, x, stats, name, model, k, energy, label=True):
     ax.plot(x, mean, color=colour, lw=1.0, label=f"${amount_symbol(model)} = {energy:g}$" if label else None)
 
 
+def _crossover(ax, x, stats, model) -> None:
+    """A crossover of <log10 m2> the study names (``laws.crossovers``): the bootstrap band of the
+    local derivative over realizations and the published slopes; nothing without one."""
+    if "crossover_slope" not in stats or "second_moment" not in stats["crossover"].values:
+        return
+    c = list(stats["crossover"].values).index("second_moment")
+    for k in range(stats.energy.size):
+        band = stats.sel(model=model).isel(energy=k, crossover=c)
+        lower, upper = band["crossover_lower"].values, band["crossover_upper"].values
+        on_grid = np.isfinite(lower) & np.isfinite(upper)  # the log-spaced samples the band is computed on
+        ax.fill_between(x[on_grid], lower[on_grid], upper[on_grid], color=_energy_colour(k), alpha=0.25, lw=0,
+                        label="95% band over realizations" if k == 0 else None)
+    for line in stats["crossover_lines"].isel(crossover=c).values:
+        ax.axhline(line, color="k", ls="--", lw=0.7)
+        ax.annotate(f"{line:.3g}", (1.0, line), xycoords=("axes fraction", "data"), fontsize="x-small",
+                    ha="right", va="bottom")
+    ax.legend(fontsize="x-small", loc="upper right")
+
+
 def spreading_figure(stats, title: str = ""):
     """<log10 m2>, <log10 P> and the running slope of <log10 m2> against log10 t, per model."""
     with context():
@@ -75,6 +94,7 @@ def spreading_figure(stats, title: str = ""):
             axes[1, c].set_ylabel(r"$\langle \log_{10} P \rangle$")
             axes[2, c].set_ylabel(r"$d\langle \log_{10} m_2\rangle / d\log_{10} t$")
             axes[2, c].axhline(0.0, color="k", lw=0.5)
+            _crossover(axes[2, c], x, stats, model)
             axes[2, c].set_xlabel(LOG_T)
         axes[0, 0].legend(fontsize="small", title="lines: mean; bands: quartiles", title_fontsize="small")
         _title(fig, title, len(models))

@@ -26,7 +26,16 @@ log10 t (Flach, Krimer & Skokos, PRL 102, 024101 (2009); Skokos, Gkolias & Flach
    cut is shorter than ``min_decades`` after ``t_min`` is not fitted (NaN): the chain is too short.
 
 Sums in index order and fdlibm's logarithms (``kernels.exactmath``): the same bits on every CPU.
+
+A crossover is not a power law (key ``laws.crossovers``, :func:`local_derivative`): the strong
+chaos of Laptyeva et al., EPL 91, 30001 (2010), where <log10 m2> grows as t^(1/2) and crosses over
+to t^(1/3), is read from the local derivative d<log10 m2>/d log10 t (the running slope of step 2)
+with its band over realizations (2.5 and 97.5 % over the same bootstrap resamples, at every
+sample), drawn against the published lines; its largest value after ``t_min`` and when it is
+reached are reported with the band there. No exponent is fitted.
 """
+
+import warnings
 
 import numpy as np
 import xarray as xr
@@ -120,6 +129,58 @@ def fit_law(t: np.ndarray, x: np.ndarray, *, window_decades: float, min_decades:
             "t_walls": t_walls}
 
 
+def local_derivative(t: np.ndarray, x: np.ndarray, *, window_decades: float, t_min: float, bootstrap: int,
+                     seed: int, t_walls: float = float("inf")) -> dict:
+    """The local derivative of <log10 x> against log10 t over the realizations ``x`` (realization,
+    time; NaN where one is left out), with its bootstrap band, and its largest value after
+    ``t_min`` (module docstring); samples from ``t_walls`` on are NaN.
+
+    Parameters
+    ----------
+    t : numpy.ndarray of shape (S,)
+        Sample times (the log-spaced grid).
+    x : numpy.ndarray of shape (R, S)
+        The series of every realization.
+    window_decades : float
+        Width of the running least-squares slope, in decades.
+    t_min : float
+        The largest value is sought from this time on.
+    bootstrap : int
+        Resamples of the realizations, with replacement.
+    seed : int
+        Seed of ``numpy.random.default_rng`` drawing them.
+    t_walls : float, optional
+        The first time the chain's ends are felt (default: never).
+
+    Returns
+    -------
+    dict
+        ``slope``, ``lower``, ``upper`` (S,): the derivative of the mean and the 2.5 / 97.5 %
+        quantiles of the resampled ones; ``max``, ``t_max``, ``max_lower``, ``max_upper``: its
+        largest value after t_min, when, and the band there (NaN without one); ``realizations``.
+    """
+    t = np.asarray(t, dtype=np.float64)
+    log_t = log10(t)
+    logs = log10(np.asarray(x, dtype=np.float64))
+    logs = logs[np.isfinite(logs).any(axis=1)]
+    cut = t >= t_walls
+    logs[:, cut] = np.nan
+    R = logs.shape[0]
+    slope = running_slope(log_t, ordered_mean(logs, axis=0)[0], window_decades)
+    rng = np.random.default_rng(seed)
+    draws = np.stack([running_slope(log_t, ordered_mean(logs[rng.integers(0, R, R)], axis=0)[0], window_decades)
+                      for _ in range(bootstrap)]) if R >= 2 else np.full((1, t.size), np.nan)
+    with warnings.catch_warnings():  # a sample without a finite resample (before t_min, after the walls): NaN
+        warnings.simplefilter("ignore", RuntimeWarning)
+        lower, upper = (np.nanquantile(draws, q, axis=0) for q in (0.025, 0.975))
+    slope[cut], lower[cut], upper[cut] = np.nan, np.nan, np.nan  # a running slope there reads samples before
+    after = np.flatnonzero((t >= t_min) & np.isfinite(slope))
+    k = int(after[np.argmax(slope[after])]) if after.size else -1
+    pick = (lambda a: float(a[k]) if k >= 0 else float("nan"))
+    return {"slope": slope, "lower": lower, "upper": upper, "max": pick(slope), "t_max": pick(t),
+            "max_lower": pick(lower), "max_upper": pick(upper), "realizations": R}
+
+
 FIELDS = {
     "exponent": ("f8", "least-squares slope of the realization mean of log10 {x} against log10 t over the fit window"),
     "lower": ("f8", "2.5% quantile of the exponent over bootstrap resamples of the realizations"),
@@ -129,6 +190,21 @@ FIELDS = {
     "settled": ("i1", "1 if the running slope stays within the band longer than the minimum window"),
     "realizations": ("i4", "valid realizations that enter every sample of the window"),
     "t_walls": ("f8", "first sample at which the chain's ends are felt (laws.walls); the run is cut there; inf: never"),
+}
+
+
+#: The local derivative's band of a crossover (``local_derivative``), per sample of the grid.
+CROSSOVER_BANDS = {
+    "slope": "local derivative d<log10 x>/d log10 t of the realization mean (running least-squares slope)",
+    "lower": "2.5% quantile of the local derivative over bootstrap resamples of the realizations",
+    "upper": "97.5% quantile of the local derivative over bootstrap resamples of the realizations",
+}
+#: Its largest value after laws.t_min, when, and the band there.
+CROSSOVER_PEAKS = {
+    "crossover_max": "largest local derivative after laws.t_min",
+    "crossover_t_max": "the time it is reached",
+    "crossover_max_lower": "2.5% quantile of the resampled derivatives at that time",
+    "crossover_max_upper": "97.5% quantile of the resampled derivatives at that time",
 }
 
 
@@ -166,6 +242,10 @@ def laws(merged: xr.Dataset, spec: dict, settings, N: int) -> xr.Dataset:
         return walls_time(t, np.where((values == 0).any(axis=0), -np.inf, mean), bound)  # log10 0 = -inf
 
     fraction = walls["participation_fraction"]
+    crossovers = block.get("crossovers", [])
+    C = len(crossovers)
+    band = {key: np.full((M, E, C, t.size), np.nan) for key in CROSSOVER_BANDS}
+    peak = {key: np.full((M, E, C), np.nan) for key in CROSSOVER_PEAKS}
     for m in range(M):
         for e in range(E):
             filled = wall("participation", None if fraction is None else fraction * N, m, e)
@@ -175,6 +255,14 @@ def laws(merged: xr.Dataset, spec: dict, settings, N: int) -> xr.Dataset:
                 found = fit_law(t, realizations(law_series(merged, fit["series"]), m, e), **keys, t_walls=cut)
                 for key in FIELDS:
                     out[key][m, e, k] = found[key]
+            for c, crossover in enumerate(crossovers):
+                cut = min(filled, tail) if crossover["series"] == "second_moment" else filled
+                found = local_derivative(t, realizations(merged[crossover["series"]], m, e), t_walls=cut,
+                                         **{k: keys[k] for k in ("window_decades", "t_min", "bootstrap", "seed")})
+                for key in CROSSOVER_BANDS:
+                    band[key][m, e, c] = found[key]
+                for key in CROSSOVER_PEAKS:
+                    peak[key][m, e, c] = found[key.removeprefix("crossover_")]
     data = {key: (("model", "energy", "law"), out[key], {"units": "1", "long_name": text.format(x="x")})
             for key, (_, text) in FIELDS.items()}
     data["expected"] = ("law", np.array([float(f["expected"]) for f in fits]),
@@ -190,9 +278,23 @@ def laws(merged: xr.Dataset, spec: dict, settings, N: int) -> xr.Dataset:
         norm = merged["norm_error"].max(dim="time").where(merged["valid"] == 1).max(dim=("realization", "lane"))
         data["norm_error_max"] = (("model", "energy"), norm.values,
                                   {"units": "1", "long_name": "largest relative norm error of the valid orbits"})
-    ds = xr.Dataset(data, coords={"model": merged["model"], "energy": merged["energy"],
-                                  "law": ("law", _strings([LAW_SERIES[f["series"]] for f in fits]),
-                                          {"long_name": "the law, by the series it fits"})})
+    if crossovers:
+        for key, text in CROSSOVER_BANDS.items():
+            data[f"crossover_{key}"] = (("model", "energy", "crossover", "grid_time"), band[key],
+                                        {"units": "1", "long_name": text})
+        for key, text in CROSSOVER_PEAKS.items():
+            data[key] = (("model", "energy", "crossover"), peak[key], {"units": "1", "long_name": text})
+        data["crossover_lines"] = (("crossover", "line"), np.array([c["lines"] for c in crossovers], dtype=float),
+                                   {"units": "1", "long_name": "the published slopes the derivative is drawn against"})
+        data["crossover_reference"] = ("crossover", _strings([str(c["reference"]) for c in crossovers]),
+                                       {"long_name": "where the crossover is published"})
+    coords = {"model": merged["model"], "energy": merged["energy"],
+              "law": ("law", _strings([LAW_SERIES[f["series"]] for f in fits]), {"long_name": "the law, by the series it fits"})}
+    if crossovers:
+        coords["crossover"] = ("crossover", _strings([c["series"] for c in crossovers]),
+                               {"long_name": "the series whose local derivative is read"})
+        coords["grid_time"] = ("grid_time", t, {"long_name": "the sample times of the log-spaced grid"})
+    ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(fit_rule=" ".join(__doc__.split("\n\n", 2)[2].split("\n\nSums")[0].split()),
                     **{f"fit_{k}": v for k, v in keys.items()},
                     **{f"walls_{k}": "none" if v is None else v for k, v in walls.items()})

@@ -478,7 +478,7 @@ class Study:
                                          "(add it, or name the figures the study draws)")
 
         def laws():
-            for fit in self.spec["laws"]["fits"]:
+            for fit in [*self.spec["laws"]["fits"], *self.spec["laws"]["crossovers"]]:
                 needed = "mlce" if fit["series"] == "abs_mlce" else fit["series"]
                 if needed not in self.observables:
                     raise ParameterError("series", fit["series"], f"a series of the observables {self.observables}")

@@ -73,9 +73,14 @@ def study_statistics(inputs, outputs, params, wildcards) -> None:
     groups = [xr.load_dataset(f) for f in inputs["groups"]]
     merged = merge_groups(study, groups)
     stats = statistics(merged, float(study.spec["criteria"]["slope_window_decades"]))
+    ds = laws(merged, study.spec, study.settings, study.N)
+    bands = [name for name in ds.data_vars if "grid_time" in ds[name].dims]  # a crossover's band: drawn with
+    if bands:  # the statistics, on their time axis
+        stats = stats.merge(ds[bands].rename(grid_time="time").reindex(time=stats["time"]))
+        stats["crossover_lines"] = ds["crossover_lines"]
+        ds = ds.drop_vars([*bands, "grid_time"])
     stats.attrs = {**merged.attrs, **stats.attrs, "title": f"{study.title}: ensemble statistics"}
     write_netcdf(stats, outputs["statistics"])
-    ds = laws(merged, study.spec, study.settings, study.N)
     # what the study's orbits cost: CPU time, or wall time where a group made before CPU time was kept
     cpu = all("cpu_time_s" in g.attrs for g in groups)
     ds.attrs.update(cost_s=float(sum(g.attrs["cpu_time_s" if cpu else "wall_time_s"] for g in groups)),
