@@ -93,6 +93,9 @@ class SceneParameters(RunSettings):
     def __post_init__(self):
         super().__post_init__()
         self.model = load_model(self.model).name
+        require(not get_model(self.model).is_split, "model", self.model,
+                f"a bond model for a scene, one of {sorted(m for m in MODELS if not MODELS[m].is_split)} (a split "
+                "model, DNLS, runs in studies and from Python: Problem, sample)")
         require_finite_positive(self, "energy")
         if self.observables is None:
             self.observables = model_observables(self.model)

@@ -181,7 +181,7 @@ def build_parser() -> argparse.ArgumentParser:
     from chainchaos.engine.integrators import SCHEMES
     from chainchaos.observe.registry import OBSERVABLES, model_observables
     from chainchaos.system.linear import CONVENTIONS
-    from chainchaos.system.models import MODELS
+    from chainchaos.system.models import BOND_MODELS
 
     package = __import__("chainchaos")
     parser = argparse.ArgumentParser(
@@ -226,7 +226,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", required=True, type=_output, help="output NetCDF file")
     p.set_defaults(func=_cmd_ensemble)
 
-    models = ", ".join(MODELS)
+    models = ", ".join(BOND_MODELS)
     scene = scene_defaults()
     p = sub.add_parser("simulate", help="integrate one scene of any model",
                        description="Integrate one scene (model, energy) and write its observables as NetCDF. "
@@ -272,7 +272,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_check_model)
 
     p = sub.add_parser("bench", help="nanoseconds per step of the kernel, with and without tangent dynamics")
-    p.add_argument("--model", choices=sorted(MODELS), default="hertz")
+    p.add_argument("--model", choices=sorted(BOND_MODELS), default="hertz")
     p.add_argument("--integrator", choices=sorted(SCHEMES), default="SRKN6b")
     p.add_argument("--N", type=_integer(2), default=40, help="number of beads (default 40)")
     p.add_argument("--steps", type=_integer(1), default=10000, help="steps per timing (default 10000)")
