@@ -62,3 +62,26 @@ def test_an_optional_part_without_files_switches_its_section_off(tmp_path):
     assert r"{beyond/kg_spreading.pdf}" in (tmp_path / "build" / "generated" / "beyond.tex").read_text()
     assert (tmp_path / "build" / "beyond" / "kg_spreading.pdf").exists()
     assert r"\numericsfalse" in (tmp_path / "build" / "generated" / "numerics.tex").read_text()
+
+
+def test_a_published_uncertainty_asks_for_overlapping_intervals():
+    """0.33 +- 0.02 against our [0.25, 0.30]: the intervals [0.31, 0.35] and [0.25, 0.30] do not
+    overlap; against [0.25, 0.32] they do, though 0.33 lies outside ours."""
+    apart, touching = _laws(0.25, 0.30, expected=0.33), _laws(0.25, 0.32, expected=0.33)
+    for ds in (apart, touching):
+        ds["uncertainty"] = ("law", [0.02])
+    assert not law_rows("s", apart)[0]["inside"] and law_rows("s", touching)[0]["inside"]
+    assert r"$0.33 \pm 0.02$ & yes" in body({"s": touching}, {})
+
+
+def test_a_crossover_row_gives_the_largest_local_derivative_and_its_band():
+    ds = _laws(0.25, 0.35)
+    ds = ds.assign_coords(crossover=["second_moment"])
+    for key, value in (("crossover_max", 0.52), ("crossover_t_max", 10 ** 3.5), ("crossover_max_lower", 0.47),
+                       ("crossover_max_upper", 0.56)):
+        ds[key] = (("model", "energy", "crossover"), np.full((1, 1, 1), value))
+    ds["crossover_lines"] = (("crossover", "line"), [[0.5, 1 / 3]])
+    ds["crossover_reference"] = ("crossover", np.array(["Laptyeva et al. 2010"], dtype=object))
+    text = body({"dnls_strong_chaos": ds}, {})
+    assert r"$0.520$ [$0.470$, $0.560$] & largest at $10^{3.5}$ & --- & $0.5$ $\to$ $0.333$ & yes" in text
+    assert "Laptyeva et al. 2010" in text

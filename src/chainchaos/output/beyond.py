@@ -3,7 +3,9 @@
 One row per (study, model, energy, law) of the studies' ``laws.nc`` files
 (``chainchaos.studies.study.laws``): the exponent fitted over its window, its 95% bootstrap
 interval over realizations, whether the window settled, the published exponent and whether it
-lies inside the interval. Every number comes from the files.
+lies inside the interval (where the publication gives an uncertainty, whether the two intervals
+overlap); and one per crossover: the largest local derivative, its band and when, beside the
+published slopes. Every number comes from the files.
 """
 
 import math
@@ -16,6 +18,11 @@ from chainchaos.records.formatting import tex_parameter, tex_scientific
 #: How a law's series reads in the table.
 SYMBOLS = {"second_moment": r"$\langle\log_{10} m_2\rangle$", "participation": r"$\langle\log_{10} P\rangle$",
            "mlce": r"$\langle\log_{10}\Lambda\rangle$", "abs_mlce": r"$\langle\log_{10}|\Lambda|\rangle$"}
+
+
+#: How a crossover's local derivative reads in the table.
+CROSSOVER_SYMBOLS = {"second_moment": r"$d\langle\log_{10} m_2\rangle/d\log_{10}t$",
+                     "participation": r"$d\langle\log_{10} P\rangle/d\log_{10}t$"}
 
 
 _TEX_SPECIAL = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "#": r"\#", "_": r"\_", "$": r"\$",
@@ -44,15 +51,40 @@ def law_rows(name: str, ds: xr.Dataset) -> list[dict]:
             for law in range(ds.sizes["law"]):
                 fit = ds.sel(model=model, energy=energy).isel(law=law)
                 lower, upper, expected = float(fit["lower"]), float(fit["upper"]), float(fit["expected"])
+                uncertainty = float(fit["uncertainty"]) if "uncertainty" in fit else math.nan
+                # a published interval: do the two overlap? a bare value: is it inside ours?
+                inside = (lower <= expected + uncertainty and expected - uncertainty <= upper
+                          if math.isfinite(uncertainty) else lower <= expected <= upper)
                 rows.append({
                     "study": name, "model": str(model), "energy": float(energy),
                     "series": str(fit["series"].values), "exponent": float(fit["exponent"]),
                     "lower": lower, "upper": upper, "t_start": float(fit["t_start"]), "t_end": float(fit["t_end"]),
                     "settled": bool(int(fit["settled"])), "realizations": int(fit["realizations"]),
                     "t_walls": float(fit["t_walls"]),
-                    "expected": expected, "reference": str(fit["reference"].values),
-                    "inside": lower <= expected <= upper,
+                    "expected": expected, "uncertainty": uncertainty, "reference": str(fit["reference"].values),
+                    "inside": inside,
                 })
+    return rows
+
+
+def crossover_rows(name: str, ds: xr.Dataset) -> list[dict]:
+    """The crossovers of one study's laws file (``laws.crossovers``): the largest local derivative,
+    its band and when, beside the published slopes; ``inside`` whether the first slope (the
+    strong-chaos 1/2) lies in the band there."""
+    rows = []
+    if "crossover_max" not in ds:
+        return rows
+    for model in ds["model"].values:
+        for energy in ds["energy"].values:
+            for c in range(ds.sizes["crossover"]):
+                found = ds.sel(model=model, energy=energy).isel(crossover=c)
+                lines = [float(x) for x in ds["crossover_lines"].isel(crossover=c).values]
+                lower, upper = float(found["crossover_max_lower"]), float(found["crossover_max_upper"])
+                rows.append({"study": name, "model": str(model), "energy": float(energy),
+                             "series": str(ds["crossover"].values[c]), "max": float(found["crossover_max"]),
+                             "lower": lower, "upper": upper, "t_max": float(found["crossover_t_max"]),
+                             "lines": lines, "reference": str(ds["crossover_reference"].values[c]),
+                             "inside": lower <= lines[0] <= upper})
     return rows
 
 
@@ -74,9 +106,18 @@ def beyond_table(named: dict[str, xr.Dataset]) -> str:
             else:
                 interval, window = "(run too short)", "---"
             window += walls
+            published = (f"${r['expected']:.3g} \\pm {r['uncertainty']:.2g}$" if math.isfinite(r["uncertainty"])
+                         else f"${r['expected']:.3g}$")
             lines.append(f"\\texttt{{{study}}} & {model}, {r['energy']:g} & {SYMBOLS[r['series']]} & "
                          f"{_number(r['exponent'])} {interval} & {window} & "
-                         f"{r['realizations']} & ${r['expected']:.3g}$ & {inside} \\\\")
+                         f"{r['realizations']} & {published} & {inside} \\\\")
+        for r in crossover_rows(name, ds):
+            band = f"[{_number(r['lower'])}, {_number(r['upper'])}]" if math.isfinite(r["lower"]) else "(no band)"
+            at = f"largest at {_decade(r['t_max'])}" if math.isfinite(r["t_max"]) else "---"
+            slopes = r" $\to$ ".join(f"${x:.3g}$" for x in r["lines"])
+            lines.append(f"\\texttt{{{tex_text(r['study'])}}} & {tex_text(r['model'])}, {r['energy']:g} & "
+                         f"{CROSSOVER_SYMBOLS[r['series']]} & {_number(r['max'])} {band} & {at} & --- & {slopes} & "
+                         f"{'yes' if r['inside'] else 'no'} \\\\")
     lines += [r"\hline", r"\end{tabular}"]
     return "\n".join(lines) + "\n"
 
@@ -101,7 +142,8 @@ def body(named: dict[str, xr.Dataset], figures: dict[str, list[str]], missing: t
     """The generated part of the section: the table of laws with its sources, each study's
     ``figures`` (study -> figure names, files ``beyond/<study>_<figure>.pdf``), and the studies
     of the configuration left out because they are not kept (``missing``)."""
-    sources = dict.fromkeys(r["reference"] for name, ds in named.items() for r in law_rows(name, ds))
+    sources = dict.fromkeys(r["reference"] for name, ds in named.items()
+                            for r in [*law_rows(name, ds), *crossover_rows(name, ds)])
     by_rule: dict[str, list[str]] = {}
     for name, ds in named.items():
         rule = (f"from $t = {ds.attrs['fit_t_min']:g}$, band ${ds.attrs['fit_band']:g}$ around the median running "
@@ -116,7 +158,10 @@ def body(named: dict[str, xr.Dataset], figures: dict[str, list[str]], missing: t
            r"$R$ the fewest in the window), with 95\,\% bootstrap intervals over realizations and the window "
            r"chosen by the running slope (Sec.~\ref{sec:beyond}; $^\dagger$: the slope has not settled, the window "
            r"is the minimum; $^\ddagger$: the run is cut where the chain's ends are felt, and a law left with less "
-           r"than the minimum window is not fitted), beside the published exponents. Rules: " + rules + ". Sources: " + "; ".join(tex_text(s) for s in sources) + ".}",
+           r"than the minimum window is not fitted), beside the published exponents; inside: the published "
+           r"exponent lies in our interval or, where the publication gives an uncertainty ($\pm$), the two intervals "
+           r"overlap; a crossover's row gives the largest local derivative with its band there and when, and whether "
+           r"the first published slope lies in that band. Rules: " + rules + ". Sources: " + "; ".join(tex_text(s) for s in sources) + ".}",
            r"\centering\small", r"\fitwidth{" + beyond_table(named).rstrip() + "}", r"\end{table}"]
     out.append("Runs (the kept groups' job time, CPU or else wall): " + "; ".join(
         f"\\texttt{{{tex_text(name)}}} {ds.attrs['cost_s'] / 60:.0f} {ds.attrs['cost_kind']}-min, largest relative energy error "

@@ -267,6 +267,9 @@ def laws(merged: xr.Dataset, spec: dict, settings, N: int) -> xr.Dataset:
             for key, (_, text) in FIELDS.items()}
     data["expected"] = ("law", np.array([float(f["expected"]) for f in fits]),
                         {"units": "1", "long_name": "the published exponent"})
+    if any("uncertainty" in f for f in fits):  # where a publication gives one
+        data["uncertainty"] = ("law", np.array([float(f.get("uncertainty", np.nan)) for f in fits]),
+                               {"units": "1", "long_name": "the published uncertainty (+-) of the exponent"})
     data["reference"] = ("law", _strings([str(f["reference"]) for f in fits]),
                          {"long_name": "where the published exponent is from"})
     data["series"] = ("law", _strings([f["series"] for f in fits]),
