@@ -85,3 +85,10 @@ def test_a_crossover_row_gives_the_largest_local_derivative_and_its_band():
     text = body({"dnls_strong_chaos": ds}, {})
     assert r"$0.520$ [$0.470$, $0.560$] & largest at $10^{3.5}$ & --- & $0.5$ $\to$ $0.333$ & yes" in text
     assert "Laptyeva et al. 2010" in text
+
+
+def test_a_self_trapped_law_is_not_read_as_a_spreading_law():
+    ds = _laws(0.25, 0.35)
+    ds["self_trapped"] = (("model", "energy", "law"), np.full((1, 1, 1), 0.75))
+    text = body({"s": ds}, {})
+    assert r"(self-trapped in 75\,\%: not a spreading law)" in text and "& ---" in text

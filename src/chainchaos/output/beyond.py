@@ -63,6 +63,7 @@ def law_rows(name: str, ds: xr.Dataset) -> list[dict]:
                     "t_walls": float(fit["t_walls"]),
                     "expected": expected, "uncertainty": uncertainty, "reference": str(fit["reference"].values),
                     "inside": inside,
+                    "self_trapped": float(fit["self_trapped"]) if "self_trapped" in fit else math.nan,
                 })
     return rows
 
@@ -106,6 +107,9 @@ def beyond_table(named: dict[str, xr.Dataset]) -> str:
             else:
                 interval, window = "(run too short)", "---"
             window += walls
+            if r["self_trapped"] > 0.5:  # most realizations keep most of the packet on one site
+                interval += f" (self-trapped in {100 * r['self_trapped']:.0f}\\,\\%: not a spreading law)"
+                inside = "---"
             published = (f"${r['expected']:.3g} \\pm {r['uncertainty']:.2g}$" if math.isfinite(r["uncertainty"])
                          else f"${r['expected']:.3g}$")
             lines.append(f"\\texttt{{{study}}} & {model}, {r['energy']:g} & {SYMBOLS[r['series']]} & "

@@ -59,3 +59,21 @@ def test_the_kernels_of_a_split_model_are_warmed_up_for_the_workflow():
     from chainchaos.run.warmup import warm_up
 
     warm_up(["dnls"])
+
+
+def test_a_self_trapped_packet_is_said_so_not_fitted_as_a_spreading_law():
+    """beta S = 12 on one site traps most of the norm there (FKS 2009's self-trapping); S = 1 does
+    not: the law of m2 records the fraction of realizations self-trapped over its window."""
+    from chainchaos.studies.study.laws import laws
+
+    spec = {"lattice": {"model": "dnls", "N": 64, "W": 4.0, "beta": 1.0, "realizations": 4},
+            "excitation": {"energies": [1.0, 12.0]},
+            "integration": {"integrator": "s9ABC6", "dt": 0.05, "t_final": 1000.0},
+            "observables": ["participation", "second_moment", "largest_share", "mlce"],
+            "laws": {"t_min": 10.0, "bootstrap": 100,
+                     "fits": [{"series": "second_moment", "expected": 1 / 3, "reference": "FKS 2009"},
+                              {"series": "mlce", "expected": -0.25, "reference": "Senyange et al. 2018"}]}}
+    study = load_study(spec)
+    found = laws(run_study(spec), study.spec, study.settings, study.N)["self_trapped"].sel(model="dnls")
+    assert found.isel(energy=0, law=0) == 0 and found.isel(energy=1, law=0) == 1
+    assert np.isnan(found.isel(law=1)).all()  # Lambda is not a spreading law

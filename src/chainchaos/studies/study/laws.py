@@ -33,7 +33,15 @@ to t^(1/3), is read from the local derivative d<log10 m2>/d log10 t (the running
 with its band over realizations (2.5 and 97.5 % over the same bootstrap resamples, at every
 sample), drawn against the published lines; its largest value after ``t_min`` and when it is
 reached are reported with the band there. No exponent is fitted.
+
+A self-trapped packet keeps most of the distribution on one site while a small part spreads: the
+exponent of its m2 or P is not a spreading law. Where a study keeps ``largest_share``, a law of
+m2 or P records the fraction of its realizations whose largest share on one site, averaged over
+the fit window, exceeds :data:`SELF_TRAPPED_SHARE` (``self_trapped``); the table says so.
 """
+
+#: The share of the distribution on one site above which a packet counts as self-trapped.
+SELF_TRAPPED_SHARE = 0.5
 
 import warnings
 
@@ -243,6 +251,8 @@ def laws(merged: xr.Dataset, spec: dict, settings, N: int) -> xr.Dataset:
 
     fraction = walls["participation_fraction"]
     crossovers = block.get("crossovers", [])
+    trapping = "largest_share" in merged
+    trapped = np.full((M, E, L), np.nan)
     C = len(crossovers)
     band = {key: np.full((M, E, C, t.size), np.nan) for key in CROSSOVER_BANDS}
     peak = {key: np.full((M, E, C), np.nan) for key in CROSSOVER_PEAKS}
@@ -255,6 +265,12 @@ def laws(merged: xr.Dataset, spec: dict, settings, N: int) -> xr.Dataset:
                 found = fit_law(t, realizations(law_series(merged, fit["series"]), m, e), **keys, t_walls=cut)
                 for key in FIELDS:
                     out[key][m, e, k] = found[key]
+                if trapping and fit["series"] in ("second_moment", "participation") and np.isfinite(found["t_start"]):
+                    share = realizations(merged["largest_share"], m, e)
+                    window = (t >= found["t_start"]) & (t <= found["t_end"])
+                    kept = np.isfinite(share[:, window]).all(axis=1)
+                    trapped[m, e, k] = np.mean(np.mean(share[kept][:, window], axis=1) > SELF_TRAPPED_SHARE) \
+                        if kept.any() else np.nan
             for c, crossover in enumerate(crossovers):
                 cut = min(filled, tail) if crossover["series"] == "second_moment" else filled
                 found = local_derivative(t, realizations(merged[crossover["series"]], m, e), t_walls=cut,
@@ -267,6 +283,10 @@ def laws(merged: xr.Dataset, spec: dict, settings, N: int) -> xr.Dataset:
             for key, (_, text) in FIELDS.items()}
     data["expected"] = ("law", np.array([float(f["expected"]) for f in fits]),
                         {"units": "1", "long_name": "the published exponent"})
+    if trapping:
+        data["self_trapped"] = (("model", "energy", "law"), trapped,
+                                {"units": "1", "long_name": "fraction of the realizations self-trapped over the fit "
+                                 f"window (largest share on one site > {SELF_TRAPPED_SHARE}; NaN: not a law of m2 or P)"})
     if any("uncertainty" in f for f in fits):  # where a publication gives one
         data["uncertainty"] = ("law", np.array([float(f.get("uncertainty", np.nan)) for f in fits]),
                                {"units": "1", "long_name": "the published uncertainty (+-) of the exponent"})
