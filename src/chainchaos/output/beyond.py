@@ -197,6 +197,6 @@ FIGURE_TEXT = {
                  r"quantile bands and running slopes",
     "chaos": r"$\langle\log_{10}\Lambda\rangle$ against $\log_{10} t$ with quantile bands and its running slope",
     "comparison": ("the ensemble means of the study beside those of the studies it compares with; a Klein--Gordon "
-                   "chain's times are in the units of its Hamiltonian, the bead chains' in $1/\\omega_{\\max}$"),
+                   "or DNLS chain's times are in the units of its Hamiltonian, the bead chains' in $1/\\omega_{\\max}$"),
     "fractions": "fractions chaotic and delocalized against the energy, Wilson 95\\,\\% bands",
 }

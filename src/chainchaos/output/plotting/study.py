@@ -18,9 +18,11 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FixedLocator, NullLocator
 
 from chainchaos.output.plotting.style import PAGE_WIDTH, amount_symbol, context, model_colour, scene_label
-from chainchaos.system.models import model_label
+from chainchaos.system.models import get_model, model_label
 
 LOG_T = r"$\log_{10} t$"
+#: Under the time axis of a figure whose models have different time units.
+TIME_UNITS_NOTE = "each model in its own time unit"
 ENERGY_COLOURS = ("#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02", "#a6761d", "#666666")
 STUDY_STYLES = ("-", "--", ":", "-.")
 #: The verdicts counted in the fractions figure: variable, label, colour, marker.
@@ -174,8 +176,9 @@ def comparison_figure(named_stats: dict, title: str = ""):
                         label = f"{name}: {scene_label(model, energy)}" if i == 0 else None
                         ax.plot(x, stats[f"mean_log10_{variable}"].sel(model=model).isel(energy=k).values,
                                 label=label, **kw)
+        kinds = {get_model(str(m)).lattice for stats in named_stats.values() for m in stats.model.values}
         for ax, (_, ylabel) in zip(axes, series):
-            ax.set_xlabel(LOG_T)
+            ax.set_xlabel(LOG_T if len(kinds) == 1 else LOG_T + "\n" + TIME_UNITS_NOTE)
             ax.set_ylabel(ylabel)
         fig.legend(loc="outside lower center", ncol=3, fontsize="x-small")  # below: it hides no curve
         _title(fig, title, 2)
