@@ -60,6 +60,14 @@ MAX_SITE_PARAMETERS = 2
 _BY_IDENTITY: dict[str, "Model"] = {}
 
 
+def site_parameter_array(rows, N: int) -> np.ndarray:
+    """The engines' (MAX_SITE_PARAMETERS, N) site parameters: ``rows`` (each of N values), then zeros."""
+    out = np.zeros((MAX_SITE_PARAMETERS, N))
+    for i, row in enumerate(rows):
+        out[i] = row
+    return out
+
+
 def _kernel_identity(name: str, kernels) -> str:
     """``name@modules:digest``: the modules that define ``kernels`` (Numba dispatchers or plain
     functions) and a SHA-256 of their source files. The Numba type of a model is named by it, so
@@ -231,13 +239,7 @@ class Model:
             Row i the site parameter ``site.parameter_names[i]`` of every site, the rows beyond
             the law's zero; None without a site law.
         """
-        if self.site is None:
-            return None
-        rows = self.site.parameters(chain)
-        out = np.zeros((MAX_SITE_PARAMETERS, chain.N))
-        for i, row in enumerate(rows):
-            out[i] = row
-        return out
+        return None if self.site is None else site_parameter_array(self.site.parameters(chain), chain.N)
 
     def __repr__(self) -> str:
         return f"Model({self.name})"

@@ -30,7 +30,14 @@ from numba import njit
 from numba.extending import overload, typeof_impl
 
 from chainchaos.errors import require
-from chainchaos.system.models.base import _BY_IDENTITY, LATTICES, MAX_SITE_PARAMETERS, ModelType, _kernel_identity
+from chainchaos.system.models.base import (
+    _BY_IDENTITY,
+    LATTICES,
+    MAX_SITE_PARAMETERS,
+    ModelType,
+    _kernel_identity,
+    site_parameter_array,
+)
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
@@ -109,10 +116,7 @@ class SplitModel:
         numpy.ndarray of shape (MAX_SITE_PARAMETERS, N)
             Row i the parameter ``parameter_names[i]`` of every site.
         """
-        out = np.zeros((MAX_SITE_PARAMETERS, lattice.N))
-        for i, row in enumerate(self.parameters(lattice)):
-            out[i] = row
-        return out
+        return site_parameter_array(self.parameters(lattice), lattice.N)
 
     def __repr__(self) -> str:
         return f"SplitModel({self.name})"
