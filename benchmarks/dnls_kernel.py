@@ -26,13 +26,12 @@ CPU, load, parameters, rows) unless ``--no-record``.
 import argparse
 import json
 import shlex
-import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
-from kernel_vs_c import BUILD, CFLAGS, HERE  # the same gcc flags and build folder
+from c_loops import compile_c, per_site, run_c, time_engine
+from kernel_vs_c import CFLAGS, HERE
 
 from chainchaos.engine.problem import Problem
 from chainchaos.engine.split_schemes import SPLIT_SCHEMES, get_split_scheme
@@ -46,13 +45,6 @@ DT, W, BETA, AMPLITUDE, CHECK_EVERY = 0.1, 4.0, 1.0, 0.3, 1000
 TITLE = "DNLS kernels: ns per site and step against a C loop"
 
 
-def compile_c() -> Path:
-    BUILD.mkdir(exist_ok=True)
-    exe = BUILD / "dnls_chain"
-    subprocess.run(["gcc", *CFLAGS, "-o", str(exe), str(SOURCE), "-lm"], check=True)
-    return exe
-
-
 def lattice(N: int):
     return dnls_chain(0, W, N, beta=BETA)
 
@@ -64,74 +56,30 @@ def start(N: int, B: int):
     return q, p, dq, dp
 
 
-def run_engine(N: int, kind: str, integrator: str, steps: int, tangent: bool, repeats: int):
-    """(best CPU seconds of ``steps`` steps, final state of lane 0) of one engine on one block
-    (``LANES`` trajectories for "batch", one for "single"), each repeat from the same state."""
-    B = LANES if kind == "batch" else 1
-    problem = Problem("dnls", [lattice(N)] * B, integrator=integrator, dt=DT, tangent=tangent,
-                      check_every=CHECK_EVERY)
-    state = start(N, B)
-    problem.engine(*state, kind=kind).advance(2)  # compilation or cache load, not timed
-    best, engine = np.inf, None
-    for _ in range(repeats):
-        engine = problem.engine(*state, kind=kind)
-        t0 = time.process_time()
-        engine.advance(steps)
-        best = min(best, time.process_time() - t0)
-    final = {key: getattr(engine, key)[:, 0].copy() for key in ("q", "p", "dq", "dp")}
-    return best, final
+def engine_run(args):
+    """``c_loops.per_site``'s engine: (ns per site and step per trajectory, final state of lane 0)."""
+    def run(N: int, kind: str, steps: int, tangent: bool):
+        B = LANES if kind == "batch" else 1
+        problem = Problem("dnls", [lattice(N)] * B, integrator=args.integrator, dt=DT, tangent=tangent,
+                          check_every=CHECK_EVERY)
+        seconds, final = time_engine(problem, start(N, B), kind, steps, args.repeats)
+        return 1e9 * seconds / (steps * N * B), final
+    return run
 
 
-def time_engine(N: int, kind: str, integrator: str, steps: int, tangent: bool, repeats: int) -> float:
-    """Best CPU ns per site and step per trajectory of one engine."""
-    seconds, _ = run_engine(N, kind, integrator, steps, tangent, repeats)
-    return 1e9 * seconds / (steps * N * (LANES if kind == "batch" else 1))
+def c_run(args, exe: Path):
+    """``c_loops.per_site``'s C loop: (ns per site and step, final state)."""
+    scheme = get_split_scheme(args.integrator)
 
-
-def run_c(exe: Path, N: int, integrator: str, steps: int, tangent: bool, repeats: int):
-    """(best ns per site and step, final state) of the C loop."""
-    scheme = get_split_scheme(integrator)
-    sites = MODEL.site_parameters(lattice(N))
-    q, p, dq, dp = (a[:, 0] for a in start(N, 1))
-    values = {"eps": sites[0], "beta": sites[1], "q": q, "p": p, "dq": dq, "dp": dp}
-    lines = [f"N {N}", f"steps {steps}", f"tangent {int(tangent)}", f"check_every {CHECK_EVERY}",
-             f"repeats {repeats}", f"dt {DT!r}", f"stages {scheme.stages}",
-             "parts " + " ".join(str(int(k)) for k in scheme.parts),
-             "coefficients " + " ".join(repr(float(c)) for c in scheme.coefficients)]
-    lines += [key + " " + " ".join(repr(float(v)) for v in a) for key, a in values.items()]
-    path = BUILD / f"dnls_input_{N}_{int(tangent)}.txt"
-    path.write_text("\n".join(lines) + "\n")
-    out = subprocess.run([str(exe), str(path)], check=True, capture_output=True, text=True).stdout
-    fields = {line.split()[0]: line.split()[1:] for line in out.splitlines()}
-    final = {key: np.array(fields[key], dtype=float) for key in ("q", "p", "dq", "dp")}
-    return float(fields["ns_per_step"][0]) / N, final
-
-
-def difference(a: dict, b: dict, tangent: bool) -> float:
-    keys = ("q", "p", "dq", "dp") if tangent else ("q", "p")
-    return max(float(np.max(np.abs(a[k] - b[k])) / np.max(np.abs(b[k]))) for k in keys)
-
-
-def per_site(args, exe) -> list[dict]:
-    rows = []
-    print("| N | tangent | single ns/site/step | batch ns/site/step per lane | C ns/site/step | "
-          "batch / C | single / C | C vs single: rel. diff. |")
-    print("|---:|---|---:|---:|---:|---:|---:|---:|")
-    for N in args.N:
-        steps = max(20, int(args.sites_steps / N))
-        for tangent in (True, False):
-            single = time_engine(N, "single", args.integrator, steps, tangent, args.repeats)
-            batch = time_engine(N, "batch", args.integrator, max(4, steps // LANES), tangent, args.repeats)
-            c, _ = run_c(exe, N, args.integrator, steps, tangent, args.repeats)
-            _, s_final = run_engine(N, "single", args.integrator, args.check_steps, tangent, 1)
-            _, c_final = run_c(exe, N, args.integrator, args.check_steps, tangent, 1)
-            diff = difference(s_final, c_final, tangent)
-            rows.append({"N": N, "tangent": tangent, "single_ns": round(single, 3), "batch_ns": round(batch, 3),
-                         "c_ns": round(c, 3), "batch_over_c": round(batch / c, 2), "single_over_c": round(single / c, 2),
-                         "difference": float(f"{diff:.1e}")})
-            print(f"| {N} | {'on' if tangent else 'off'} | {single:.2f} | {batch:.2f} | {c:.2f} | {batch / c:.2f} | "
-                  f"{single / c:.2f} | {diff:.1e} |", flush=True)
-    return rows
+    def run(N: int, steps: int, tangent: bool):
+        sites = MODEL.site_parameters(lattice(N))
+        q, p, dq, dp = (a[:, 0] for a in start(N, 1))
+        ns, final = run_c(exe, f"dnls_input_{N}_{int(tangent)}", {
+            "N": N, "steps": steps, "tangent": int(tangent), "check_every": CHECK_EVERY, "repeats": args.repeats,
+            "dt": DT, "stages": scheme.stages, "parts": np.asarray(scheme.parts, dtype=int),
+            "coefficients": scheme.coefficients, "eps": sites[0], "beta": sites[1], "q": q, "p": p, "dq": dq, "dp": dp})
+        return ns / N, final
+    return run
 
 
 COLUMNS = [("N", "N"), ("tangent", "tangent map"), ("single_ns", "single engine: ns per site and step"),
@@ -156,12 +104,12 @@ def parse(argv=None) -> argparse.Namespace:
 def main(argv=None) -> dict:
     """Print the table; return ``record.py``'s part of a record (title, parameters, columns, rows)."""
     args = parse(argv)
-    exe = compile_c()
+    exe = compile_c(SOURCE)
     print(machine_line())
     print(f"DNLS lattice W = {W}, beta = {BETA}, amplitude {AMPLITUDE}, {args.integrator} at dt = {DT}, "
           f"CPU time (time.process_time; C: CLOCK_PROCESS_CPUTIME_ID), best of {args.repeats}; batch: one "
           f"block of {LANES} trajectories; C: gcc {' '.join(CFLAGS)}\n")
-    rows = per_site(args, exe)
+    rows = per_site(args.N, args.sites_steps, args.check_steps, LANES, engine_run(args), c_run(args, exe))
     parameters = {"W": W, "beta": BETA, "amplitude": AMPLITUDE, "integrator": args.integrator, "dt": DT,
                   "check_every": CHECK_EVERY, "sites_steps": args.sites_steps, "repeats": args.repeats,
                   "check_steps": args.check_steps, "lanes": LANES, "cflags": " ".join(CFLAGS),

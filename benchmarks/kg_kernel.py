@@ -1,7 +1,7 @@
 """The Klein-Gordon kernels: ns per site and step against a C loop, memory, and the window's cost.
 
     python benchmarks/kg_kernel.py [--N 64 256 1024 4096] [--integrator ABA864] [--sites-steps 4e7]
-                                   [--repeats 3] [--memory-N 4096] [--spreading-t 1e4]
+                                   [--repeats 3] [--check-steps 1000] [--memory-N 4096] [--spreading-t 1e4]
 
 Three tables, after a line naming the machine:
 
@@ -11,8 +11,9 @@ Three tables, after a line naming the machine:
    ``LANES`` trajectories, per trajectory) and a hand-written C loop of the same scheme
    (``benchmarks/c_reference/kg_chain.c``, gcc -O3 -march=native, no -ffast-math), with and
    without the tangent map; best of ``--repeats`` timings of about ``--sites-steps`` site-steps
-   each, and the ratios to C. The C run's final state is checked against the single engine's
-   (relative difference printed; the operations are the same up to their order).
+   each, and the ratios to C. The C run's final state after ``--check-steps`` steps is checked
+   against the single engine's (relative difference printed; the operations are the same up to
+   their order).
 2. **Memory.** Peak resident memory (``ru_maxrss`` of a fresh process) of 64 realizations at
    N = ``--memory-N`` through ``orbits.integrate`` (the study's path: 20 samples per decade to
    t = 1e3, batches of 32 orbits), with and without the growing window.
@@ -30,7 +31,8 @@ import time
 from pathlib import Path
 
 import numpy as np
-from kernel_vs_c import BUILD, CFLAGS, HERE  # the same gcc flags and build folder
+from c_loops import compile_c, per_site, run_c, time_engine
+from kernel_vs_c import CFLAGS, HERE
 
 from chainchaos.engine.integrators import get_scheme
 from chainchaos.engine.problem import Problem
@@ -42,13 +44,6 @@ SOURCE = HERE / "c_reference" / "kg_chain.c"
 DT, W, CHECK_EVERY = 0.4, 4.0, 1000
 
 
-def compile_c() -> Path:
-    BUILD.mkdir(exist_ok=True)
-    exe = BUILD / "kg_chain"
-    subprocess.run(["gcc", *CFLAGS, "-o", str(exe), str(SOURCE), "-lm"], check=True)
-    return exe
-
-
 def start(N: int, B: int):
     """Random state of amplitude 0.1 and a deviation vector, the same on every lane."""
     rng = np.random.default_rng(1)
@@ -56,63 +51,34 @@ def start(N: int, B: int):
     return q, p, dq, dp
 
 
-def time_engine(N: int, kind: str, integrator: str, steps: int, tangent: bool, repeats: int):
-    """(best CPU ns per site and step per trajectory, final state of lane 0) of one engine."""
-    B = LANES if kind == "batch" else 1
-    problem = Problem("kg", [kg_chain(0, W, N)] * B, integrator=integrator, dt=DT, tangent=tangent,
-                      check_every=CHECK_EVERY)
-    state = start(N, B)
-    problem.engine(*state, kind=kind).advance(2)  # compilation or cache load, not timed
-    best, engine = np.inf, None
-    for _ in range(repeats):
-        engine = problem.engine(*state, kind=kind)
-        t0 = time.process_time()
-        engine.advance(steps)
-        best = min(best, time.process_time() - t0)
-    final = {key: getattr(engine, key)[:, 0] for key in ("q", "p", "dq", "dp")}
-    return 1e9 * best / (steps * N * B), final
+def engine_run(args):
+    """``c_loops.per_site``'s engine: (ns per site and step per trajectory, final state of lane 0)."""
+    def run(N: int, kind: str, steps: int, tangent: bool):
+        B = LANES if kind == "batch" else 1
+        problem = Problem("kg", [kg_chain(0, W, N)] * B, integrator=args.integrator, dt=DT, tangent=tangent,
+                          check_every=CHECK_EVERY)
+        seconds, final = time_engine(problem, start(N, B), kind, steps, args.repeats)
+        return 1e9 * seconds / (steps * N * B), final
+    return run
 
 
-def time_c(exe: Path, N: int, integrator: str, steps: int, tangent: bool, repeats: int):
-    lattice, scheme = kg_chain(0, W, N), get_scheme(integrator)
-    q, p, dq, dp = (a[:, 0] for a in start(N, 1))
-    values = {"K2": np.full(N + 1, lattice.K2), "eps": lattice.eps, "q": q, "p": p, "dq": dq, "dp": dp}
-    lines = [f"N {N}", f"steps {steps}", f"tangent {int(tangent)}", f"check_every {CHECK_EVERY}",
-             f"repeats {repeats}", f"dt {DT!r}", f"stages {len(scheme.drifts)}",
-             "kicks " + " ".join(repr(float(c)) for c in scheme.kicks),
-             "drifts " + " ".join(repr(float(d)) for d in scheme.drifts)]
-    lines += [key + " " + " ".join(repr(float(v)) for v in np.broadcast_to(a, a.shape)) for key, a in values.items()]
-    path = BUILD / f"kg_input_{N}_{int(tangent)}.txt"
-    path.write_text("\n".join(lines) + "\n")
-    out = subprocess.run([str(exe), str(path)], check=True, capture_output=True, text=True).stdout
-    fields = {line.split()[0]: line.split()[1:] for line in out.splitlines()}
-    final = {key: np.array(fields[key], dtype=float) for key in ("q", "p", "dq", "dp")}
-    return float(fields["ns_per_step"][0]) / N, final
+def c_run(args, exe: Path):
+    """``c_loops.per_site``'s C loop: (ns per site and step, final state)."""
+    scheme = get_scheme(args.integrator)
+
+    def run(N: int, steps: int, tangent: bool):
+        lattice = kg_chain(0, W, N)
+        q, p, dq, dp = (a[:, 0] for a in start(N, 1))
+        ns, final = run_c(exe, f"kg_input_{N}_{int(tangent)}", {
+            "N": N, "steps": steps, "tangent": int(tangent), "check_every": CHECK_EVERY, "repeats": args.repeats,
+            "dt": DT, "stages": len(scheme.drifts), "kicks": scheme.kicks, "drifts": scheme.drifts,
+            "K2": np.full(N + 1, lattice.K2), "eps": lattice.eps, "q": q, "p": p, "dq": dq, "dp": dp})
+        return ns / N, final
+    return run
 
 
-def difference(a: dict, b: dict, tangent: bool) -> float:
-    keys = ("q", "p", "dq", "dp") if tangent else ("q", "p")
-    return max(float(np.max(np.abs(a[k] - b[k])) / np.max(np.abs(b[k]))) for k in keys)
-
-
-def per_site(args, exe) -> list[dict]:
-    rows = []
-    print("| N | tangent | single ns/site/step | batch ns/site/step per lane | C ns/site/step | "
-          "batch / C | single / C | C vs single: rel. diff. |")
-    print("|---:|---|---:|---:|---:|---:|---:|---:|")
-    for N in args.N:
-        steps = max(20, int(args.sites_steps / N))
-        for tangent in (True, False):
-            single, s_final = time_engine(N, "single", args.integrator, steps, tangent, args.repeats)
-            batch, _ = time_engine(N, "batch", args.integrator, max(4, steps // LANES), tangent, args.repeats)
-            c, c_final = time_c(exe, N, args.integrator, steps, tangent, args.repeats)
-            diff = difference(s_final, c_final, tangent)
-            rows.append({"N": N, "tangent": tangent, "single_ns": round(single, 3), "batch_ns": round(batch, 3),
-                         "c_ns": round(c, 3), "batch_over_c": round(batch / c, 2), "single_over_c": round(single / c, 2),
-                         "difference": float(f"{diff:.1e}")})
-            print(f"| {N} | {'on' if tangent else 'off'} | {single:.2f} | {batch:.2f} | {c:.2f} | {batch / c:.2f} | "
-                  f"{single / c:.2f} | {diff:.1e} |", flush=True)
-    return rows
+def per_site_part(args, exe) -> list[dict]:
+    return per_site(args.N, args.sites_steps, args.check_steps, LANES, engine_run(args), c_run(args, exe))
 
 
 MEMORY_RUN = """
@@ -181,7 +147,7 @@ def spreading(args, exe=None) -> list[dict]:
     return rows
 
 
-PARTS = {"per_site": per_site, "memory": memory, "spreading": spreading}
+PARTS = {"per_site": per_site_part, "memory": memory, "spreading": spreading}
 
 
 def main(argv=None) -> dict:
@@ -190,11 +156,13 @@ def main(argv=None) -> dict:
     parser.add_argument("--integrator", default="ABA864")
     parser.add_argument("--sites-steps", type=float, default=4e7, help="site-steps per timed run")
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--check-steps", type=int, default=1000,
+                        help="steps of the runs whose final states are compared (default 1000)")
     parser.add_argument("--memory-N", type=int, default=4096)
     parser.add_argument("--spreading-t", type=float, default=1e4)
     parser.add_argument("--parts", nargs="+", choices=PARTS, default=list(PARTS))
     args = parser.parse_args(argv)
-    exe = compile_c()
+    exe = compile_c(SOURCE)
     print(machine_line())
     print(f"KG lattice W = {W}, {args.integrator} at dt = {DT}, CPU time (time.process_time), best of "
           f"{args.repeats}; batch: one block of {LANES} trajectories; C: gcc {' '.join(CFLAGS)}\n")
