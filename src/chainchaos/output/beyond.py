@@ -91,8 +91,10 @@ def crossover_rows(name: str, ds: xr.Dataset) -> list[dict]:
 
 def beyond_table(named: dict[str, xr.Dataset]) -> str:
     """The LaTeX table (a tabular) of every law of the studies ``named`` (name -> laws Dataset)."""
+    split = any("norm_error_max" in ds for ds in named.values())  # a split model's amount is its norm S
+    amount = r"$H$ or norm $S$" if split else "$H$"
     lines = [r"\begin{tabular}{llllllll}", r"\hline",
-             r"study & model, $E$ & law & exponent [95\,\%] & window & $R$ & published & inside \\", r"\hline"]
+             rf"study & model, {amount} & law & exponent [95\,\%] & window & $R$ & published & inside \\", r"\hline"]
     for name, ds in named.items():
         for r in law_rows(name, ds):
             study, model = tex_text(r["study"]), tex_text(r["model"])

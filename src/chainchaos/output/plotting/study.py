@@ -158,10 +158,10 @@ def fractions_figure(stats, title: str = ""):
 
 
 def comparison_figure(named_stats: dict, title: str = ""):
-    """<log10 m2>, <log10 P> and <log10 Lambda> of several studies ({name: statistics}) on common
+    """<log10 m2>, <log10 P> and <log10 |Lambda|> of several studies ({name: statistics}) on common
     axes: colour by model, line style by study, the lightest line the lowest energy."""
     series = (("second_moment", r"$\langle \log_{10} m_2 \rangle$"), ("participation", r"$\langle \log_{10} P \rangle$"),
-              ("mlce", r"$\langle \log_{10} \Lambda \rangle$"))
+              ("abs_mlce", r"$\langle \log_{10} |\Lambda| \rangle$"))  # |Lambda|: a linear control's may be <= 0
     with context():
         fig = Figure(figsize=(PAGE_WIDTH, 3.3), layout="constrained")
         axes = fig.subplots(1, len(series), sharex=True)

@@ -4,7 +4,8 @@ Over the realizations of every (model, energy), lane 0 (the unperturbed orbit), 
 
 - ``mean_log10_<x>``: <log10 x>(t) for x = P, m2 and Lambda (the average of the logarithm, as in
   Flach, Krimer & Skokos, PRL 102, 024101 (2009) and Skokos, Gkolias & Flach, PRL 111, 064101
-  (2013)), with ``count_<x>`` the realizations that enter each time;
+  (2013)), with ``count_<x>`` the realizations that enter each time; ``mean_log10_abs_mlce`` and
+  ``count_abs_mlce`` the same of |Lambda| (a regular orbit's Lambda may be <= 0);
 - ``quantile_log10_<x>``: its quantiles over the realizations (0.1, 0.25, the median, 0.75, 0.9);
 - ``slope_log10_<x>``: the running slope d<log10 x>/d log10 t, the least-squares slope over a
   window of ``criteria.slope_window_decades`` decades centred on each sample (its rule: every
@@ -95,6 +96,13 @@ def statistics(merged: xr.Dataset, window_decades: float) -> xr.Dataset:
             "units": "1", "long_name": f"quantiles over the valid realizations of log10 {short}"})
         data[f"slope_log10_{name}"] = (("model", "energy", "time"), running_slope(log_t, mean, window_decades), {
             "units": "1", "long_name": f"running slope d<log10 {short}>/d log10 t over {window_decades:g} decades"})
+    if "mlce" in merged:  # a regular orbit's Lambda may be <= 0: its log10 |Lambda| still decays as t^-1
+        x = log10(abs(merged["mlce"].isel(lane=0).where(valid0).values))
+        mean, count = ordered_mean(x, axis=2)
+        data["mean_log10_abs_mlce"] = (("model", "energy", "time"), mean, {
+            "units": "1", "long_name": "mean over the valid realizations of log10 |Lambda|"})
+        data["count_abs_mlce"] = (("model", "energy", "time"), count, {
+            "units": "1", "long_name": "valid realizations with a finite log10 |Lambda|"})
     for flag in FLAGS:
         if flag == "chaotic_gali" and not (merged[flag] >= 0).any():
             continue
