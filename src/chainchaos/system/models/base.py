@@ -61,7 +61,20 @@ _BY_IDENTITY: dict[str, "Model"] = {}
 
 
 def site_parameter_array(rows, N: int) -> np.ndarray:
-    """The engines' (MAX_SITE_PARAMETERS, N) site parameters: ``rows`` (each of N values), then zeros."""
+    """The engines' site parameter array: ``rows``, then rows of zeros.
+
+    Parameters
+    ----------
+    rows : sequence of numpy.ndarray
+        At most ``MAX_SITE_PARAMETERS`` rows of N values each (a model's site parameters).
+    N : int
+        The number of sites.
+
+    Returns
+    -------
+    numpy.ndarray of shape (MAX_SITE_PARAMETERS, N)
+        Row i is ``rows[i]``, the rows beyond them zero.
+    """
     out = np.zeros((MAX_SITE_PARAMETERS, N))
     for i, row in enumerate(rows):
         out[i] = row
