@@ -73,11 +73,14 @@ def _crossover(ax, x, stats, model) -> None:
         on_grid = np.isfinite(lower) & np.isfinite(upper)  # the log-spaced samples the band is computed on
         ax.fill_between(x[on_grid], lower[on_grid], upper[on_grid], color=_energy_colour(k), alpha=0.25, lw=0,
                         label="95% band over realizations" if k == 0 else None)
-    for line in stats["crossover_lines"].isel(crossover=c).values:
+    lines = stats["crossover_lines"].isel(crossover=c).values
+    for line in lines:
         ax.axhline(line, color="k", ls="--", lw=0.7)
         ax.annotate(f"{line:.3g}", (1.0, line), xycoords=("axes fraction", "data"), fontsize="x-small",
                     ha="right", va="bottom")
-    ax.legend(fontsize="x-small", loc="upper right")
+    bottom, top = ax.get_ylim()
+    ax.set_ylim(bottom, max(top, max(lines) + 0.1 * (max(lines) - bottom)))  # room for the top line's label
+    ax.legend(fontsize="x-small", loc="lower right")  # the labels of the lines stand at the right, above them
 
 
 def spreading_figure(stats, title: str = ""):
