@@ -11,10 +11,9 @@ from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
-from kernel_vs_c import (  # the same gcc flags and build folder as the bead chains'
-    BUILD,
-    CFLAGS,
-)
+from kernel_vs_c import BUILD, CFLAGS  # the bead chains' gcc flags and build folder
+
+from chainchaos.engine.problem import Problem
 
 PER_SITE_HEADER = ("| N | tangent | single ns/site/step | batch ns/site/step per lane | C ns/site/step | "
                    "batch / C | single / C | C vs single: rel. diff. |\n|---:|---|---:|---:|---:|---:|---:|---:|")
@@ -56,6 +55,20 @@ def time_engine(problem, state, kind: str, steps: int, repeats: int) -> tuple[fl
         engine.advance(steps)
         best = min(best, time.process_time() - t0)
     return best, {key: getattr(engine, key)[:, 0].copy() for key in ("q", "p", "dq", "dp")}
+
+
+def engine_runner(model: str, lattice: Callable, start: Callable, integrator: str, dt: float, check_every: int,
+                  repeats: int, lanes: int) -> Callable[..., tuple[float, dict]]:
+    """:func:`per_site`'s engine for ``model``: ``run(N, kind, steps, tangent)`` gives (ns per site
+    and step per trajectory, final state of lane 0) on ``lattice(N)`` from ``start(N, B)``, with
+    ``lanes`` trajectories for the batch engine and one for the single engine."""
+    def run(N: int, kind: str, steps: int, tangent: bool):
+        B = lanes if kind == "batch" else 1
+        problem = Problem(model, [lattice(N)] * B, integrator=integrator, dt=dt, tangent=tangent,
+                          check_every=check_every)
+        seconds, final = time_engine(problem, start(N, B), kind, steps, repeats)
+        return 1e9 * seconds / (steps * N * B), final
+    return run
 
 
 def difference(a: dict, b: dict, tangent: bool) -> float:

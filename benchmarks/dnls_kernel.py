@@ -30,10 +30,9 @@ import sys
 from pathlib import Path
 
 import numpy as np
-from c_loops import compile_c, per_site, run_c, time_engine
+from c_loops import compile_c, engine_runner, per_site, run_c
 from kernel_vs_c import CFLAGS, HERE
 
-from chainchaos.engine.problem import Problem
 from chainchaos.engine.split_schemes import SPLIT_SCHEMES, get_split_scheme
 from chainchaos.kernels.simd import LANES
 from chainchaos.records.provenance import machine_line
@@ -54,17 +53,6 @@ def start(N: int, B: int):
     rng = np.random.default_rng(1)
     q, p, dq, dp = (np.tile(rng.uniform(-AMPLITUDE, AMPLITUDE, N)[:, None], (1, B)) for _ in range(4))
     return q, p, dq, dp
-
-
-def engine_run(args):
-    """``c_loops.per_site``'s engine: (ns per site and step per trajectory, final state of lane 0)."""
-    def run(N: int, kind: str, steps: int, tangent: bool):
-        B = LANES if kind == "batch" else 1
-        problem = Problem("dnls", [lattice(N)] * B, integrator=args.integrator, dt=DT, tangent=tangent,
-                          check_every=CHECK_EVERY)
-        seconds, final = time_engine(problem, start(N, B), kind, steps, args.repeats)
-        return 1e9 * seconds / (steps * N * B), final
-    return run
 
 
 def c_run(args, exe: Path):
@@ -109,7 +97,8 @@ def main(argv=None) -> dict:
     print(f"DNLS lattice W = {W}, beta = {BETA}, amplitude {AMPLITUDE}, {args.integrator} at dt = {DT}, "
           f"CPU time (time.process_time; C: CLOCK_PROCESS_CPUTIME_ID), best of {args.repeats}; batch: one "
           f"block of {LANES} trajectories; C: gcc {' '.join(CFLAGS)}\n")
-    rows = per_site(args.N, args.sites_steps, args.check_steps, LANES, engine_run(args), c_run(args, exe))
+    engine = engine_runner("dnls", lattice, start, args.integrator, DT, CHECK_EVERY, args.repeats, LANES)
+    rows = per_site(args.N, args.sites_steps, args.check_steps, LANES, engine, c_run(args, exe))
     parameters = {"W": W, "beta": BETA, "amplitude": AMPLITUDE, "integrator": args.integrator, "dt": DT,
                   "check_every": CHECK_EVERY, "sites_steps": args.sites_steps, "repeats": args.repeats,
                   "check_steps": args.check_steps, "lanes": LANES, "cflags": " ".join(CFLAGS),

@@ -31,7 +31,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from c_loops import compile_c, per_site, run_c, time_engine
+from c_loops import compile_c, engine_runner, per_site, run_c
 from kernel_vs_c import CFLAGS, HERE
 
 from chainchaos.engine.integrators import get_scheme
@@ -51,17 +51,6 @@ def start(N: int, B: int):
     return q, p, dq, dp
 
 
-def engine_run(args):
-    """``c_loops.per_site``'s engine: (ns per site and step per trajectory, final state of lane 0)."""
-    def run(N: int, kind: str, steps: int, tangent: bool):
-        B = LANES if kind == "batch" else 1
-        problem = Problem("kg", [kg_chain(0, W, N)] * B, integrator=args.integrator, dt=DT, tangent=tangent,
-                          check_every=CHECK_EVERY)
-        seconds, final = time_engine(problem, start(N, B), kind, steps, args.repeats)
-        return 1e9 * seconds / (steps * N * B), final
-    return run
-
-
 def c_run(args, exe: Path):
     """``c_loops.per_site``'s C loop: (ns per site and step, final state)."""
     scheme = get_scheme(args.integrator)
@@ -78,7 +67,9 @@ def c_run(args, exe: Path):
 
 
 def per_site_part(args, exe) -> list[dict]:
-    return per_site(args.N, args.sites_steps, args.check_steps, LANES, engine_run(args), c_run(args, exe))
+    engine = engine_runner("kg", lambda N: kg_chain(0, W, N), start, args.integrator, DT, CHECK_EVERY, args.repeats,
+                           LANES)
+    return per_site(args.N, args.sites_steps, args.check_steps, LANES, engine, c_run(args, exe))
 
 
 MEMORY_RUN = """
