@@ -79,6 +79,10 @@ def study_statistics(inputs, outputs, params, wildcards) -> None:
         stats = stats.merge(ds[bands].rename(grid_time="time").reindex(time=stats["time"]))
         stats["crossover_lines"] = ds["crossover_lines"]
         ds = ds.drop_vars([*bands, "grid_time"])
+    mlce = [float(x) for x, series in zip(ds["expected"].values, ds["series"].values) if str(series) == "mlce"]
+    if mlce:  # the chaos figure draws the study's published slope of <log10 Lambda>
+        stats["published_slope_mlce"] = ((), mlce[0], {"units": "1", "long_name":
+                                         "the published slope of <log10 Lambda> the study's laws name"})
     stats.attrs = {**merged.attrs, **stats.attrs, "title": f"{study.title}: ensemble statistics"}
     write_netcdf(stats, outputs["statistics"])
     # what the study's orbits cost: CPU time, or wall time where a group made before CPU time was kept
