@@ -64,6 +64,13 @@ def _mean_with_band(ax, x, stats, name, model, k, energy, label=True):
     ax.plot(x, mean, color=colour, lw=1.0, label=f"${amount_symbol(model)} = {energy:g}$" if label else None)
 
 
+def _labelled_line(ax, y: float, color: str, ls: str) -> None:
+    """A published slope: a horizontal line with its value written above it at the right edge."""
+    ax.axhline(y, color=color, ls=ls, lw=0.7)
+    ax.annotate(f"{y:.3g}", (1.0, y), xycoords=("axes fraction", "data"), fontsize="x-small", ha="right",
+                va="bottom")
+
+
 def _crossover(ax, x, stats, model) -> None:
     """A crossover of <log10 m2> the study names (``laws.crossovers``): the bootstrap band of the
     local derivative over realizations and the published slopes; nothing without one."""
@@ -78,9 +85,7 @@ def _crossover(ax, x, stats, model) -> None:
                         label="95% band over realizations" if k == 0 else None)
     lines = stats["crossover_lines"].isel(crossover=c).values
     for line in lines:
-        ax.axhline(line, color="k", ls="--", lw=0.7)
-        ax.annotate(f"{line:.3g}", (1.0, line), xycoords=("axes fraction", "data"), fontsize="x-small",
-                    ha="right", va="bottom")
+        _labelled_line(ax, line, color="k", ls="--")
     bottom, top = ax.get_ylim()
     ax.set_ylim(bottom, max(top, max(lines) + 0.1 * (max(lines) - bottom)))  # room for the top line's label
     ax.legend(fontsize="x-small", loc="lower right")  # the labels of the lines stand at the right, above them
@@ -126,9 +131,7 @@ def chaos_figure(stats, title: str = ""):
                             label=r"$\propto t^{-1}$ (regular)")
             axes[1, c].axhline(-1.0, color="k", ls="--", lw=0.7)
             published = float(stats["published_slope_mlce"]) if "published_slope_mlce" in stats else WEAK_CHAOS_SLOPE
-            axes[1, c].axhline(published, color="0.4", ls=":", lw=0.7)
-            axes[1, c].annotate(f"{published:.3g}", (1.0, published), xycoords=("axes fraction", "data"),
-                                fontsize="x-small", ha="right", va="bottom")
+            _labelled_line(axes[1, c], published, color="0.4", ls=":")
             axes[0, c].set_title(model_label(model))
             axes[0, c].set_ylabel(r"$\langle \log_{10} \Lambda \rangle$")
             axes[1, c].set_ylabel(r"$d\langle \log_{10}\Lambda\rangle / d\log_{10} t$")
