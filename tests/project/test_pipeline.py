@@ -125,26 +125,24 @@ def test_paper_scale_dry_run_plans_every_scene(tmp_path):
 
 
 def test_an_archived_full_search_pins_its_chain_and_none_searches(tmp_path):
-    """With search.archive naming an existing file (made with this run's settings), `all` re-scores
-    the archive's chain alone; with none (or a missing file) it searches, its filter planned once
-    stage 0 has run."""
-    archive = tmp_path / "search_full.nc"
-    shutil.copyfile(ROOT / "data" / "search" / "search_full.nc", archive)
-    for path, pinned in ((archive, True), (tmp_path / "missing.nc", False), ("", False)):
+    """With search.archive named, `all` re-scores the archive's chain (search.pinned_seed) alone;
+    with none and no pinned seed it searches, its filter planned once stage 0 has run."""
+    for archive, seed, pinned in (("data/search/search_full.nc", 879, True), ("", "", False)):
         config = tmp_path / "archive.yaml"
-        config.write_text(f"search:\n  archive: '{path}'\n")
+        config.write_text(f"search:\n  archive: '{archive}'\n  pinned_seed: {seed}\n")
         code, out = snakemake("-n", "--configfile", "config/config.yaml", str(config),
                               "--config", f"results={tmp_path / 'results'}")
         assert code == 0, out[-4000:]
         jobs = planned_jobs(out)
         # the filter studies' chains are known once stage 0 has run; a pinned seed's score studies at once
         assert "/search-filter-" not in out and jobs["search_candidates"] == 1
-        assert ("search_filter" in jobs) != pinned and ("/search-score-" in out) == pinned, (path, jobs)
+        assert ("search_filter" in jobs) != pinned and ("/search-score-" in out) == pinned, (archive, jobs)
+        assert ("kept/search_full.txt" in out) == pinned
 
 
 def test_a_pinned_seed_rescores_that_chain_without_a_search(tmp_path):
     pinned = tmp_path / "pinned.yaml"
-    pinned.write_text("search:\n  pinned_seed: 879\n")
+    pinned.write_text("search:\n  archive:\n  pinned_seed: 879\n")
     code, out = snakemake(str(tmp_path / "search" / "search.nc"), "--configfile", "config/config.yaml",
                           str(pinned), "--config", f"results={tmp_path}", "-n")
     assert code == 0, out[-4000:]

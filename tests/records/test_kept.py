@@ -3,6 +3,7 @@ reasons, `all` using an archive only when its key is the run's, and the disorder
 recomputed bit for bit."""
 
 import json
+import shutil
 import re
 import subprocess
 import sys
@@ -234,7 +235,7 @@ def test_every_kept_file_of_the_repository_records_the_checksum_of_its_data():
         assert kept.check_data(path, REMAKE) is True, path
 
 
-# ---- the pipeline: `all` uses an archive only when its key is the run's ------------------------
+# ---- the pipeline: the config chooses the kept results, jobs check them ----------------------
 
 def dry_run(*args):
     done = subprocess.run([sys.executable, "-m", "snakemake", "--cores", "2", "--nolock", "-n", *args], cwd=ROOT,
@@ -242,13 +243,15 @@ def dry_run(*args):
     return done.returncode, done.stdout + done.stderr
 
 
+def snakemake(*args):
+    done = subprocess.run([sys.executable, "-m", "snakemake", "--cores", "1", "--nolock", *args], cwd=ROOT,
+                          capture_output=True, text=True, timeout=600)
+    return done.returncode, done.stdout + done.stderr
+
+
 def planned_jobs(output: str) -> dict[str, int]:
     table = output.split("Job stats:")[-1]
     return {m.group(1): int(m.group(2)) for m in re.finditer(r"^(\w+)\s+(\d+)$", table, re.M) if m.group(1) != "total"}
-
-
-def kept_lines(output: str) -> list[str]:
-    return [line for line in output.splitlines() if line.startswith("kept file ")]
 
 
 def rule_inputs(output: str, rule: str) -> str:
@@ -258,71 +261,122 @@ def rule_inputs(output: str, rule: str) -> str:
     return found.group(1)
 
 
-@pytest.mark.pipeline
-def test_a_changed_chain_computes_the_search_and_disorder_and_restoring_it_reuses_them(tmp_path):
-    results = f"results={tmp_path}"
-    code, out = dry_run("all", "--config", results, "chain={N: 41}")
-    assert code == 0, out[-4000:]
-    jobs = planned_jobs(out)
-    # a search at the configured scale (stage 1 planned once stage 0 has run), not the pinned re-score
-    assert jobs["search_seeds"] == 1 and jobs["search_candidates"] == 1 and "/search-score-" not in out
-    assert "search_full.nc" not in rule_inputs(out, "select_chain")
-    # the disorder statistics from their group jobs, not from the archive
-    merged_from = rule_inputs(out, "merge_disorder")
-    assert "disorder_full.nc" not in merged_from and "/groups/" in merged_from, merged_from
-    assert kept_lines(out) == [
-        f"kept file {path}: chain.N is 40 in the file, 41 in this run; not used, computed at the configured scale"
-        for path in ("data/disorder/disorder_full.nc", "data/search/search_full.nc")], kept_lines(out)
-    code, out = dry_run("all", "--config", results)
-    assert code == 0, out[-4000:]
-    jobs = planned_jobs(out)
-    # the archive's chain re-scored: one group of each model's score study
-    assert set(re.findall(r"/studies/search-score-(\w+)/groups/(\d+)\.nc", out)) == {("hertz", "0000"), ("fput", "0000")}
-    assert "search_filter" not in jobs
-    assert rule_inputs(out, "select_chain") == "data/search/search_full.nc"
-    assert rule_inputs(out, "merge_disorder") == "data/disorder/disorder_full.nc"
-    assert kept_lines(out) == []
+#: Run Snakemake in a process where opening any file under data/ raises: by Python (the audit
+#: event of every open) or by netCDF4 (whose C library opens files without that event).
+NO_DATA_READ = """
+import sys
+from pathlib import Path
+
+import netCDF4
+
+data = str(Path("data").resolve())
+
+
+def refuse(path):
+    if str(Path(str(path)).resolve()).startswith(data):
+        raise RuntimeError(f"opened while the plan is made: {path}")
+
+
+def hook(event, args):
+    if event == "open" and isinstance(args[0], (str, bytes, Path)):
+        refuse(args[0] if not isinstance(args[0], bytes) else args[0].decode())
+
+
+class Dataset(netCDF4.Dataset):
+    def __init__(self, filename, *args, **kwargs):
+        refuse(filename)
+        super().__init__(filename, *args, **kwargs)
+
+
+netCDF4.Dataset = Dataset
+sys.addaudithook(hook)
+from snakemake.cli import main
+
+sys.argv = ["snakemake", *sys.argv[1:]]
+main()
+"""
 
 
 @pytest.mark.pipeline
-def test_the_quick_scale_pins_the_archives_chain_unless_the_chain_changes(tmp_path):
-    quick = ["all", "--configfile", "config/quick.yaml", "--config", f"results={tmp_path}"]
-    code, out = dry_run(*quick)
-    assert code == 0, out[-4000:]
-    assert rule_inputs(out, "select_chain") == "data/search/search_full.nc" and kept_lines(out) == []
-    code, out = dry_run(*quick, "chain={N: 41}")
-    assert code == 0, out[-4000:]
-    assert "search_full.nc" not in rule_inputs(out, "select_chain") and "/search-score-" not in out
-    assert kept_lines(out) == ["kept file data/search/search_full.nc: chain.N is 40 in the file, 41 in this run; "
-                               "not used, computed at the configured scale"]
+def test_the_plan_of_all_opens_no_kept_file_and_prints_nothing(tmp_path):
+    """No file under data/ is opened while the Snakefile is parsed and the dry run of `all` is
+    built, at either scale; and nothing is printed to stderr before Snakemake's own lines."""
+    for scale in ([], ["--configfile", "config/quick.yaml"]):
+        done = subprocess.run([sys.executable, "-c", NO_DATA_READ, "--cores", "2", "--nolock", "-n", "all", *scale,
+                               "--config", f"results={tmp_path}"], cwd=ROOT, capture_output=True, text=True,
+                              timeout=300)
+        out = done.stdout + done.stderr
+        assert done.returncode == 0 and "opened while the plan is made" not in out, out[-4000:]
+        assert "kept file" not in out and planned_jobs(out)["check_kept_archive"] >= 1
 
 
 @pytest.mark.pipeline
-def test_a_truncated_archive_stops_only_the_jobs_that_read_it(tmp_path):
-    """The workflow still plans (one line names the file and its remedy); a target that does not
-    read the file is made; the job that reads it stops with that line, no traceback."""
+def test_the_plan_is_the_same_whether_the_kept_files_are_intact_or_damaged(tmp_path):
+    """A truncated archive and a damaged kept group plan the same jobs as intact ones: judging
+    them is the work of the jobs that read them."""
+    truncated = tmp_path / "search_full.nc"
+    truncated.write_bytes(SEARCH_ARCHIVE.read_bytes()[:5000])
+    studies = tmp_path / "studies"
+    shutil.copytree(ROOT / "data" / "studies", studies)
+    group = studies / "kg_weak_chaos" / "groups" / "0000.nc"
+    group.write_bytes(group.read_bytes()[:3000])
+    results = f"results={tmp_path / 'results'}"
+    code, intact = dry_run("all", "--config", results)
+    assert code == 0, intact[-4000:]
+    code, damaged = dry_run("all", "--config", results, f"search={{archive: {truncated}}}", f"kept_studies={studies}")
+    assert code == 0, damaged[-4000:]
+    assert planned_jobs(damaged) == planned_jobs(intact)
+    assert rule_inputs(damaged, "select_chain") == f"{truncated}, {tmp_path}/results/kept/search_full.txt"
+
+
+@pytest.mark.pipeline
+def test_a_kept_file_with_one_changed_setting_stops_only_the_jobs_that_read_it(tmp_path):
+    """The same plan as with the kept settings; the checks of both archives fail with one line
+    naming the setting and the two ways out; a target that reads neither is made."""
+    results = tmp_path / "results"
+    config = ["--configfile", "config/quick.yaml", "--config", f"results={results}", "chain={N: 41}",
+              "scan={disorder: {archive: data/disorder/disorder_full.nc}}"]
+    code, changed = dry_run("all", *config)
+    assert code == 0, changed[-4000:]
+    code, kept_settings = dry_run("all", *config[:-2], config[-1])
+    assert planned_jobs(changed) == planned_jobs(kept_settings)
+    code, out = snakemake(*config, "--keep-going", "--", str(results / "ensemble" / "participation_stats.nc"),
+                          str(results / "kept" / "search_full.txt"), str(results / "kept" / "disorder_full.txt"))
+    assert code != 0 and (results / "ensemble" / "participation_stats.nc").exists(), out[-4000:]
+    for name, path, compute in [
+            ("search_full", SEARCH_ARCHIVE.relative_to(ROOT), "search.archive and search.pinned_seed to search"),
+            ("disorder_full", DISORDER_ARCHIVE.relative_to(ROOT), "scan.disorder.archive to compute it")]:
+        log = (results / "logs" / "check_kept_archive" / f"{name}.log").read_text()
+        assert log == (f"check_kept_archive: kept file {path}: chain.N is 40 in the file, 41 in this run; remake it "
+                       f"with 'snakemake --cores 2 keep --config keep={name}', or empty config {compute} at this "
+                       "run's scale\n"), log
+        assert not (results / "kept" / f"{name}.txt").exists()
+
+
+@pytest.mark.pipeline
+def test_a_chosen_kept_file_that_is_absent_is_named_and_nothing_computes_it(tmp_path):
+    code, out = dry_run("all", "--config", f"results={tmp_path}", f"search={{archive: {tmp_path}/absent.nc}}")
+    assert code != 0
+    assert (f"kept file {tmp_path}/absent.nc is absent; restore it with 'git checkout -- {tmp_path}/absent.nc', "
+            "remake it with 'snakemake --cores 2 keep --config keep=search_full', or empty config search.archive "
+            "and search.pinned_seed to search at this run's scale") in out, out[-4000:]
+    assert "search_seeds" not in out
+
+
+@pytest.mark.pipeline
+def test_a_truncated_archive_stops_its_check_with_one_line(tmp_path):
+    """The job that checks the file stops with the line naming it and its remedy, no traceback,
+    and the jobs that read it do not run."""
     truncated = tmp_path / "search_full.nc"
     truncated.write_bytes(SEARCH_ARCHIVE.read_bytes()[:5000])
     remedy = (f"kept file {truncated} cannot be read (NetCDF: HDF error); restore it with 'git checkout -- "
               f"{truncated}', or delete it and remake it with 'snakemake --cores 2 keep --config keep=search_full'")
     config = ["--configfile", "config/quick.yaml", "--config", f"results={tmp_path}",
               f"search={{archive: {truncated}}}"]
-    code, out = dry_run(*config, "--", "all")
-    assert code == 0, out[-4000:]
-    assert f"{remedy}; the jobs that read it stop" in out.splitlines()
-    assert "OSError" not in out and "Traceback" not in out
-
-    def run(target):
-        done = subprocess.run([sys.executable, "-m", "snakemake", "--cores", "1", "--nolock", *config, "--", target],
-                              cwd=ROOT, capture_output=True, text=True, timeout=300)
-        return done.returncode, done.stdout + done.stderr
-
-    code, out = run(str(tmp_path / "ensemble" / "participation_stats.nc"))
-    assert code == 0, out[-4000:]
-    code, out = run(str(tmp_path / "chain" / "chain.nc"))
-    log = (tmp_path / "logs" / "select_chain" / "run.log").read_text()
-    assert code != 0 and log == f"select_chain: {remedy}\n", log
-    assert not (tmp_path / "chain" / "chain.nc").exists()
+    code, out = snakemake(*config, "--", str(tmp_path / "chain" / "chain.nc"))
+    log = (tmp_path / "logs" / "check_kept_archive" / "search_full.log").read_text()
+    assert code != 0 and log == f"check_kept_archive: {remedy}\n", log
+    assert "Traceback" not in log and not (tmp_path / "chain" / "chain.nc").exists()
 
 
 # ---- bit identity of the kept disorder statistics ----------------------------------------------

@@ -13,6 +13,7 @@ import netCDF4
 import pytest
 import yaml
 
+from chainchaos.errors import KeptFileError
 from chainchaos.paper import panels
 from chainchaos.records import kept
 from chainchaos.workflow import plan
@@ -78,30 +79,27 @@ def kept_file(path: Path, settings: dict, version: int = 1) -> Path:
     return path
 
 
-def test_a_kept_file_is_used_only_with_the_run_s_settings_and_version(tmp_path, capsys):
+def test_a_chosen_kept_file_that_does_not_match_stops_with_one_line_and_the_two_ways_out(tmp_path):
     path = kept_file(tmp_path / "k.nc", {"chain": {"N": 40}, "t": 1.0})
-    used = plan.use_kept(path, {"chain": {"N": 40}, "t": 1}, 1, "remake")
-    assert used.path == str(path) and used.attrs["chosen_seed"] == 879 and used.sizes == {"candidate": 3}
-    assert capsys.readouterr().err == ""
-    other = plan.use_kept(path, {"chain": {"N": 41}, "t": 1.0}, 1, "remake")
-    assert other.path is None
-    assert capsys.readouterr().err == (f"kept file {path}: chain.N is 40 in the file, 41 in this run; "
-                                       "not used, computed at the configured scale\n")
-    assert plan.use_kept(path, {"chain": {"N": 41}, "t": 1.0}, 1, "remake", keys=("t",)).path == str(path)
-    assert plan.use_kept(path, {"chain": {"N": 40}, "t": 1.0}, 2, "remake").path is None
-    assert plan.use_kept(tmp_path / "absent.nc", {}, 1, "remake") == plan.Kept(None)
-    assert plan.use_kept(None, {}, 1, "remake") == plan.Kept(None)
+    kept.seal(path)
+    assert kept.check_kept(path, {"chain": {"N": 40}, "t": 1}, 1, "remake", "compute") == kept.digest(
+        {"chain": {"N": 40}, "t": 1})
+    with pytest.raises(KeptFileError) as error:
+        kept.check_kept(path, {"chain": {"N": 41}, "t": 1.0}, 1, "keep it", "empty config x")
+    assert str(error.value) == (f"kept file {path}: chain.N is 40 in the file, 41 in this run; remake it with "
+                                "'keep it', or empty config x")
+    assert kept.check_kept(path, {"chain": {"N": 41}, "t": 1.0}, 1, "remake", "compute", keys=("t",))
+    with pytest.raises(KeptFileError, match="result_version is 1 in the file, 2 in this code; remake it"):
+        kept.check_kept(path, {"chain": {"N": 40}, "t": 1.0}, 2, "remake", "compute")
+    with pytest.raises(KeptFileError, match=r"absent\.nc is absent; remake it with 'remake', or compute$"):
+        kept.check_kept(tmp_path / "absent.nc", {}, 1, "remake", "compute")
 
 
-def test_a_kept_file_that_cannot_be_read_is_left_to_the_jobs_that_read_it(tmp_path, capsys):
-    """Parsing the workflow does not stop: only the jobs that read the file fail, naming it."""
+def test_a_chosen_kept_file_that_cannot_be_read_stops_its_check(tmp_path):
     path = kept_file(tmp_path / "k.nc", {"a": 1})
     path.write_bytes(path.read_bytes()[:200])
-    decision = plan.use_kept(path, {"a": 1}, 1, "snakemake --cores 2 keep --config keep=x")
-    assert decision.path == str(path) and "cannot be read" in decision.reason
-    err = capsys.readouterr().err
-    assert err.startswith(f"kept file {path} cannot be read") and "git checkout -- " in err
-    assert err.rstrip().endswith("the jobs that read it stop")
+    with pytest.raises(KeptFileError, match=f"kept file {re.escape(str(path))} cannot be read .*git checkout -- "):
+        kept.check_kept(path, {"a": 1}, 1, "snakemake --cores 2 keep --config keep=x", "compute")
 
 
 def test_keep_names_a_kept_product_or_a_study():
@@ -113,15 +111,21 @@ def test_keep_names_a_kept_product_or_a_study():
         plan.kept_product("serch_full", ["kg"])
 
 
-def test_the_paper_pins_the_kept_search_s_chain_and_reads_the_kept_disorder_statistics():
-    archive = plan.search_archive(CONFIG)
-    assert archive.path == "data/search/search_full.nc"
-    pinned = plan.pinned_archive(CONFIG, archive)
-    plans = plan.search_plans(CONFIG, pinned)
-    assert plans["search"].pinned and plans["search"].pinned_seed == archive.attrs["chosen_seed"]
+def test_the_config_alone_says_which_kept_results_a_run_uses():
+    """The paper's config uses the kept full search (its chosen seed pinned in the config, which
+    the archive's check compares) and the kept disorder statistics; an empty key computes."""
+    assert plan.archive_path("search_full", CONFIG) == "data/search/search_full.nc"
+    assert plan.archive_path("disorder_full", CONFIG) == "data/disorder/disorder_full.nc"
+    plans = plan.search_plans(CONFIG)
+    assert plans["search"].pinned and plans["search"].pinned_seed == CONFIG["search"]["pinned_seed"]
     assert not plans["search_full"].pinned
-    assert plan.pinned_archive({**CONFIG, "search": {**CONFIG["search"], "pinned_seed": 3}}, archive).path is None
-    assert plan.disorder_archive(CONFIG).path == "data/disorder/disorder_full.nc"
+    check = plan.archive_check("search_full", CONFIG)
+    assert check["attrs"] == {"chosen_seed": ["search.pinned_seed", CONFIG["search"]["pinned_seed"]]}
+    assert check["keys"] is None and "empty config search.archive" in check["compute"]
+    quick = {**CONFIG, "search": {**CONFIG["search"], "reuse_archive_chain": True}}
+    assert plan.archive_check("search_full", quick)["keys"] == ["chain"]
+    empty = {**CONFIG, "scan": {**CONFIG["scan"], "disorder": {**CONFIG["scan"]["disorder"], "archive": None}}}
+    assert plan.archive_path("disorder_full", empty) is None
 
 
 # ---- what a run asks for -----------------------------------------------------------------------

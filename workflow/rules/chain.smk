@@ -16,9 +16,10 @@ rule compute_ensemble:
 
 
 rule select_chain:
-    """The chain file of the realization the search chose (workflow/rules/search.smk)."""
+    """The chain file of the realization the search chose (workflow/rules/search.smk): the kept
+    full search's when config search.archive names it, else this run's."""
     input:
-        search=CHOSEN_SEARCH,
+        **SEARCH_INPUTS,
     output:
         chain=result("chain", "chain.nc"),
     params:

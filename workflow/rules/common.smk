@@ -5,12 +5,13 @@
 import os
 import re
 from pathlib import Path
+from snakemake.exceptions import WorkflowError
 from types import SimpleNamespace
 
 from chainchaos.kernels.cache import kernel_sources
 from chainchaos.output import report_captions
 from chainchaos.paper import panels, statements
-from chainchaos.studies.study.spec import study_names
+from chainchaos.studies.study.spec import kept_group_path, study_names
 from chainchaos.system.models import PACKAGE_MODELS
 from chainchaos.workflow import plan
 from chainchaos.workflow.tasks.chain import selection_criteria
@@ -38,9 +39,18 @@ def scene_file(name):
     return result("scenes", f"{name}.nc")
 
 
-def kept_input(decision):
-    """A kept file as an input: its checkout time says nothing about its age."""
-    return ancient(decision.path)
+def kept_input(path, what):
+    """A kept file the config chose to use, as an input: ancient() (its checkout time says nothing
+    of its age). Absent, the plan stops naming it and the ways out, and nothing computes it
+    (``what``: the archive's or the study's name). A stat, not a read: the job of rule
+    check_kept_archive or check_kept_study judges what the file holds. Call it from an input
+    function: only a run that needs the file looks for it."""
+    if not Path(path).exists():
+        raise WorkflowError(
+            f"kept file {path} is absent; restore it with 'git checkout -- {path}', "
+            f"remake it with '{plan.remake_command(what)}', or {plan.kept_compute(what)}"
+        )
+    return ancient(path)
 
 
 REPORT_CATEGORIES = report_captions.CATEGORIES
@@ -94,16 +104,19 @@ def kernel_inputs():
 
 # ---- scans, search and verdicts (scan.smk, search.smk) -----------------------------------------
 SCAN = config["scan"]
-DISORDER_KEPT = plan.disorder_archive(config)
-SEARCH_KEPT = plan.search_archive(config)
-PINNED = plan.pinned_archive(config, SEARCH_KEPT)
-SEARCH_PLANS = plan.search_plans(config, PINNED)
-CHOSEN_SEED = PINNED.attrs.get("chosen_seed")
-SEARCH_ARCHIVE = config["search"].get("archive")
+SEARCH_PLANS = plan.search_plans(config)
+SEARCH_ARCHIVE = plan.archive_path("search_full", config)
+DISORDER_ARCHIVE = plan.archive_path("disorder_full", config)
+
+
+def kept_check(name):
+    """The record of the check of the kept archive ``name`` (rule check_kept_archive): an input
+    of every job that reads the archive."""
+    return result("kept", f"{name}.txt")
 
 
 def search_params(name):
-    return plan.search_params(name, config, CHOSEN_SEED)
+    return plan.search_params(name, config)
 
 
 def search_param(key):
@@ -156,9 +169,16 @@ def search_filter_file(wildcards):
     return [] if SEARCH_PLANS[wildcards.search].pinned else [result(wildcards.search, "filter.nc")]
 
 
-# The search whose candidates the manuscript counts, and the one the chain is chosen from.
-SEARCH_POPULATION = kept_input(SEARCH_KEPT) if SEARCH_KEPT.path else result("search", "search.nc")
-CHOSEN_SEARCH = kept_input(PINNED) if PINNED.path else result("search", "search.nc")
+# The search whose candidates the manuscript counts and whose chosen chain `all` runs on: the kept
+# full search, with the record of its check, or this run's.
+SEARCH_INPUTS = (
+    {
+        "search": lambda wildcards: kept_input(SEARCH_ARCHIVE, "search_full"),
+        "kept": kept_check("search_full"),
+    }
+    if SEARCH_ARCHIVE
+    else {"search": result("search", "search.nc")}
+)
 VERDICT_FILES = {name: result("verdicts", f"{name}.nc") for name in statements.statement_scenes()}
 SPECTRA_FILES = {
     f"spectrum_{name}": result("indicators", f"spectrum_{name}.nc")
@@ -174,7 +194,7 @@ def study_of(name):
     """The study ``name`` (a scan kind, the file config `study` names, or studies/<name>.yaml),
     read and checked once."""
     if name not in STUDIES:
-        STUDIES[name] = plan.load_run_study(name, config, CHOSEN_SEED)
+        STUDIES[name] = plan.load_run_study(name, config)
     return STUDIES[name]
 
 
@@ -182,16 +202,33 @@ def study_figure_names(name):
     return plan.study_figure_names(study_of(name))
 
 
+KEPT_STUDIES = config["use_kept_studies"]
+
+
+def kept_group_file(name, group):
+    return str(kept_group_path(name, group, config["kept_studies"]))
+
+
 def study_group_file(name, group):
-    """A group of a study: its kept file when it may stand in, else the file study_group makes."""
-    decision = plan.kept_group(study_of(name), group, config["kept_studies"])
-    if decision.path:
-        return kept_input(decision)
+    """A group of a study: its kept file when config use_kept_studies names the study (or config
+    keep makes it), else the file study_group makes."""
+    if name == KEEP:
+        return kept_group_file(name, group)
+    if name in KEPT_STUDIES:
+        return kept_input(kept_group_file(name, group), name)
     return result("studies", name, "groups", f"{group:04d}.nc")
 
 
 def study_group_files(name):
     return [study_group_file(name, g) for g in range(study_of(name).n_groups)]
+
+
+def study_group_check(wildcards):
+    """For a kept study, what the jobs that read its groups say when one does not match it."""
+    name = wildcards.study
+    if name == KEEP or name in KEPT_STUDIES:
+        return plan.kept_study_check(name, config["kept_studies"])
+    return {}
 
 
 def study_chain(wildcards):
@@ -202,13 +239,10 @@ def study_chain(wildcards):
 NAMED_STUDY = plan.study_name(config["study"]) if config.get("study") else None
 # The kept result this run makes (config keep; workflow/rules/keep.smk).
 KEEP = plan.kept_product(config.get("keep"), [*study_names(), *filter(None, [NAMED_STUDY])])
-BEYOND_ENTRIES = plan.beyond_entries(
-    config.get("manuscript", {}).get("beyond", []), study_figure_names
-)
-SHOWN = {
-    name: BEYOND_ENTRIES[name]
-    for name in plan.shown_studies(BEYOND_ENTRIES, study_of, config["kept_studies"])
-}
+# The studies of the section Beyond the paper and the figures it shows of each (config
+# manuscript.beyond): a study there that config use_kept_studies names is read from its kept
+# groups, never computed.
+SHOWN = plan.beyond_entries(config.get("manuscript", {}).get("beyond", []), study_figure_names)
 
 
 def asked_figures(name):
@@ -279,11 +313,20 @@ def rejudge_params():
 
 
 def rejudge_files(stage):
-    n = SEARCH_KEPT.sizes.get("candidate", 0)
-    return plan.rejudge_files(config, SEARCH_PLANS["search_full"], n, stage)
+    """The stage files of re-judging the kept full search: their number is its candidates' (the
+    one kept file a plan reads, its header alone, and only in a run of keep=search_rejudge)."""
+    from chainchaos.records.kept import read_header
+
+    sizes = read_header(SEARCH_ARCHIVE, plan.remake_command("search_full"))[1]
+    return plan.rejudge_files(config, SEARCH_PLANS["search_full"], sizes["candidate"], stage)
 
 
 def kept_targets(wildcards):
     return plan.kept_targets(
         KEEP, config, study_of(KEEP) if KEEP not in plan.KEPT_PRODUCTS else None
     )
+
+
+def kept_study_groups(name):
+    """Where every group of study ``name`` is kept."""
+    return [kept_group_file(name, g) for g in range(study_of(name).n_groups)]

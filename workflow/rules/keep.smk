@@ -1,5 +1,6 @@
 # Kept results: files of the repository (data/) that runs read instead of computing them, keyed by
-# the settings they were made with (plan.use_kept). Their rules exist only in a run whose config
+# the settings they were made with (chainchaos.records.kept) and used where the config names them
+# (search.archive, scan.disorder.archive, use_kept_studies). Their rules exist only in a run whose config
 # `keep` names what to make, so that no other target remakes a kept file on its way:
 #
 #   snakemake --cores 2 keep --config keep=search_full      the full realization search
@@ -135,7 +136,7 @@ if KEEP not in (None, *plan.KEPT_PRODUCTS):
             group=str(Path(config["kept_studies"], "{study}", "groups", "{group}.nc")),
         wildcard_constraints:
             study=re.escape(KEEP),
-            group=plan.still_to_make(kept_targets(None)),
+            group=plan.still_to_make(kept_study_groups(KEEP)),
         params:
             spec=lambda wildcards: plan.group_spec(study_of(wildcards.study)),
         log:
@@ -147,3 +148,30 @@ if KEEP not in (None, *plan.KEPT_PRODUCTS):
             runtime=lambda wildcards: plan.study_minutes(study_of(wildcards.study), US_PER_STEP),
         script:
             "../scripts/keep_study_group.py"
+
+
+# A kept archive the config chose to use is checked by a job before the jobs that read it (their
+# input): its settings against this run's, its result version against this code's and its data
+# against their checksum. A mismatch stops the jobs that read it, with one line naming the file, the
+# setting that differs and the two ways out (remake it, or compute instead: plan.kept_compute). A
+# kept study's groups are checked so by the jobs that read them (study_scene, study_statistics).
+rule check_kept_archive:
+    """A kept archive the config names (search.archive, scan.disorder.archive), checked."""
+    input:
+        archive=lambda wildcards: kept_input(
+            plan.archive_path(wildcards.archive, config), wildcards.archive
+        ),
+    output:
+        record=result("kept", "{archive}.txt"),
+    wildcard_constraints:
+        archive="|".join(plan.ARCHIVE_KEYS),
+    params:
+        path=lambda wildcards: plan.archive_path(wildcards.archive, config),
+        check=lambda wildcards: plan.archive_check(wildcards.archive, config),
+    localrule: True
+    log:
+        log_file("check_kept_archive", "{archive}"),
+    benchmark:
+        benchmark_file("check_kept_archive", "{archive}")
+    script:
+        "../scripts/check_kept_archive.py"

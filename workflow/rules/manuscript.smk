@@ -48,7 +48,8 @@ rule evaluate_claims:
         energy_scan=result("scan", "energy_scan.nc"),
         disorder=result("scan", "disorder_statistics.nc"),
         search=result("search", "search.nc"),
-        search_population=SEARCH_POPULATION,
+        search_population=SEARCH_INPUTS["search"],
+        **({"kept": SEARCH_INPUTS["kept"]} if "kept" in SEARCH_INPUTS else {}),
     output:
         csv=report(
             CLAIMS_OUTPUTS["csv"],
@@ -89,7 +90,6 @@ rule beyond_the_paper:
     params:
         studies=list(SHOWN),
         figures=SHOWN,
-        missing=[name for name in BEYOND_ENTRIES if name not in SHOWN],
     log:
         log_file("beyond_the_paper"),
     benchmark:

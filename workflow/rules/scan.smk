@@ -36,11 +36,15 @@ rule merge_energy_scan:
 
 
 rule merge_disorder:
-    """The disorder statistics on their grid: merged from the groups, or the kept full ones."""
+    """The disorder statistics on their grid: merged from the groups, or the kept full ones when
+    config scan.disorder.archive names them (checked first by rule check_kept_archive)."""
     input:
         **(
-            {"archive": kept_input(DISORDER_KEPT)}
-            if DISORDER_KEPT.path
+            {
+                "archive": lambda wildcards: kept_input(DISORDER_ARCHIVE, "disorder_full"),
+                "kept": kept_check("disorder_full"),
+            }
+            if DISORDER_ARCHIVE
             else {"groups": study_group_files("disorder")}
         ),
     output:

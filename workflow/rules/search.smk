@@ -6,9 +6,10 @@
 #
 # The rules serve two searches ({search}): `search`, the one `all` runs, and `search_full`, the
 # search over many more chains whose merged result is kept in the repository (config
-# search.archive; made by `snakemake --cores 2 keep --config keep=search_full`, keep.smk). With a
-# kept archive whose settings and result version are the run's (plan.search_archive), `all` pins
-# its chosen chain and re-scores that chain only; `search.pinned_seed` pins any seed. Stages 1 and
+# search.archive; made by `snakemake --cores 2 keep --config keep=search_full`, keep.smk). When
+# config search.archive names it, `all` takes its candidates and chosen chain (checked by rule
+# check_kept_archive) and re-scores that chain only (search.pinned_seed, its chosen seed); without
+# an archive, search.pinned_seed pins any seed, and with neither `all` searches at its scale. Stages 1 and
 # 2 are studies of their chains, one per model (<search>-filter-<model>, <search>-score-<model>),
 # whose groups rule study_group makes (study.smk); the chunks of seeds and the groups are files of
 # their own, so a killed search resumes where it stopped.
@@ -104,7 +105,7 @@ rule plot_search:
     """The search's two figures from one read of its candidates: the statements each keeps, and
     the statements analysed jointly."""
     input:
-        search=SEARCH_POPULATION,
+        **SEARCH_INPUTS,
     output:
         pdf=result("figures", "search.pdf"),
         png=report(

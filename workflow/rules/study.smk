@@ -48,6 +48,7 @@ rule study_scene:
         scene=result("studies", "{study}", "{model}_H{energy}.nc"),
     params:
         spec=lambda wildcards: plan.study_spec(study_of(wildcards.study)),
+        check=study_group_check,
     log:
         log_file("study_scene", "{study}-{model}_H{energy}"),
     benchmark:
@@ -66,6 +67,7 @@ rule study_statistics:
         laws=result("studies", "{study}", "laws.nc"),
     params:
         spec=lambda wildcards: plan.study_spec(study_of(wildcards.study)),
+        check=study_group_check,
     log:
         log_file("study_statistics", "{study}"),
     benchmark:

@@ -144,10 +144,9 @@ def figure_key(study: str, figure: str) -> str:
     return f"{study}_{figure}"
 
 
-def body(named: dict[str, xr.Dataset], figures: dict[str, list[str]], missing: tuple = ()) -> str:
-    """The generated part of the section: the table of laws with its sources, each study's
-    ``figures`` (study -> figure names, files ``beyond/<study>_<figure>.pdf``), and the studies
-    of the configuration left out because they are not kept (``missing``)."""
+def body(named: dict[str, xr.Dataset], figures: dict[str, list[str]]) -> str:
+    """The generated part of the section: the table of laws with its sources, and each study's
+    ``figures`` (study -> figure names, files ``beyond/<study>_<figure>.pdf``)."""
     sources = dict.fromkeys(r["reference"] for name, ds in named.items()
                             for r in [*law_rows(name, ds), *crossover_rows(name, ds)])
     by_rule: dict[str, list[str]] = {}
@@ -173,9 +172,6 @@ def body(named: dict[str, xr.Dataset], figures: dict[str, list[str]], missing: t
         f"\\texttt{{{tex_text(name)}}} {ds.attrs['cost_s'] / 60:.0f} {ds.attrs['cost_kind']}-min, largest relative energy error "
         f"${tex_scientific(float(ds['energy_error_max'].max()))}$" + _norm_error(ds) for name, ds in named.items())
                + ".\n")
-    if missing:
-        out.append("Not kept yet, so not shown: " + ", ".join(f"\\texttt{{{tex_text(m)}}}" for m in missing)
-                   + " (\\texttt{snakemake --cores 2 keep --config keep=<name>}).\n")
     for study, names in figures.items():
         for figure in names:
             label = tex_text(study)

@@ -21,10 +21,12 @@ question with the same code. So every kept file records three global attributes:
 
 :func:`why_not_usable` compares a file with the settings a run would compute it with and the
 code's current result version, and says in one line why the file may not stand in for the
-computation (or ``None`` when it may); it reads the header only, so that the workflow can decide
-while it is parsed. A file that cannot be read, that records no settings, or (:func:`check_data`)
-whose data do not match their checksum raises :class:`~chainchaos.errors.KeptFileError`, whose one
-line names the file, what is wrong and how to restore or remake it. What a result's settings are
+computation (or ``None`` when it may); it reads the header only. :func:`check_kept`, which the
+workflow's check jobs run on each kept file its config chose, adds the checksum of the data and
+the two ways out of a mismatch; the workflow opens no kept file while it is parsed. A file that
+cannot be read, that records no settings, or (:func:`check_data`) whose data do not match their
+checksum raises :class:`~chainchaos.errors.KeptFileError`, whose one line names the file, what is
+wrong and how to restore or remake it. What a result's settings are
 is said next to the code that computes it (``studies.search.archive.search_settings``,
 ``studies.scan.runs.disorder_settings``).
 """
@@ -190,6 +192,52 @@ def why_not_usable(path, settings: dict, version: int, remake: str, keys=None) -
         return None
     key, a, b = found
     return f"kept file {path}: {key} is {_shown(a)} in the file, {_shown(b)} in this run"
+
+
+def check_kept(path, settings: dict, version: int, remake: str, compute: str, keys=None) -> str:
+    """Check that the kept file ``path``, which a run's config chose to use, stands in for the
+    computation with ``settings`` by code of result version ``version``: it exists, its key
+    matches (:func:`why_not_usable`) and its data match their checksum (:func:`check_data`).
+
+    What a check job of the workflow runs (``check_kept_archive``, ``check_kept_study``): the
+    jobs that read the file wait for it, and a file that does not match stops them, never
+    another plan.
+
+    Parameters
+    ----------
+    path : str or Path
+        The kept file.
+    settings : dict
+        The settings this run would compute it with.
+    version : int
+        The result version of the code that computes it.
+    remake : str
+        The command that remakes the file.
+    compute : str
+        How to compute the result instead of using the file (the config key to change).
+    keys : sequence of str, optional
+        Compare only these top-level keys of the settings.
+
+    Returns
+    -------
+    str
+        The settings digest of the file, for the check's record.
+
+    Raises
+    ------
+    KeptFileError
+        One line naming the file, what does not match (the first setting that differs, with its
+        two values, or the result version, or absent, unreadable or damaged data) and the two ways
+        out: ``remake`` it, or ``compute``.
+    """
+    ways_out = f"remake it with '{remake}', or {compute}"
+    if not Path(path).exists():
+        raise KeptFileError(f"kept file {path} is absent; {ways_out}")
+    why = why_not_usable(path, settings, version, remake, keys)
+    if why is not None:
+        raise KeptFileError(f"{why}; {ways_out}")
+    check_data(path, remake)
+    return str(read_header(path, remake)[0][DIGEST_ATTR])
 
 
 def _hash_variable(sha, name: str, var) -> None:

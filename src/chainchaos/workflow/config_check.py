@@ -118,6 +118,11 @@ def consistency_errors(config: dict) -> list[str]:
             _check(messages, blocks, lambda: settings_for(kind, scan))
             _check(messages, blocks, lambda: energy_range(scan[kind]))  # no Numba in Snakemake's process
 
+    search = config["search"]
+    if search.get("archive") and search.get("pinned_seed") is None:
+        messages.append(f"config key search.pinned_seed is empty while search.archive = {search['archive']!r} is used: "
+                        "allowed is the archive's chosen seed (all runs on its chain; the archive's check compares "
+                        "the two), or empty search.archive to search at this scale")
     for block in ("search", "search_full"):
         _check(messages, [(block, config[block])], lambda: SearchPlan.from_config(config[block]))
     for block in ("search", "verdicts"):

@@ -4,8 +4,10 @@ The rule files (``workflow/rules/*.smk``) hold paths and config lookups; every d
 is a function here, of explicit arguments (the config, or a part of it), so that it can be tested
 without Snakemake:
 
-- :func:`use_kept`, the one function that looks at files while the workflow is parsed: whether a
-  kept result (``data/``) stands in for its computation;
+- which kept results (``data/``) a run uses, from the config alone (:func:`archive_path`; the
+  studies of config ``use_kept_studies``), and what the jobs that check them compare them with
+  (:func:`archive_check`): no function here opens a file while the workflow is parsed (a search
+  stage's study reads the stage before it, a checkpoint's output, once it ran);
 - which scenes share a job (:func:`scene_jobs`), what the paper's targets are
   (:func:`paper_targets`), which files a figure reads (:func:`figure_inputs`);
 - the settings each kind of job gets (:func:`scan_params`, :func:`search_params`) and how many
@@ -15,13 +17,9 @@ without Snakemake:
 """
 
 import math
-import sys
-from dataclasses import dataclass, field
 from pathlib import Path
 
-from chainchaos.errors import KeptFileError
 from chainchaos.paper import panels
-from chainchaos.records import kept
 from chainchaos.run.scenes import SceneParameters, scene_batches, scene_parameters
 
 #: The scans are studies too (``studies.scan.runs.scan_study``), named by their kind.
@@ -40,70 +38,62 @@ def verdict_studies() -> dict[str, str]:
 KEPT_PRODUCTS = ("search_full", "search_rejudge", "disorder_full")
 
 
-# ---- kept results -------------------------------------------------------------------------------
+# ---- kept results: chosen in the config, checked by jobs ---------------------------------------
+
+#: The archives a config may choose to use, by name: the config key that names the file (empty:
+#: computed at the configured scale).
+ARCHIVE_KEYS = {"search_full": "search.archive", "disorder_full": "scan.disorder.archive"}
 
 
-@dataclass(frozen=True)
-class Kept:
-    """The decision on one kept file (:func:`use_kept`).
-
-    Attributes
-    ----------
-    path : str or None
-        The kept file to read instead of computing it, or None: compute at the configured scale.
-    reason : str or None
-        Why the file is not used (one line), or why it could not be checked.
-    attrs : dict
-        The file's global attributes (empty when it is not used or cannot be read).
-    sizes : dict
-        The sizes of its dimensions, from its header.
-    """
-
-    path: str | None
-    reason: str | None = None
-    attrs: dict = field(default_factory=dict)
-    sizes: dict = field(default_factory=dict)
+def remake_command(name: str) -> str:
+    """The command that remakes the kept result ``name`` (an archive or a study)."""
+    return f"snakemake --cores 2 keep --config keep={name}"
 
 
-def use_kept(path, settings: dict, version: int, remake: str, keys=None) -> Kept:
-    """Whether the kept file ``path`` stands in for its computation with ``settings``.
+def kept_compute(name: str) -> str:
+    """How a run computes the kept result ``name`` instead of using it: the config key to change."""
+    if name == "search_full":
+        return "empty config search.archive and search.pinned_seed to search at this run's scale"
+    if name in ARCHIVE_KEYS:
+        return f"empty config {ARCHIVE_KEYS[name]} to compute it at this run's scale"
+    return f"take {name} out of config use_kept_studies to compute it in this run"
 
-    The only function that opens a file while the workflow is parsed: it reads the file's header
-    (its key, ``chainchaos.records.kept``, and its dimensions), never its data. A file whose
-    settings (all of them, or the top-level ``keys``) and result version are this run's is used;
-    one that differs is not, and one line on stderr says which key differs. A file whose header
-    cannot be read is used all the same, so that only the jobs that read it stop, with the
-    :class:`~chainchaos.errors.KeptFileError` that names it and how to restore it.
 
-    Parameters
-    ----------
-    path : str or None
-        The kept file (a missing file or None: not used, nothing printed).
-    settings : dict
-        The settings this run would compute the result with.
-    version : int
-        The result version of the code that computes it.
-    remake : str
-        The command that remakes the file (named in the messages).
-    keys : sequence of str, optional
-        Compare only these top-level keys of the settings.
+def archive_path(name: str, config: dict) -> str | None:
+    """The kept file of archive ``name`` (:data:`ARCHIVE_KEYS`) that the config chose to use, or
+    None: computed at the configured scale. Read from the config alone (no file is looked at)."""
+    block = config
+    for key in ARCHIVE_KEYS[name].split("."):
+        block = block.get(key) or {}
+    return str(block) if block else None
 
-    Returns
-    -------
-    Kept
-    """
-    if not path or not Path(path).exists():
-        return Kept(None)
-    try:
-        why = kept.why_not_usable(path, settings, version, remake, keys)
-        header = kept.read_header(path, remake)
-    except KeptFileError as error:
-        print(f"{error}; the jobs that read it stop", file=sys.stderr)
-        return Kept(str(path), str(error))
-    if why is not None:
-        print(f"{why}; not used, computed at the configured scale", file=sys.stderr)
-        return Kept(None, why)
-    return Kept(str(path), None, *header)
+
+def archive_check(name: str, config: dict) -> dict:
+    """What the job that checks the used archive ``name`` compares it with
+    (``records.kept.check_kept``): the settings this run would compute it with, the result
+    version, the keys compared (the full search with ``search.reuse_archive_chain``: its chain's
+    only), the attributes it must hold (``{name: [config key, value]}``; the full search: the
+    chosen seed that config ``search.pinned_seed`` names, which the plan runs on), and the two ways out of a mismatch."""
+    compute = kept_compute(name)
+    if name == "search_full":
+        from chainchaos.studies.search.archive import search_settings
+        from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION
+
+        return {"settings": search_settings(search_params("search_full", config)), "version": SEARCH_RESULT_VERSION,
+                "keys": ["chain"] if config["search"].get("reuse_archive_chain") else None,
+                "attrs": {"chosen_seed": ["search.pinned_seed", config["search"].get("pinned_seed")]},
+                "remake": remake_command(name), "compute": compute}
+    from chainchaos.studies.scan.runs import DISORDER_RESULT_VERSION, disorder_settings
+
+    scan = config["scan"]
+    return {"settings": disorder_settings(scan_params("disorder_full", scan), config["chain"]["N"]),
+            "version": DISORDER_RESULT_VERSION, "keys": None, "attrs": {},
+            "remake": remake_command(name), "compute": compute}
+
+
+def kept_study_check(name: str, kept_root) -> dict:
+    """The two ways out when a kept group of study ``name`` does not match its study file."""
+    return {"remake": f"rm -r {Path(kept_root) / name} && {remake_command(name)}", "compute": kept_compute(name)}
 
 
 # ---- the paper's scenes and figures --------------------------------------------------------------
@@ -189,56 +179,24 @@ def search_chain(name: str, config: dict) -> dict:
     return {**config["chain"], "selection": selection}
 
 
-def search_params(name: str, config: dict, pinned_seed: int | None = None) -> dict:
+def search_params(name: str, config: dict) -> dict:
     """The parameters of search ``name`` (``search`` or ``search_full``): its block (the full
-    search's with the orbit settings of ``search``), chain, claims and excited site.
-    ``pinned_seed``: the seed ``search`` re-scores instead of searching (the kept archive's
-    choice, :func:`search_archive`), unless its block pins one itself."""
+    search's with the orbit settings of ``search``), chain, claims and excited site. With
+    ``search.pinned_seed`` (the kept full search's chosen seed when config ``search.archive``
+    names it), ``search`` re-scores that seed's chain instead of searching."""
     if name == "search_full":
         block = {**config["search_full"], "settings": config["search"]["settings"]}
     else:
         block = {k: v for k, v in config["search"].items() if k not in SEARCH_WORKFLOW_KEYS}
-        if pinned_seed is not None and block.get("pinned_seed") is None:
-            block["pinned_seed"] = int(pinned_seed)
     return {"search": block, "chain": search_chain(name, config),
             "claims": config.get("claims", {}), "site": config["simulation"]["excited_site"]}
 
 
-def search_archive(config: dict) -> Kept:
-    """The decision on the kept full search (config ``search.archive``): its settings must be
-    those the full search would run with; with ``search.reuse_archive_chain`` (a scale that only
-    shortens runs) only its chain's."""
-    from chainchaos.studies.search.archive import search_settings
-    from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION
-
-    keys = ("chain",) if config["search"].get("reuse_archive_chain") else None
-    return use_kept(config["search"].get("archive"), search_settings(search_params("search_full", config)),
-                    SEARCH_RESULT_VERSION, "snakemake --cores 2 keep --config keep=search_full", keys)
-
-
-def pinned_archive(config: dict, archive: Kept) -> Kept:
-    """The kept full search when ``all`` takes its chosen chain from it (it is used and the
-    config pins no seed itself), else ``Kept(None)``."""
-    return archive if archive.path and config["search"].get("pinned_seed") is None else Kept(None)
-
-
-def search_plans(config: dict, pinned: Kept):
+def search_plans(config: dict):
     """The :class:`~chainchaos.studies.search.stages.SearchPlan` of each search."""
     from chainchaos.studies.search.stages import SearchPlan
 
-    seed = pinned.attrs.get("chosen_seed") if pinned.path else None
-    return {name: SearchPlan.from_config(search_params(name, config, seed)["search"])
-            for name in ("search", "search_full")}
-
-
-def disorder_archive(config: dict) -> Kept:
-    """The decision on the kept full disorder statistics (config ``scan.disorder.archive``)."""
-    from chainchaos.studies.scan.runs import DISORDER_RESULT_VERSION, disorder_settings
-
-    scan = config["scan"]
-    return use_kept(scan["disorder"].get("archive"),
-                    disorder_settings(scan_params("disorder_full", scan), config["chain"]["N"]),
-                    DISORDER_RESULT_VERSION, "snakemake --cores 2 keep --config keep=disorder_full")
+    return {name: SearchPlan.from_config(search_params(name, config)["search"]) for name in ("search", "search_full")}
 
 
 # ---- studies --------------------------------------------------------------------------------
@@ -267,7 +225,7 @@ def search_studies(search: str, stage: str) -> list[str]:
     return [study_name(search, stage, model) for model in search_models()]
 
 
-def _search_stage_keys(search: str, stage: str, model: str, config: dict, pinned_seed: int | None) -> dict:
+def _search_stage_keys(search: str, stage: str, model: str, config: dict) -> dict:
     """The keys of a search stage's study: its chains are the candidates (``filter``), or the
     survivors by rank (``score``), read from the stage before (``<results>/<search>/candidates.nc``,
     ``filter.nc``: call it once those exist); with a pinned seed, that seed's chain."""
@@ -276,7 +234,7 @@ def _search_stage_keys(search: str, stage: str, model: str, config: dict, pinned
     from chainchaos.studies.search.stages import stage_studies
     from chainchaos.workflow.tasks.search import search_parts
 
-    selection, search_plan, settings, criteria, site = search_parts(search_params(search, config, pinned_seed))
+    selection, search_plan, settings, criteria, site = search_parts(search_params(search, config))
     root = Path(config["results"], search)
     if search_plan.pinned:
         seeds = [search_plan.pinned_seed]
@@ -287,16 +245,20 @@ def _search_stage_keys(search: str, stage: str, model: str, config: dict, pinned
     return stage_studies(search, stage, selection, search_plan, settings, criteria, site, seeds)[model]
 
 
-def load_run_study(name: str, config: dict, pinned_seed: int | None = None):
+def load_run_study(name: str, config: dict):
     """The study ``name`` as this run reads it: a scan kind (from config block ``scan``), the
     scenes of a model on the chosen chain (``verdicts_<model>``), a stage of a search
-    (:func:`search_stage_study`; ``pinned_seed`` as :func:`search_params` takes it), the file
-    config ``study`` names (whose stem is ``name``), or ``studies/<name>.yaml``."""
+    (:func:`search_stage_study`), the file config ``study`` names (whose stem is ``name``), or
+    ``studies/<name>.yaml``. Its keys are checked, but no chain file it names is read: its jobs
+    read it (while the workflow is parsed, it may be absent, or made by an earlier run)."""
+    from functools import partial
+
     from chainchaos.studies.study.spec import load_study
 
+    load_study = partial(load_study, read_files=False)
     stage = search_stage_study(name)
     if stage is not None:
-        return load_study(_search_stage_keys(*stage, config, pinned_seed))
+        return load_study(_search_stage_keys(*stage, config))
 
     if name in SCAN_STUDIES:
         from chainchaos.studies.scan.runs import scan_study
@@ -315,17 +277,6 @@ def study_figure_names(study) -> list[str]:
     """The figures a study draws: those of its key ``figures``, and ``comparison`` when it
     compares itself with other studies."""
     return [*study.spec["figures"], *(["comparison"] if study.spec["compare_with"] else [])]
-
-
-def kept_group(study, group: int, kept_root) -> Kept:
-    """The decision on a study's kept group (``<kept_root>/<name>/groups/<group>.nc``)."""
-    from chainchaos.studies.study.runs import STUDY_RESULT_VERSION, group_settings
-    from chainchaos.studies.study.spec import kept_group_path
-
-    if study.name in SCAN_STUDIES or study.name in verdict_studies() or search_stage_study(study.name):  # the run's own
-        return Kept(None)
-    return use_kept(kept_group_path(study.name, group, kept_root), group_settings(study, group),
-                    STUDY_RESULT_VERSION, f"snakemake --cores 2 keep --config keep={study.name}")
 
 
 def beyond_entries(beyond: list, figure_names) -> dict[str, list[str]]:
@@ -396,50 +347,30 @@ def kept_product(keep, study_names) -> str | None:
                      f"({', '.join(study_names)})")
 
 
-def shown_studies(entries: dict, study_of, kept_root) -> list[str]:
-    """The studies of the section Beyond the paper (``entries``, :func:`beyond_entries`) that it
-    shows: those whose every group is kept with the study's settings (a run never computes them).
-    ``study_of(name)``: the study, as :func:`load_run_study` gives it."""
-    return [name for name in entries
-            if all(kept_group(study_of(name), g, kept_root).path for g in range(study_of(name).n_groups))]
-
-
-def stale_kept_groups(study, kept_root) -> list[str]:
-    """The kept groups of ``study`` made with other settings than its own: a run that keeps the
-    study must not overwrite them silently."""
-    from chainchaos.studies.study.spec import kept_group_path
-
-    paths = [kept_group_path(study.name, g, kept_root) for g in range(study.n_groups)]
-    return [str(p) for g, p in enumerate(paths) if p.exists() and not kept_group(study, g, kept_root).path]
-
-
 def kept_targets(keep: str | None, config: dict, study=None) -> list[str]:
     """The files the target ``keep`` makes for config ``keep`` (:func:`kept_product`):
-    an archive's path, or every kept group of the study ``study``.
+    an archive's path, or every kept group of the study ``study`` and its statistics, whose job
+    checks every group against the study (a group kept before with other settings, which no run
+    remakes, stops the run there, naming it).
 
     Raises
     ------
     ValueError
-        When ``keep`` is empty, or when kept groups of the study were made with other settings
-        (naming them and how to remake them).
+        When ``keep`` is empty, or names an archive whose config key is empty.
     """
     from chainchaos.studies.study.spec import kept_group_path
 
     if keep is None:
         raise ValueError(f"the target keep needs --config keep=<what>: {', '.join(KEPT_PRODUCTS)} or a study")
     if keep in KEPT_PRODUCTS:
-        key = "scan.disorder.archive" if keep == "disorder_full" else "search.archive"
-        block = config["scan"]["disorder"] if keep == "disorder_full" else config["search"]
-        if not block.get("archive"):
-            raise ValueError(f"config {key} is empty: keep={keep} writes its result there (e.g. "
-                             f"data/{'disorder/disorder_full' if keep == 'disorder_full' else 'search/search_full'}.nc)")
-        return [block["archive"]]
-    stale = stale_kept_groups(study, config["kept_studies"])
-    if stale:
-        raise ValueError(f"kept groups of study {keep} made with other settings: {', '.join(stale)}; delete "
-                         f"{Path(config['kept_studies']) / keep} to remake them, or restore the study file "
-                         "they were made with")
-    return [str(kept_group_path(keep, g, config["kept_studies"])) for g in range(study.n_groups)]
+        name = "search_full" if keep == "search_rejudge" else keep
+        path = archive_path(name, config)
+        if not path:
+            raise ValueError(f"config {ARCHIVE_KEYS[name]} is empty: keep={keep} writes its result there (e.g. "
+                             f"data/{'disorder/disorder_full' if name == 'disorder_full' else 'search/search_full'}.nc)")
+        return [path]
+    groups = [str(kept_group_path(keep, g, config["kept_studies"])) for g in range(study.n_groups)]
+    return [*groups, f"{config['results']}/studies/{keep}/statistics.nc"]
 
 
 def beyond_inputs(results: str, shown: dict) -> dict[str, str]:

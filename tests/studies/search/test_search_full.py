@@ -111,8 +111,10 @@ def test_a_killed_full_search_resumes_without_redoing_a_finished_chunk(tmp_path)
     assert cf_problems(archive) == [] and cf_problems(results / "search_full" / "filter.nc") == []
     assert cf_problems(filters[0]) == []
 
-    # `all` pins the archive's chain: its search's candidates are that chain alone, and no filter runs
+    # `all` pins the archive's chain (its chosen seed named in the config, which the archive's check
+    # compares): its search's candidates are that chain alone, and no filter runs
     pinned = tmp_path / "all"
+    config.write_text(SMALL.format(archive=archive).replace("search:\n", f"search:\n  pinned_seed: {chosen_seed(archive)}\n"))
     dry = subprocess.run(_snakemake(config, pinned, "-n"), cwd=ROOT, capture_output=True, text=True, timeout=300)
     assert dry.returncode == 0, dry.stdout[-4000:]
     planned = dry.stdout.split("Job stats:")[-1]

@@ -147,10 +147,12 @@ jobs: {orbits_per_job: 1}
 """
 
 
-def test_a_kept_study_is_read_not_run_while_its_settings_hold(tmp_path):
-    """`keep --config keep=<study>` keeps each group with its key; the study then plans no group
-    job, a change of a key its numbers do not depend on (its figures) neither, a changed step says
-    which key differs and computes again, and keep refuses to overwrite the stale groups."""
+def test_a_kept_study_is_read_not_run_and_a_changed_key_stops_the_jobs_that_read_it(tmp_path):
+    """`keep --config keep=<study>` keeps each group with its key; with the study in config
+    use_kept_studies it then plans no group job, and a changed key plans the same jobs: a key its
+    numbers do not depend on (its figures) runs, a changed step stops the jobs that read the groups
+    with one line naming it and the two ways out (and so does keep). Not used, the study is
+    computed."""
     study, results, kept = tmp_path / "tiny.yaml", tmp_path / "results", tmp_path / "kept"
     study.write_text(TINY)
     config = ("--config", f"study={study}", f"results={results}", f"kept_studies={kept}")
@@ -160,15 +162,23 @@ def test_a_kept_study_is_read_not_run_while_its_settings_hold(tmp_path):
     assert [f.name for f in files] == ["0000.nc", "0001.nc"]
     key = xr.open_dataset(files[0]).attrs
     assert len(key["kept_settings_digest"]) == 64 and key["result_version"] >= 1
-    assert not (results / "studies").exists()  # computed straight into the kept files
-    code, plan = snakemake("-n", "study", *config)
+    assert not (results / "studies" / "tiny" / "groups").exists()  # computed straight into the kept files
+    used = (*config, "use_kept_studies=[tiny]")
+    code, plan = snakemake("-n", "study", *used)
     assert code == 0 and "study_group" not in planned_jobs(plan), plan[-3000:]
     study.write_text(TINY.replace("figures: [chaos]", "figures: [chaos, spreading]"))
-    code, plan = snakemake("-n", "study", *config)
-    assert code == 0 and "study_group" not in planned_jobs(plan), plan[-3000:]
+    code, out = snakemake("study", *used)
+    assert code == 0, out[-3000:]
     study.write_text(TINY.replace("dt: 0.05", "dt: 0.04"))
+    code, changed = snakemake("-n", "study", *used)
+    assert code == 0 and "study_group" not in planned_jobs(changed), changed[-3000:]
+    line = (f"kept file {files[0]}: integration.dt is 0.05 in the file, 0.04 in this run; remake it with "
+            f"'rm -r {kept / 'tiny'} && snakemake --cores 2 keep --config keep=tiny', or take tiny out of config "
+            "use_kept_studies to compute it in this run")
+    code, out = snakemake("study", *used)
+    log = (results / "logs" / "study_statistics" / "tiny.log").read_text()
+    assert code != 0 and log == f"study_statistics: {line}\n", log
+    code, out = snakemake("keep", *config, "keep=tiny")
+    assert code != 0 and line in out, out[-3000:]
     code, plan = snakemake("-n", "study", *config)
     assert code == 0 and planned_jobs(plan)["study_group"] == 2, plan[-3000:]
-    assert "integration.dt is 0.05 in the file, 0.04 in this run; not used" in plan
-    code, out = snakemake("-n", "keep", *config, "keep=tiny")
-    assert code != 0 and f"delete {kept / 'tiny'} to remake them" in out

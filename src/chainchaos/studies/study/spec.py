@@ -192,7 +192,7 @@ def _with_model_names(raw: dict, directory: str) -> dict:
     return {**raw, "lattice": {**raw["lattice"], "model": names[0] if isinstance(model, str) else names}}
 
 
-def load_study(source, root: Path | None = None) -> "Study":
+def load_study(source, root: Path | None = None, *, read_files: bool = True) -> "Study":
     """The ``Study`` of ``source``, checked against the study schema.
 
     Parameters
@@ -203,6 +203,10 @@ def load_study(source, root: Path | None = None) -> "Study":
     root : path, optional
         Where a study named without a path is looked up; default ``./studies`` when the working
         directory has one, else the checkout's ``studies/``.
+    read_files : bool, optional
+        Check the keys against the chain file ``lattice.chain_file`` names (its bead count, when it
+        exists); False checks the keys alone, as the workflow does while it plans (the jobs read
+        the file).
 
     Returns
     -------
@@ -245,7 +249,7 @@ def load_study(source, root: Path | None = None) -> "Study":
         spec["figures"] = [figure for figure in FIGURES
                            if all(name in spec["observables"] for name in FIGURE_OBSERVABLES[figure])]
     study = Study(name, spec, directory)
-    study.check()
+    study.check(read_files)
     return study
 
 
@@ -434,11 +438,13 @@ class Study:
 
     # ---- checks between keys ----------------------------------------------------------------
 
-    def check(self) -> None:
-        """StudyError naming every key that does not fit the others."""
+    def check(self, read_files: bool = True) -> None:
+        """StudyError naming every key that does not fit the others (``read_files``: and the chain
+        file's bead count, when the file exists)."""
         errors = []
         chain_file = self.spec["lattice"]["chain_file"]
-        known_chain = not chain_file or Path(chain_file).exists()  # else a rule of the workflow may make it
+        # a chain file absent (a rule of the workflow may make it) or not read: the keys alone
+        known_chain = not chain_file or (read_files and Path(chain_file).exists())
 
         def check(key, test):
             try:

@@ -6,9 +6,9 @@ from pathlib import Path
 
 import xarray as xr
 
-from chainchaos.errors import require
+from chainchaos.errors import KeptFileError, require
 from chainchaos.records import kept
-from chainchaos.records.io import write_netcdf
+from chainchaos.records.io import write_netcdf, write_text
 from chainchaos.records.provenance import provenance_attrs
 from chainchaos.studies.scan import merge, runs
 from chainchaos.studies.search import archive
@@ -145,3 +145,21 @@ def search_rejudge(inputs, outputs, params, wildcards) -> None:
 def keep_study_group(inputs, outputs, params, wildcards) -> None:
     """One group of a study, computed straight into its kept file (its key is in it)."""
     study_group(inputs, outputs, params, wildcards)
+
+
+def check_kept_archive(inputs, outputs, params, wildcards) -> None:
+    """A kept archive the config chose to use (``plan.archive_check``), checked against this run's
+    settings, result version and the checksum of its data, and against the attributes the plan
+    took from the config (the full search's chosen seed): the record says which file was used
+    with which settings digest; a mismatch stops this job with one line and the two ways out."""
+    check, path = params["check"], params["path"]
+    digest = kept.check_kept(path, check["settings"], check["version"], check["remake"], check["compute"],
+                             check["keys"])
+    attrs, _ = kept.read_header(path, check["remake"])
+    for (name, (key, expected)) in check["attrs"].items():
+        found = attrs.get(name)
+        if found is None or int(found) != int(expected):
+            raise KeptFileError(f"kept file {path}: {name} is {found} in the file, {expected} in config {key}; "
+                                     f"set {key}: {found}, or {check['compute']}")
+    write_text(f"{path}\tsettings digest {digest}\tused\n", outputs["record"])
+

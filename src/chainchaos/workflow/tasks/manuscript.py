@@ -38,8 +38,9 @@ def evaluate_claims(inputs, outputs, params, wildcards) -> None:
     claims_notes.tex, scenes_table.tex, search_table.tex and macros.tex (every number the
     manuscript prints, as \\cc{key}). Inputs: the products named in :data:`PRODUCTS`, the
     ensemble verdicts ``verdict_<scene>`` and the scene files by scene name (``code`` only triggers
-    reruns); params: the config blocks ``claims`` and ``simulation``."""
-    files = {k: v for k, v in inputs.items() if k != "code"}
+    reruns, ``kept`` orders the job after the kept search's check); params: the config blocks
+    ``claims`` and ``simulation``."""
+    files = {k: v for k, v in inputs.items() if k not in ("code", "kept")}
     # the kept full search when `all` uses it: a damaged one stops this job, naming it
     kept.check_data(files["search_population"], "snakemake --cores 2 keep --config keep=search_full")
     products = {name: xr.load_dataset(files.pop(name)) for name in PRODUCTS}
@@ -99,7 +100,7 @@ def beyond_the_paper(inputs, outputs, params, wildcards) -> None:
     from chainchaos.output.beyond import body
 
     named = {name: xr.load_dataset(path) for name, path in zip(params["studies"], inputs["laws"])}
-    write_text(body(named, dict(params["figures"]), tuple(params["missing"])), outputs["body"])
+    write_text(body(named, dict(params["figures"])), outputs["body"])
 
 
 def run_summary(inputs, outputs, params, wildcards) -> None:

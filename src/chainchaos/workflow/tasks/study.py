@@ -11,18 +11,35 @@ from chainchaos.records import kept
 from chainchaos.records.io import write_netcdf
 
 
-def _study(params):
+def study_from_spec(spec: dict):
+    """The study whose keys a rule passes as its param ``spec`` (``plan.study_spec``,
+    ``plan.group_spec``)."""
     from chainchaos.studies.study.spec import load_study
 
-    spec = dict(params["spec"])
+    spec = dict(spec)
     return load_study({"name": spec.pop("name"), **{k: v for k, v in spec.items() if k != "extends"}})
+
+
+
+def _check_groups(study, paths, check: dict) -> None:
+    """Stop at the first group of ``paths`` (in group order) that is damaged or, for a kept study
+    (``check``: its ways out, ``plan.kept_study_check``), made with other settings than the
+    study's as they are now, with one line naming it (``records.kept.check_kept``)."""
+    from chainchaos.studies.study.runs import STUDY_RESULT_VERSION, group_settings
+
+    for group, path in enumerate([paths] if isinstance(paths, str) else paths):
+        if check:
+            kept.check_kept(path, group_settings(study, group), STUDY_RESULT_VERSION, check["remake"],
+                            check["compute"])
+        else:
+            kept.check_data(path, f"snakemake --cores 2 keep --config keep={study.name}")
 
 
 def study_group(inputs, outputs, params, wildcards) -> None:
     """One job's orbits of a study, with its progress in the log."""
     from chainchaos.studies.study.runs import run_group
 
-    study, group = _study(params), int(wildcards["group"])
+    study, group = study_from_spec(params["spec"]), int(wildcards["group"])
     start = time.perf_counter()
 
     def progress(done, total):
@@ -44,12 +61,11 @@ def study_scene(inputs, outputs, params, wildcards) -> None:
     from chainchaos.studies.study import with_statistics
     from chainchaos.studies.study.runs import merge_groups, scene_dataset, scene_name
 
-    study = _study(params)
+    study = study_from_spec(params["spec"])
     for model in study.models:
         for energy in study.energies:
             if scene_name(model, energy) == f"{wildcards['model']}_H{wildcards['energy']}":
-                for path in inputs["groups"]:  # a damaged kept group stops the job, naming it
-                    kept.check_data(path, f"snakemake --cores 2 keep --config keep={study.name}")
+                _check_groups(study, inputs["groups"], params["check"])
                 # the statistics of this model and energy only (each reads its own orbits)
                 merged = merge_groups(study, [xr.load_dataset(f) for f in inputs["groups"]])
                 ds = with_statistics(study, merged.sel(model=[model], energy=[energy]))
@@ -67,9 +83,8 @@ def study_statistics(inputs, outputs, params, wildcards) -> None:
     from chainchaos.studies.study.runs import merge_groups
     from chainchaos.studies.study.statistics import statistics
 
-    study = _study(params)
-    for path in inputs["groups"]:  # a damaged kept group stops the job, naming it
-        kept.check_data(path, f"snakemake --cores 2 keep --config keep={study.name}")
+    study = study_from_spec(params["spec"])
+    _check_groups(study, inputs["groups"], params["check"])
     groups = [xr.load_dataset(f) for f in inputs["groups"]]
     merged = merge_groups(study, groups)
     stats = statistics(merged, float(study.spec["criteria"]["slope_window_decades"]))
