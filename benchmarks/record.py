@@ -33,8 +33,17 @@ ROOT = HERE.parent
 RESULTS = HERE / "results"
 
 
+#: What a record says of the commit where the code is not a git checkout (a downloaded archive).
+NOT_A_CHECKOUT = "not a git checkout"
+
+
 def _git(*args: str) -> str:
-    return subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True, check=True).stdout.strip()
+    """git's answer in the project, or :data:`NOT_A_CHECKOUT` where there is no git or no checkout."""
+    try:
+        done = subprocess.run(["git", *args], cwd=ROOT, capture_output=True, text=True, check=True)
+    except (OSError, subprocess.CalledProcessError):
+        return NOT_A_CHECKOUT
+    return done.stdout.strip()
 
 
 def lscpu() -> dict:
@@ -217,7 +226,8 @@ def record(name: str, argv: list[str], note: str = "") -> Path:
     )
 
     commit = _git("rev-parse", "HEAD")  # the code that runs: a commit made during a long run is not it
-    sources_differ = bool(_git("status", "--porcelain", "--", "src", f"benchmarks/{name}.py"))
+    status = _git("status", "--porcelain", "--", "src", f"benchmarks/{name}.py")
+    sources_differ = None if commit == NOT_A_CHECKOUT else bool(status)
     busy_before = busy_share()
     load_before = os.getloadavg()
     started = dt.datetime.now(dt.UTC)
@@ -241,7 +251,7 @@ def record(name: str, argv: list[str], note: str = "") -> Path:
     }
     RESULTS.mkdir(exist_ok=True)
     label = measured.pop("label", "")
-    stem = f"{name}{'-' + label if label else ''}-{started:%Y-%m-%d}-{commit[:7]}"
+    stem = f"{name}{'-' + label if label else ''}-{started:%Y-%m-%d}-{'nogit' if commit == NOT_A_CHECKOUT else commit[:7]}"
     path = RESULTS / f"{stem}.json"
     runs = 1
     while path.exists():

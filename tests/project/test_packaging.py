@@ -127,14 +127,14 @@ def test_version_option_prints_the_package_version(capsys):
     with pytest.raises(SystemExit) as stop:
         cli.main(["--version"])
     assert stop.value.code == 0
-    assert capsys.readouterr().out.strip() == f"chainchaos {chainchaos.__version__}"
+    assert capsys.readouterr().out.strip() == f"chainchaos {chainchaos.__version__} ({PACKAGE})"
 
 
 def test_python_dash_m_runs_the_command():
     done = subprocess.run([sys.executable, "-m", "chainchaos", "--version"], capture_output=True, text=True,
                           cwd=ROOT, check=False)
     assert done.returncode == 0, done.stderr
-    assert done.stdout.strip() == f"chainchaos {chainchaos.__version__}"
+    assert done.stdout.strip() == f"chainchaos {chainchaos.__version__} ({PACKAGE})"
     done = subprocess.run([sys.executable, "-m", "chainchaos"], capture_output=True, text=True, cwd=ROOT,
                           check=False)
     assert done.returncode == 2 and "arguments are required: {chain,ensemble,simulate" in done.stderr
@@ -252,5 +252,7 @@ def test_a_library_only_install_imports_and_runs_an_orbit(tmp_path):
     assert done.returncode == 0, done.stdout[-2000:] + done.stderr[-3000:]
     assert done.stdout.split()[0] == chainchaos.__version__
     done = run(venv / "bin" / "chainchaos", "--version", env=env, cwd=tmp_path)
-    assert done.returncode == 0 and done.stdout.strip() == f"chainchaos {chainchaos.__version__}", done.stderr
+    installed = f"{venv}/lib/python{sys.version_info.major}.{sys.version_info.minor}/site-packages/chainchaos"
+    assert done.returncode == 0 and done.stdout.strip() == f"chainchaos {chainchaos.__version__} ({installed})", \
+        done.stdout + done.stderr
     print(f"library-only install and orbit: {time.monotonic() - started:.0f} s")

@@ -12,7 +12,7 @@ from chainchaos.engine.problem import Problem
 from chainchaos.errors import ParameterError, SimulationError
 from chainchaos.kernels.simd import LANES
 from chainchaos.run import driver
-from chainchaos.run.progress import ProgressReporter
+from chainchaos.run.progress import OrbitProgress, ProgressReporter
 from chainchaos.system.chain import random_chain
 from chainchaos.system.initial import initial_deviation, initial_state
 from chainchaos.system.models import get_model, total_energy
@@ -111,6 +111,16 @@ def test_the_progress_reporter_prints_at_most_every_interval_and_always_the_end(
     assert out.getvalue() == ""
     report(100.0, 1.0)
     assert "[run] t = 100 / 100 (100.0%)" in out.getvalue()
+
+
+def test_an_ensemble_s_progress_counts_orbits_in_the_same_format():
+    out = io.StringIO()
+    report = OrbitProgress("study s group 1 of 3", every=0.0, stream=out)
+    report(0.0024, 24)
+    report(24.0, 24)
+    first, last = out.getvalue().splitlines()
+    assert first.startswith("[study s group 1 of 3] 0.0 of 24 orbits (  0.0%), elapsed ")
+    assert last.startswith("[study s group 1 of 3] 24.0 of 24 orbits (100.0%), elapsed ") and "left ~0.0 s" in last
 
 
 @pytest.mark.parametrize("lanes", [1, LANES - 1, LANES, LANES + 1, LANES + SERIAL_REMAINDER + 1])

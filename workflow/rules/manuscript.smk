@@ -42,6 +42,7 @@ rule evaluate_claims:
         **{f"verdict_{name}": path for name, path in VERDICT_FILES.items()},
         **SPECTRA_FILES,
         **{name: scene_file(name) for name in sorted(SCENES)},
+        **({"kept": SEARCH_INPUTS["kept"]} if "kept" in SEARCH_INPUTS else {}),
         code=CLAIMS_CODE,  # a changed criterion or text in the code reruns the claims
         chain=result("chain", "chain.nc"),
         ensemble=result("ensemble", "participation_stats.nc"),
@@ -49,7 +50,6 @@ rule evaluate_claims:
         disorder=result("scan", "disorder_statistics.nc"),
         search=result("search", "search.nc"),
         search_population=SEARCH_INPUTS["search"],
-        **({"kept": SEARCH_INPUTS["kept"]} if "kept" in SEARCH_INPUTS else {}),
     output:
         csv=report(
             CLAIMS_OUTPUTS["csv"],

@@ -188,7 +188,9 @@ def build_parser() -> argparse.ArgumentParser:
         prog="chainchaos", description=package.__doc__.split("\n\n")[0],
         epilog="Environment variables (Numba's cache, the SIMD width): docs/reference/environment.md. "
                "The paper's pipeline: snakemake --cores 2 all (README.md).")
-    parser.add_argument("--version", action="version", version=f"%(prog)s {package.__version__}")
+    # where the package was imported from: another installed copy would run instead of a checkout's
+    parser.add_argument("--version", action="version",
+                        version=f"%(prog)s {package.__version__} ({Path(package.__file__).parent})")
     user_commands = "chain,ensemble,simulate,check-model,bench"
     sub = parser.add_subparsers(dest="command", required=True, metavar=f"{{{user_commands}}}")
 

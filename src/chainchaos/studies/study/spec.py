@@ -299,6 +299,13 @@ class Study:
         return np.atleast_1d(np.asarray(energies, dtype=np.float64))
 
     @property
+    def n_energies(self) -> int:
+        """Number of energies, from the keys alone (a grid's is not computed: the workflow plans
+        its jobs without the kernels that compute it)."""
+        energies = self.spec["excitation"]["energies"]
+        return int(energies["n"]) if isinstance(energies, dict) else int(np.size(energies))
+
+    @property
     def seeds(self) -> list[int]:
         """The seed of every realization: ``lattice.seeds``, or ``first_seed`` onwards (-1 for a
         chain file's chain drawn from no seed)."""
@@ -531,7 +538,7 @@ class Study:
         list of tuple of (str, int, int)
             The items, model by model, then energy, then realization.
         """
-        return [(m, e, r) for m in self.models for e in range(self.energies.size) for r in range(self.realizations)]
+        return [(m, e, r) for m in self.models for e in range(self.n_energies) for r in range(self.realizations)]
 
     @property
     def per_job(self) -> int:

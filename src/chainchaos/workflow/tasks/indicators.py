@@ -8,6 +8,7 @@ import xarray as xr
 from chainchaos.paper import statements
 from chainchaos.records.io import read_chain, write_netcdf
 from chainchaos.run.orbits import OrbitSettings
+from chainchaos.run.progress import OrbitProgress
 from chainchaos.studies.indicators.spectra import scene_spectra
 
 
@@ -16,12 +17,8 @@ def lyapunov_spectrum(inputs, outputs, params, wildcards) -> None:
     block = params["spectra"]
     scene = statements.statement_scenes()[wildcards["scene"]]
     settings = OrbitSettings.from_config({**block["settings"], "exponents": 0})
-
-    def report(done, total):
-        print(f"[spectrum {wildcards['scene']}] {done}/{total} orbits", file=sys.stderr, flush=True)
-
     ds = scene_spectra(read_chain(inputs["chain"]), scene.model, scene.energy, int(params["site"]), settings,
-                       int(block["lanes"]), report)
+                       int(block["lanes"]), OrbitProgress(f"spectrum {wildcards['scene']}"))
     ds.attrs["scene"] = wildcards["scene"]
     print(f"{wildcards['scene']}: lambda_1 = {float(ds['spectrum_final'][0]):.4g}, h_KS = "
           f"{float(ds['ks_entropy'].isel(time=-1).median()):.4g}", file=sys.stderr)

@@ -2,7 +2,6 @@
 of the chosen chain."""
 
 import sys
-import time
 
 import xarray as xr
 
@@ -14,19 +13,15 @@ from chainchaos.records import kept
 from chainchaos.records.io import read_chain, write_netcdf
 from chainchaos.records.provenance import provenance_attrs
 from chainchaos.run.orbits import OrbitSettings
+from chainchaos.run.progress import OrbitProgress
 from chainchaos.studies.search import stages as search
 from chainchaos.studies.search.selection import SelectionCriteria
 from chainchaos.studies.search.stages import SearchPlan
 from chainchaos.workflow.tasks.chain import selection_criteria
 
 
-def progress(label: str):
-    start = time.perf_counter()
-
-    def report(done, total):
-        print(f"[{label}] {done:.4g}/{total} orbits, {time.perf_counter() - start:.1f} s", file=sys.stderr, flush=True)
-
-    return report
+def progress(label: str) -> OrbitProgress:
+    return OrbitProgress(label)
 
 
 def _plan(params: dict) -> tuple[SelectionCriteria, SearchPlan]:

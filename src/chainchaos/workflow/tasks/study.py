@@ -39,15 +39,12 @@ def study_group(inputs, outputs, params, wildcards) -> None:
     """One job's orbits of a study, with its progress in the log."""
     from chainchaos.studies.study.runs import run_group
 
+    from chainchaos.run.progress import OrbitProgress
+
     study, group = study_from_spec(params["spec"]), int(wildcards["group"])
     start = time.perf_counter()
-
-    def progress(done, total):
-        print(f"[study {study.name} group {group}/{study.n_groups}] {done:.4g}/{total} orbits, "
-              f"{time.perf_counter() - start:.1f} s", file=sys.stderr, flush=True)
-
     cpu = time.process_time()
-    ds = run_group(study, group, progress)
+    ds = run_group(study, group, OrbitProgress(f"study {study.name} group {group} of {study.n_groups}"))
     elapsed = time.perf_counter() - start
     ds.attrs.update(wall_time_s=elapsed, cpu_time_s=time.process_time() - cpu,
                     seconds_per_orbit=elapsed / max(ds.sizes['orbit'], 1))
