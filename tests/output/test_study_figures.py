@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from chainchaos.output.plotting.study import WEAK_CHAOS_SLOPE, chaos_figure
+from chainchaos.output.plotting.study import chaos_figure, fractions_figure
 
 
 def _statistics() -> xr.Dataset:
@@ -35,5 +35,24 @@ def test_the_chaos_figure_draws_the_published_slope_the_study_names(published):
     assert f"{published:.3g}" in labels
 
 
-def test_without_a_law_of_lambda_the_chaos_figure_draws_the_weak_chaos_slope():
-    assert _reference_lines(_statistics()) == [WEAK_CHAOS_SLOPE]
+def test_without_a_law_of_lambda_the_chaos_figure_draws_no_published_slope():
+    assert _reference_lines(_statistics()) == []
+
+
+def test_the_chaos_figure_draws_the_study_s_chaos_threshold():
+    stats = _statistics()
+    assert [line for line in chaos_figure(stats).axes[1].lines if line.get_linestyle() == "-."] == []
+    stats.attrs["chaos_slope"] = -0.5
+    ax = chaos_figure(stats).axes[1]
+    assert [line.get_ydata()[0] for line in ax.lines if line.get_linestyle() == "-."] == [-0.5]
+    assert "chaotic above -0.5" in [text.get_text() for text in ax.texts]
+
+
+def test_the_fractions_figure_names_each_verdict_s_threshold():
+    dims = ("model", "energy")
+    one = np.full((1, 2), 0.5)
+    stats = xr.Dataset({f"fraction_{flag}{end}": (dims, one) for flag in ("chaotic", "delocalized")
+                        for end in ("", "_lower", "_upper")}, coords={"model": ["kg"], "energy": [0.4, 0.8]},
+                       attrs={"chaos_slope": -0.5, "p_delocalized": 10.0})
+    legend = [text.get_text() for text in fractions_figure(stats).axes[0].get_legend().get_texts()]
+    assert legend == [r"chaotic ($\Lambda$) slope $> -0.5$", r"delocalized $P > 10$"]

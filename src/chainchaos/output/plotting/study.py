@@ -26,8 +26,6 @@ LOG_T = r"$\log_{10} t$"
 TIME_UNITS_NOTE = "each model in its own time unit"
 ENERGY_COLOURS = ("#1b9e77", "#d95f02", "#7570b3", "#e7298a", "#66a61e", "#e6ab02", "#a6761d", "#666666")
 STUDY_STYLES = ("-", "--", ":", "-.")
-#: The running slope of <log10 Lambda> drawn where a study's laws name none: weak chaos, about -0.25.
-WEAK_CHAOS_SLOPE = -0.25
 #: The verdicts counted in the fractions figure: variable, label, colour, marker.
 FRACTIONS = (("chaotic", r"chaotic ($\Lambda$)", "#d95f02", "o"),
              ("chaotic_gali", r"chaotic (GALI$_k$)", "#7570b3", "s"),
@@ -64,11 +62,12 @@ def _mean_with_band(ax, x, stats, name, model, k, energy, label=True):
     ax.plot(x, mean, color=colour, lw=1.0, label=f"${amount_symbol(model)} = {energy:g}$" if label else None)
 
 
-def _labelled_line(ax, y: float, color: str, ls: str) -> None:
-    """A published slope: a horizontal line with its value written above it at the right edge."""
+def _labelled_line(ax, y: float, color: str, ls: str, text: str = "{y:.3g}", below: bool = False) -> None:
+    """A published slope or a threshold: a horizontal line with ``text`` (by default its value)
+    written above it (``below``: under it) at the right edge."""
     ax.axhline(y, color=color, ls=ls, lw=0.7)
-    ax.annotate(f"{y:.3g}", (1.0, y), xycoords=("axes fraction", "data"), fontsize="x-small", ha="right",
-                va="bottom")
+    ax.annotate(text.format(y=y), (1.0, y), xycoords=("axes fraction", "data"), fontsize="x-small", ha="right",
+                va="top" if below else "bottom")
 
 
 def _crossover(ax, x, stats, model) -> None:
@@ -115,7 +114,10 @@ def spreading_figure(stats, title: str = ""):
 
 
 def chaos_figure(stats, title: str = ""):
-    """<log10 Lambda> against log10 t with the regular t^-1 law, and its running slope, per model."""
+    """<log10 Lambda> against log10 t with the regular t^-1 law, and its running slope, per model,
+    with the published slope where the study's laws name one (``published_slope_mlce``) and the
+    study's chaos threshold (attribute ``chaos_slope``: an orbit whose slope over the last decade
+    exceeds it is chaotic by Lambda)."""
     with context():
         fig, models, axes = _columns(stats, 2, 2.3)
         x = _log_t(stats)
@@ -130,8 +132,11 @@ def chaos_figure(stats, title: str = ""):
             axes[0, c].plot(x[finite], y0 - (x[finite] - x0), color="k", ls="--", lw=0.7,
                             label=r"$\propto t^{-1}$ (regular)")
             axes[1, c].axhline(-1.0, color="k", ls="--", lw=0.7)
-            published = float(stats["published_slope_mlce"]) if "published_slope_mlce" in stats else WEAK_CHAOS_SLOPE
-            _labelled_line(axes[1, c], published, color="0.4", ls=":")
+            if "published_slope_mlce" in stats:
+                _labelled_line(axes[1, c], float(stats["published_slope_mlce"]), color="0.4", ls=":")
+            if "chaos_slope" in stats.attrs:
+                _labelled_line(axes[1, c], float(stats.attrs["chaos_slope"]), color="#d95f02", ls="-.",
+                               text="chaotic above {y:.3g}", below=True)
             axes[0, c].set_title(model_label(model))
             axes[0, c].set_ylabel(r"$\langle \log_{10} \Lambda \rangle$")
             axes[1, c].set_ylabel(r"$d\langle \log_{10}\Lambda\rangle / d\log_{10} t$")
@@ -141,9 +146,21 @@ def chaos_figure(stats, title: str = ""):
     return fig
 
 
+def _criteria(stats) -> dict:
+    """The thresholds behind the fractions (the statistics' attributes), as legend text."""
+    a = stats.attrs
+    return {"chaotic": rf" slope $> {a['chaos_slope']:g}$" if "chaos_slope" in a else "",
+            "chaotic_gali": rf" $< {a['gali_threshold']:g}$" if "gali_threshold" in a else "",
+            "delocalized": rf" $P > {a['p_delocalized']:g}$" if "p_delocalized" in a else ""}
+
+
 def fractions_figure(stats, title: str = ""):
-    """Fractions of realizations chaotic and delocalized against H, with Wilson 95% bands."""
-    flags = [row for row in FRACTIONS if f"fraction_{row[0]}" in stats]
+    """Fractions of realizations chaotic and delocalized against H, with Wilson 95% bands; the
+    legend names each verdict's threshold (over the last decade: the slope of log Lambda, GALI_k,
+    the time-averaged P)."""
+    criteria = _criteria(stats)
+    flags = [(flag, label + criteria[flag], colour, marker) for flag, label, colour, marker in FRACTIONS
+             if f"fraction_{flag}" in stats]
     with context():
         fig, models, axes = _columns(stats, 1, 2.6)
         E = stats.energy.values
@@ -164,7 +181,7 @@ def fractions_figure(stats, title: str = ""):
             ax.set_xlabel(f"${amount_symbol(model)}$")
             ax.set_ylabel("fraction of realizations")
             ax.set_title(model_label(model))
-        axes[0, 0].legend(fontsize="small", title="Wilson 95% bands", title_fontsize="small")
+        axes[0, 0].legend(fontsize="small", title="over the last decade; Wilson 95% bands", title_fontsize="small")
         _title(fig, title, len(models))
     return fig
 
