@@ -3,7 +3,8 @@
 #
 #   snakemake --cores 2 all                                   paper scale
 #   snakemake --cores 2 all --configfile config/quick.yaml    quick scale
-#   snakemake --cores 2 results/figures/fig4d.pdf             one panel and what it needs
+#   snakemake --cores 2 results/figures/fig4d.pdf             one panel and what it needs (paper scale)
+#   snakemake --cores 2 results/figures/fig4d.pdf --configfile config/quick.yaml   (quick scale: targets first)
 #   snakemake --cores 2 keep --config keep=<what>             a kept result (workflow/rules/keep.smk)
 
 import os
@@ -26,15 +27,20 @@ if str(Path(chainchaos.__file__).resolve().parents[1]) != SOURCES:
         "not its own src/: unset PYTHONPATH or run the other checkout's workflow"
     )
 
+from chainchaos.errors import ConfigError
 from chainchaos.workflow.config_check import check_config, typed_overrides
 
 
 configfile: "config/config.yaml"
 
 
-# Every wrong key named with what is allowed, before any rule runs; then the schema's defaults.
+# Every wrong key named with what is allowed, one line each and no traceback, before any rule runs;
+# then the schema's defaults.
 typed_overrides(config, workflow.config_settings.config)
-check_config(config)
+try:
+    check_config(config)
+except ConfigError as error:
+    sys.exit(str(error))
 validate(config, "config/schema.yaml")
 
 

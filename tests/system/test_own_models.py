@@ -95,30 +95,30 @@ def test_every_model_runs_through_run_study_and_the_command_line(tmp_path):
 # ---- a model of one's own -------------------------------------------------------------------------
 
 MORSE = '''
-"""A Morse bond V(D) = K2 (1 - exp(-a D))^2 / (2 a^2): stiffness K2 at rest."""
+"""A Morse bond V(D) = K2 (1 - exp(a D))^2 / (2 a^2), D the compression: stiffness K2 at rest."""
 import numpy as np
 from numba import njit
 from chainchaos import Model
 
 A = {A}
-MINUS_A, MINUS_INV_A, HALF_INV_A2 = -A, -1.0 / A, 0.5 / (A * A)
+INV_A, HALF_INV_A2 = 1.0 / A, 0.5 / (A * A)
 
 
 @njit(cache=True)
 def force(P, left, right):
-    e = np.expm1((left - right) * MINUS_A)
-    return P[0] * MINUS_INV_A * e * (e + 1.0)
+    e = np.expm1((left - right) * A)
+    return P[0] * INV_A * e * (e + 1.0)
 
 
 @njit(cache=True)
 def force_stiffness(P, left, right):
-    e = np.expm1((left - right) * MINUS_A)
-    return P[0] * MINUS_INV_A * e * (e + 1.0), P[0] * (e + 1.0) * (e * 2.0 + {TWO_OR_BROKEN})
+    e = np.expm1((left - right) * A)
+    return P[0] * INV_A * e * (e + 1.0), P[0] * (e + 1.0) * (e * 2.0 + {TWO_OR_BROKEN})
 
 
 @njit(cache=True)
 def potential(P, left, right):
-    e = np.expm1((left - right) * MINUS_A)
+    e = np.expm1((left - right) * A)
     return P[0] * HALF_INV_A2 * e * e{REST}
 
 

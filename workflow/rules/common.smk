@@ -4,10 +4,12 @@
 
 import os
 import re
+import sys
 from pathlib import Path
 from snakemake.exceptions import WorkflowError
 from types import SimpleNamespace
 
+from chainchaos.errors import StudyError
 from chainchaos.kernels.cache import kernel_sources
 from chainchaos.output import report_captions
 from chainchaos.paper import panels, statements
@@ -237,6 +239,13 @@ def study_chain(wildcards):
 
 
 NAMED_STUDY = plan.study_name(config["study"]) if config.get("study") else None
+# A study named on the command line is checked before anything is planned: its wrong keys, one
+# line each and no traceback.
+if NAMED_STUDY:
+    try:
+        study_of(NAMED_STUDY)
+    except StudyError as error:
+        sys.exit(str(error))
 # The kept result this run makes (config keep; workflow/rules/keep.smk).
 KEEP = plan.kept_product(config.get("keep"), [*study_names(), *filter(None, [NAMED_STUDY])])
 # The studies of the section Beyond the paper and the figures it shows of each (config
@@ -268,11 +277,6 @@ def named_study():
             f"the target study needs a study: --config study=<name>, one of {study_names()}"
         )
     return NAMED_STUDY
-
-
-# A study named on the command line is checked before anything is planned.
-if NAMED_STUDY:
-    study_of(NAMED_STUDY)
 
 
 def rule_key(name):

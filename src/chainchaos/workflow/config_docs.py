@@ -112,6 +112,10 @@ anything runs: a key not listed here, a value outside what is allowed, or keys t
 each other (an excited site beyond N, a mode above N, a step longer than the run) stop it with a
 message naming the key. Times are in units of `1/omega_max` of the homogeneous chain.
 
+A study given in Python as a dict of these keys (`run_study({...})`, `load_study({...})`) may
+also carry the two things a file gives by being a file: `name`, its name (a file's stem), and
+`directory`, where a model file it names is looked up (a file's folder).
+
 *Default*: the value taken when the key is absent; *required*: the key must be given. `[]`
 stands for each item of a list.
 """
