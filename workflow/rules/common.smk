@@ -44,9 +44,9 @@ def scene_file(name):
 def kept_input(path, what):
     """A kept file the config chose to use, as an input: ancient() (its checkout time says nothing
     of its age). Absent, the plan stops naming it and the ways out, and nothing computes it
-    (``what``: the archive's or the study's name). A stat, not a read: the job of rule
-    check_kept_archive or check_kept_study judges what the file holds. Call it from an input
-    function: only a run that needs the file looks for it."""
+    (``what``: the archive's or the study's name). A stat, not a read: a job judges what the file
+    holds (check_kept_archive for an archive, the jobs that read a kept study's groups). Call it
+    from an input function: only a run that needs the file looks for it."""
     if not Path(path).exists():
         raise WorkflowError(
             f"kept file {path} is absent; restore it with 'git checkout -- {path}', "
@@ -112,8 +112,8 @@ DISORDER_ARCHIVE = plan.archive_path("disorder_full", config)
 
 
 def kept_check(name):
-    """The record of the check of the kept archive ``name`` (rule check_kept_archive): an input
-    of every job that reads the archive."""
+    """The record of the check of the kept archive ``name`` (made by check_kept_archive), an
+    input of every job that reads the archive."""
     return result("kept", f"{name}.txt")
 
 

@@ -189,8 +189,16 @@ def build_parser() -> argparse.ArgumentParser:
         epilog="Environment variables (Numba's cache, the SIMD width): docs/reference/environment.md. "
                "The paper's pipeline: snakemake --cores 2 all (README.md).")
     # where the package was imported from: another installed copy would run instead of a checkout's
-    parser.add_argument("--version", action="version",
-                        version=f"%(prog)s {package.__version__} ({Path(package.__file__).parent})")
+    # (printed whole: argparse's version action wraps a long path at the terminal's width)
+    version = f"chainchaos {package.__version__} ({Path(package.__file__).parent})"
+
+    class Version(argparse.Action):
+        def __call__(self, parser, namespace, values, option_string=None):
+            print(version)
+            parser.exit()
+
+    parser.add_argument("--version", action=Version, nargs=0, help="print the version and where it was imported "
+                        "from, then exit")
     user_commands = "chain,ensemble,simulate,check-model,bench"
     sub = parser.add_subparsers(dest="command", required=True, metavar=f"{{{user_commands}}}")
 

@@ -446,8 +446,19 @@ class Study:
     # ---- checks between keys ----------------------------------------------------------------
 
     def check(self, read_files: bool = True) -> None:
-        """StudyError naming every key that does not fit the others (``read_files``: and the chain
-        file's bead count, when the file exists)."""
+        """Raise StudyError naming every key that does not fit the others.
+
+        Parameters
+        ----------
+        read_files : bool, optional
+            Also check the keys against the chain file ``lattice.chain_file`` names (its bead
+            count), when the file exists.
+
+        Raises
+        ------
+        StudyError
+            Listing every wrong key, each with its value and what is allowed.
+        """
         errors = []
         chain_file = self.spec["lattice"]["chain_file"]
         # a chain file absent (a rule of the workflow may make it) or not read: the keys alone
