@@ -50,7 +50,8 @@ def test_the_verdict_studies_follow_the_verdicts_block():
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     block = config["verdicts"]
     for model, names in statements.statement_scenes_by_model().items():
-        study = load_study(verdict_study(model, config))
+        study = load_study(verdict_study(model, block, config["claims"], config["simulation"]["excited_site"],
+                                         f"{config['results']}/chain/chain.nc"))
         scenes = statements.statement_scenes()
         assert study.models == [model] and study.lanes == block["lanes"] and study.n_groups == 1
         assert study.energies.tolist() == [scenes[name].energy for name in names]

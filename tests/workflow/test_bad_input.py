@@ -41,7 +41,7 @@ def _load(name: str) -> dict:
 
 
 CONFIG = _merge(_load("config.yaml"), _load("quick.yaml"))
-SCHEMA = config_docs.load_schema()
+SCHEMA = config_docs.config_schema()
 
 
 # ---------------------------------------------------------------------------- config: the table

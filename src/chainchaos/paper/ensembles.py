@@ -82,17 +82,16 @@ def scene_series(alignment: bool) -> tuple[str, ...]:
     return (*SCENE_SERIES, *(ALIGNMENT_SERIES if alignment else ()))
 
 
-def verdict_study(model: str, config: dict) -> dict:
-    """The study of ``model``'s statement scenes on the chosen chain, as the run's ``config`` sets
-    it (blocks ``verdicts``, ``claims``, ``simulation.excited_site``; the chain file
-    ``<results>/chain/chain.nc``): ``verdicts.lanes`` orbits per scene."""
-    block = config["verdicts"]
+def verdict_study(model: str, verdicts: dict, claims: dict | None, site: int, chain_file) -> dict:
+    """The study of ``model``'s statement scenes on the chosen chain (the file ``chain_file``),
+    excited at bead ``site``: ``verdicts["lanes"]`` orbits per scene with the orbit settings
+    ``verdicts["settings"]`` (the pipeline's config block ``verdicts``), judged by the criteria
+    ``claims`` (its block ``claims``)."""
     scenes = statements.statement_scenes()
     names = statements.statement_scenes_by_model()[model]
     return scenes_study(verdict_study_name(model), model, [scenes[n].energy for n in names],
-                        {"chain_file": f"{config['results']}/chain/chain.nc"},
-                        OrbitSettings.from_config(block["settings"]), int(block["lanes"]),
-                        int(config["simulation"]["excited_site"]), Criteria.from_config(config.get("claims")),
+                        {"chain_file": str(chain_file)}, OrbitSettings.from_config(verdicts["settings"]),
+                        int(verdicts["lanes"]), int(site), Criteria.from_config(claims),
                         f"Ensembles of the {model} scenes of the paper's statements on the chosen chain")
 
 

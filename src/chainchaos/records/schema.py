@@ -12,11 +12,6 @@ import functools
 import math
 from pathlib import Path
 
-from chainchaos.project import project_root
-
-#: The pipeline's config schema, in the project directory.
-SCHEMA = Path("config/schema.yaml")
-
 
 # JSON-schema keywords shown as constraints, with how each reads.
 CONSTRAINTS = {
@@ -72,12 +67,12 @@ def load_yaml(text: str):
     return yaml.load(text, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
 
 
-def load_schema(path: Path | None = None, own_models: bool = True) -> dict:
-    """The schema at ``path`` (default: the project's config schema, :data:`SCHEMA`) with the
-    registries' names filled in (a copy of its own for each caller; the file is read once per
-    process and version of it, the registries as they are now: a model added since is allowed;
-    ``own_models=False``: the package's models only, for its documentation)."""
-    path = Path(path if path is not None else project_root("the config schema") / SCHEMA).resolve()
+def load_schema(path: Path, own_models: bool = True) -> dict:
+    """The schema at ``path`` with the registries' names filled in (a copy of its own for each
+    caller; the file is read once per process and version of it, the registries as they are now: a
+    model added since is allowed; ``own_models=False``: the package's models only, for its
+    documentation)."""
+    path = Path(path).resolve()
     schema = copy.deepcopy(_parsed_schema(path, path.stat().st_mtime_ns))
     _fill_registry_enums(schema, registries(own_models))
     return schema

@@ -114,14 +114,17 @@ class SceneParameters(RunSettings):
             self.name = f"{self.model}_H{self.energy:g}"
 
 
-def scene_parameters(config: dict, scene, name: str, observables) -> SceneParameters:
-    """A scene of the paper (``panels.Scene``) as the config runs it: the ``simulation``
-    block, the scene's own overrides (``scenes: {name: ...}``) and the observables its panels use.
+def scene_parameters(simulation: dict, overrides: dict, scene, name: str, observables) -> SceneParameters:
+    """A scene of the paper (``panels.Scene``) as a run integrates it: the settings of every scene
+    (the pipeline's config block ``simulation``), the scene's own overrides (``scenes: {name:
+    ...}``) and the observables its panels use.
 
     Parameters
     ----------
-    config : dict
-        The pipeline config (its ``simulation`` block and optional ``scenes`` overrides).
+    simulation : dict
+        The settings of every scene (``SceneParameters`` keywords).
+    overrides : dict
+        Settings of this scene that replace those of ``simulation`` (empty: none).
     scene : chainchaos.paper.panels.Scene
         The scene's model and energy.
     name : str
@@ -134,7 +137,7 @@ def scene_parameters(config: dict, scene, name: str, observables) -> SceneParame
     SceneParameters
         The scene, validated.
     """
-    params = {**config["simulation"], **config.get("scenes", {}).get(name, {})}
+    params = {**simulation, **overrides}
     return SceneParameters(**params, model=scene.model, energy=scene.energy, observables=tuple(observables), name=name)
 
 

@@ -159,7 +159,7 @@ def _cmd_bench(args) -> None:
 
 def _cmd_stamp_search_archive(args) -> None:
     from chainchaos.records.kept import digest
-    from chainchaos.studies.search.archive import stamp_search_archive
+    from chainchaos.workflow.stamp import stamp_search_archive
 
     try:
         settings = stamp_search_archive(args.archive)
@@ -295,7 +295,7 @@ def build_parser() -> argparse.ArgumentParser:
                                    "determine it and its result version (chainchaos.records.kept), read off what "
                                    "the file records and the config/config.yaml of the commit it records; its "
                                    "variables stay byte for byte. Refuses when the statements' code changed since "
-                                   "that commit (chainchaos.studies.search.archive.stamp_search_archive). "
+                                   "that commit (chainchaos.workflow.stamp.stamp_search_archive). "
                                    "Run from the git checkout.")
     p.add_argument("archive", nargs="?", default="data/search/search_full.nc",
                    help="the archived full search (default data/search/search_full.nc)")

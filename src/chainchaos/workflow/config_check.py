@@ -13,21 +13,31 @@ Every error of the first layer that finds any is reported, so one run names them
 """
 
 
+from pathlib import Path
+
 from chainchaos.errors import ConfigError, ParameterError
 from chainchaos.project import project_root
 from chainchaos.records.schema import (
-    SCHEMA,
     load_schema,
     nonfinite_errors,
     schema_errors,
 )
+
+#: The pipeline's config schema, in the project directory.
+SCHEMA = Path("config/schema.yaml")
+
+
+def config_schema(own_models: bool = True) -> dict:
+    """The project's config schema (:data:`SCHEMA`) with the registries' names filled in
+    (``records.schema.load_schema``)."""
+    return load_schema(project_root("the pipeline's config schema") / SCHEMA, own_models)
 
 
 def check_config(config: dict, schema: dict | None = None) -> None:
     """Raise ConfigError listing every wrong key of ``config`` (the merged config files and
     ``--config`` overrides); ``schema`` defaults to config/schema.yaml."""
     if schema is None:
-        schema = load_schema(project_root("the pipeline's config check") / SCHEMA)
+        schema = config_schema()
     # each layer reads the keys as the layers before it promise them
     errors = schema_errors(config, schema) or nonfinite_errors(config) or consistency_errors(config)
     if errors:
@@ -109,7 +119,8 @@ def consistency_errors(config: dict) -> list[str]:
     for name, scene in sorted(scenes.items()):
         own = config.get("scenes", {}).get(name, {})
         _check(messages, [(f"scenes.{name}", own), ("simulation", config["simulation"])],
-               lambda: scene_parameters(config, scene, name, panels.scene_observables(name)))
+               lambda: scene_parameters(config["simulation"], config.get("scenes", {}).get(name, {}), scene, name,
+                                 panels.scene_observables(name)))
 
     scan = config.get("scan")
     if scan:

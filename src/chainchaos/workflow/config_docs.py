@@ -15,7 +15,8 @@ from pathlib import Path
 
 from chainchaos.project import project_root
 from chainchaos.studies.study import spec as study_spec
-from chainchaos.records.schema import SCHEMA, _type, _value, load_schema
+from chainchaos.records.schema import _type, _value, load_schema
+from chainchaos.workflow.config_check import SCHEMA, config_schema
 
 #: The pipeline's config schema and its README, in the project directory.
 README = Path("config/README.md")
@@ -124,7 +125,7 @@ stands for each item of a list.
 def render(schema: dict | None = None, header: str = HEADER) -> str:
     """The text of config/README.md (or, with the study schema and :data:`STUDY_HEADER`, of
     studies/README.md)."""
-    schema = load_schema(own_models=False) if schema is None else schema
+    schema = config_schema(own_models=False) if schema is None else schema
     all_keys = keys(schema)
     lines = [header]
     for top in schema["properties"]:

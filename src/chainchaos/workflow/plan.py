@@ -119,7 +119,8 @@ def scene_jobs(config: dict) -> dict[str, list[SceneParameters]]:
     dict
         ``{job name (<model>_<n>): [SceneParameters, ...]}``.
     """
-    scenes = {name: scene_parameters(config, scene, name, panels.scene_observables(name))
+    scenes = {name: scene_parameters(config["simulation"], config.get("scenes", {}).get(name, {}), scene, name,
+                                 panels.scene_observables(name))
               for name, scene in panels.scenes().items()}
     cut = config["scene_batches"]
     batches = scene_batches(scenes, cut["scenes_per_job"], cut["single_scenes"])
@@ -268,7 +269,8 @@ def load_run_study(name: str, config: dict):
     if name in verdict_studies():
         from chainchaos.paper.ensembles import verdict_study
 
-        return load_study(verdict_study(verdict_studies()[name], config))
+        return load_study(verdict_study(verdict_studies()[name], config["verdicts"], config.get("claims"),
+                                        config["simulation"]["excited_site"], f"{config['results']}/chain/chain.nc"))
     given = str(config.get("study") or "")
     return load_study(given if study_name(given) == name and given != name else name)
 

@@ -3,8 +3,8 @@
 ``snakemake --cores 2 keep --config keep=search_full`` runs the search over many more chains
 than ``all`` does (config block ``search_full``) and writes its merged result (:func:`stages.merge`)
 here, with what it cost (the jobs' wall and CPU seconds from their Snakemake benchmark files) and
-the commits and CPUs its stages ran on. ``all`` reads the chosen seed and the population of
-candidates from this file and never reruns the search.
+the commits and CPUs its stages ran on. ``all``, whose config names it, reads the population of
+candidates and the chosen chain from this file and never reruns the search.
 """
 
 import csv
@@ -18,7 +18,7 @@ from chainchaos.paper import statements
 from chainchaos.paper.criteria import Criteria
 from chainchaos.run.orbits import OrbitSettings
 from chainchaos.studies.search.selection import SelectionCriteria
-from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION, SearchPlan
+from chainchaos.studies.search.stages import SearchPlan
 
 #: The rules of a search, in the order they run (workflow/rules/search.smk; ``study_group``: the
 #: groups of its filter and score studies, ``<search>-<stage>-<model>``).
@@ -126,24 +126,12 @@ def archive_dataset(search: xr.Dataset, costs: dict, machines: dict,
 
 # ---- the key of a search kept before kept results recorded one ---------------------------------
 
-#: The code that says what the statements are and how they are judged: unchanged since the commit
-#: a kept search records, or its key cannot be read off the file (:func:`recorded_search_params`).
-STATEMENT_CODE = ("src/chainchaos/paper/statements.py", "src/chainchaos/paper/criteria.py",
-                  "src/chainchaos/paper/verdicts.py")
-
-
-def _git(root: Path, *args: str) -> str:
-    import subprocess
-
-    return subprocess.run(["git", "-C", str(root), *args], capture_output=True, text=True, check=True).stdout
-
-
 def recorded_search_params(attrs: dict, config_at_commit: dict) -> dict:
     """The parameters (the shape of :func:`search_settings`' argument) an archived search ran with,
     from what the file records: its ``parameters`` JSON (``search``, with the orbit settings, and
     ``selection``); the keys it does not record, ``claims`` and the excited bead
     (``simulation.excited_site``), from ``config_at_commit``, the config/config.yaml of the commit
-    the file records (``git_commit``). The file's own attributes that repeat a setting
+    the file records (``git_commit``; ``chainchaos.workflow.stamp`` reads it). The file's own attributes that repeat a setting
     (``agreement``, ``dt``, ``t_final``, ``lanes``, ...) are checked against the result; a
     difference raises ``ValueError``."""
     recorded = json.loads(attrs["parameters"])
@@ -161,41 +149,3 @@ def recorded_search_params(attrs: dict, config_at_commit: dict) -> dict:
         if key in attrs and attrs[key] != value:
             raise ValueError(f"the file's attribute {key} = {attrs[key]!r} is not {value!r}, as its settings say")
     return params
-
-
-def stamp_search_archive(path, root=None) -> dict:
-    """Key an archived full search made before kept results recorded their settings
-    (``chainchaos.records.kept``): its settings from what the file records
-    (:func:`recorded_search_params`) and result version 1, written into its global attributes
-    with the checksum of its data (``kept.stamp``), every variable left byte for byte as it is.
-    Re-runnable: a file already keyed is keyed again with the same settings.
-
-    Refuses (``ValueError``) when the statements' code (:data:`STATEMENT_CODE`) changed since the
-    commit the file records, when the file's statements (its variables ``statement``, ``scene``,
-    ``kind``) are not today's, or when an attribute disagrees with the settings: the key would
-    then say what the file was not made with. The engines' code is not compared here: the result
-    version and the bit-identity tests speak for it. ``root``: the git checkout (default: the
-    package's). Returns the settings written."""
-    from chainchaos.project import package_checkout
-    from chainchaos.records import kept
-
-    root = Path(root or package_checkout())
-    with xr.open_dataset(path) as ds:
-        attrs = dict(ds.attrs)
-        recorded = [(str(st), str(sc), str(k)) for st, sc, k in
-                    zip(ds["statement"].values, ds["scene"].values, ds["kind"].values)]
-    commit = str(attrs["git_commit"]).removesuffix("-dirty")
-    if str(attrs["git_commit"]).endswith("-dirty"):
-        raise ValueError(f"{path} was written by a checkout with uncommitted changes ({attrs['git_commit']})")
-    changed = _git(root, "diff", "--name-only", commit, "HEAD", "--", *STATEMENT_CODE).split()
-    if changed:
-        raise ValueError(f"{', '.join(changed)} changed since {commit[:7]}, the commit {path} records")
-    today = [(s.id, s.scene.name, s.kind) for s in statements.STATEMENTS]
-    if recorded != today:
-        raise ValueError(f"the statements {path} records are not those of paper.statements")
-    import yaml
-
-    config = yaml.safe_load(_git(root, "show", f"{commit}:config/config.yaml"))
-    settings = search_settings(recorded_search_params(attrs, config))
-    kept.stamp(path, settings, SEARCH_RESULT_VERSION)
-    return settings
