@@ -9,27 +9,13 @@ from pathlib import Path
 
 from packaging.requirements import Requirement
 
+from chainchaos.records.environment import lock_requirements as lock_entries
 from chainchaos.records.environment import lock_status, normalized
 
 ROOT = Path(__file__).resolve().parents[2]
 LOCK = ROOT / "requirements" / "lock.txt"
 #: The extras workflow/setup.sh installs from the lock.
 EXTRAS = ("workflow", "test", "docs")
-
-
-def lock_entries(text: str) -> dict[str, tuple[Requirement, list[str]]]:
-    """Each requirement of a lock file with its hashes, by normalised name: continuation lines
-    joined, comments dropped."""
-    logical = re.sub(r"\\\n", " ", text)
-    entries = {}
-    for line in logical.splitlines():
-        line = line.split("#", 1)[0].strip()
-        if not line or line.startswith("-"):
-            continue
-        head, *hashes = re.split(r"\s+--hash=", line)
-        requirement = Requirement(head)
-        entries[normalized(requirement.name)] = (requirement, hashes)
-    return entries
 
 
 def lock_problems(pyproject_text: str, lock_text: str) -> list[str]:

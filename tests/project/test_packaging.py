@@ -181,7 +181,8 @@ LIBRARY_SNIPPET = textwrap.dedent("""
         getattr(chainchaos, name)
     assert os.environ["NUMBA_DISABLE_INTEL_SVML"] == "1"
     cache = Path(os.environ["NUMBA_CACHE_DIR"])
-    assert cache.parent == Path.home() / ".cache" / "chainchaos" / "numba", cache
+    from platformdirs import user_cache_dir
+    assert cache.parent == Path(user_cache_dir("chainchaos")) / "numba" == Path.home() / ".cache/chainchaos/numba", cache
     chain = random_chain(seed=1, alpha=3.0, N=20)
     ds = simulate(chain, SceneParameters(model="fput", energy=0.5, t_final=10.0, dt=0.01, excited_site=10,
                                          observables=("participation",)))

@@ -143,6 +143,14 @@ BROKEN = {
 }
 
 
+def test_a_stiffness_wrong_in_its_seventh_digit_is_refused(tmp_path):
+    """The derivatives are checked against scipy.differentiate.derivative's adaptive estimate and
+    its own error, not a fixed step and tolerance (which let 1e-6 relative through)."""
+    path = morse_file(tmp_path / "slightly.py", name="slightly", stiffness="1.0000001")
+    with pytest.raises(ModelCheckError, match="check 'stiffness = df/dD'"):
+        load_model(f"{path}:MORSE")
+
+
 @pytest.mark.parametrize("check", sorted(BROKEN))
 def test_a_model_that_breaks_a_rule_is_refused_with_the_check_named(tmp_path, check):
     name = f"broken_{sorted(BROKEN).index(check)}"

@@ -147,15 +147,38 @@ def _typing_detail(err: TypingError, kind: str = " vector") -> str:
     return what + (f", at {where[0]}" if where else "")
 
 
+def _site_laws(model, S, u):
+    """Rows 0..2: w, w', w'' of sites with parameters ``S`` (one column each) at ``u``."""
+    out = np.empty((3, u.size))
+    _scalar_sites(model, np.ascontiguousarray(S), np.ascontiguousarray(u), out)
+    return out
+
+
 def _bond_laws(model, P, D):
     out = np.empty((5, D.size))
     _scalar_laws(model, P, np.ascontiguousarray(D), np.zeros(D.size), out)
     return out
 
 
-def _close(a, b, scale) -> np.ndarray:
-    """Where a and b agree to a central difference's accuracy: 1e-6 relative, or 1e-9 of ``scale``."""
-    return np.abs(a - b) <= 1e-6 * np.abs(b) + 1e-9 * scale
+def _derivative(law, x, rows, step: float):
+    """The derivative of the elementwise ``law(rows, x)`` at ``x`` and its error estimate, by
+    ``scipy.differentiate.derivative`` (adaptive: the step shrinks from ``step`` until its
+    estimate stops improving). ``rows``: the parameters of each element, one row per parameter."""
+    from scipy.differentiate import derivative
+
+    def f(xi, *r):  # xi: the elements still iterating, at several steps each
+        flat = np.ascontiguousarray(xi.ravel())
+        return law(np.stack([np.broadcast_to(a, xi.shape).ravel() for a in r]), flat).reshape(xi.shape)
+
+    res = derivative(f, x, args=tuple(rows), initial_step=step, tolerances={"atol": 0.0, "rtol": 1e-12})
+    return res.df, res.error
+
+
+def _close(analytic, numeric, error, scale) -> np.ndarray:
+    """Where an analytic derivative agrees with a numerical one: within ten times the numerical
+    one's own error estimate, or 1e-10 of ``scale`` (a derivative that is zero, or the last bits
+    of a function of order ``scale``)."""
+    return np.abs(analytic - numeric) <= 10.0 * error + 1e-10 * scale
 
 
 def _check_bonds(model, lattice, scale):
@@ -173,17 +196,16 @@ def _check_bonds(model, lattice, scale):
     if np.any(np.abs(V0) > 1e-15 * (1 + np.abs(f0) * scale)) or np.any(np.abs(f0 - f0[0]) > 1e-14 * np.abs(f0[0])) or not np.all(k0 > 0):
         _fail(model, "rest", f"V(0) = {V0[:3]}, f(0) = {f0[:3]}, k(0) = {k0[:3]} on the first bonds")
     D = np.random.default_rng(0).uniform(-1.0, 1.0, _SIZE) * scale
-    h = 1e-5 * scale
-    here, up, down = _bond_laws(model, P, D), _bond_laws(model, P, D + h), _bond_laws(model, P, D - h)
+    here = _bond_laws(model, P, D)
     f, k = here[1], here[2]
     force_scale = np.max(np.abs(f - f0)) + np.max(np.abs(f0))
-    dV = (up[0] - down[0]) / (2 * h)
-    bad = ~_close(f - f0, dV, force_scale)
+    dV, dV_error = _derivative(lambda p, d: _bond_laws(model, p, d)[0], D, P, 1e-2 * scale)
+    bad = ~_close(f - f0, dV, dV_error, force_scale)
     if bad.any():
         b = int(np.argmax(bad))
         _fail(model, "force = dV/dD", f"f - f(0) = {f[b] - f0[b]:.9g} against dV/dD = {dV[b]:.9g} at D = {D[b]:.6g}")
-    df = (up[1] - down[1]) / (2 * h)
-    bad = ~_close(k, df, np.max(np.abs(k)))
+    df, df_error = _derivative(lambda p, d: _bond_laws(model, p, d)[1], D, P, 1e-2 * scale)
+    bad = ~_close(k, df, df_error, np.max(np.abs(k)))
     if bad.any():
         b = int(np.argmax(bad))
         _fail(model, "stiffness = df/dD", f"k = {k[b]:.9g} against df/dD = {df[b]:.9g} at D = {D[b]:.6g}")
@@ -211,9 +233,7 @@ def _check_sites(model, lattice, scale):
     S = np.ascontiguousarray(np.concatenate([S, S[:, -1:]], axis=1))  # whole vectors
 
     def laws(u):
-        out = np.empty((3, _SIZE))
-        _scalar_sites(model, S, np.ascontiguousarray(u), out)
-        return out
+        return _site_laws(model, S, u)
 
     try:
         rest = laws(np.zeros(_SIZE))
@@ -222,11 +242,10 @@ def _check_sites(model, lattice, scale):
     if np.any(rest[0] != 0.0) or np.any(rest[1] != 0.0) or np.any(rest[2] < 0):
         _fail(model, "rest", f"w(0) = {rest[0][:3]}, w'(0) = {rest[1][:3]}, w''(0) = {rest[2][:3]} on the first sites")
     u = np.random.default_rng(2).uniform(-1.0, 1.0, _SIZE) * scale
-    h = 1e-5 * scale
-    here, up, down = laws(u), laws(u + h), laws(u - h)
+    here = laws(u)
     for row, name in ((1, "w'"), (2, "w''")):
-        slope = (up[row - 1] - down[row - 1]) / (2 * h)
-        bad = ~_close(here[row], slope, np.max(np.abs(here[row])))
+        slope, error = _derivative(lambda p, x, row=row: _site_laws(model, p, x)[row - 1], u, S, 1e-2 * scale)
+        bad = ~_close(here[row], slope, error, np.max(np.abs(here[row])))
         if bad.any():
             n = int(np.argmax(bad))
             _fail(model, "site force = dw/du", f"{name} = {here[row][n]:.9g} against the derivative {slope[n]:.9g} "

@@ -3,7 +3,7 @@
 Numba reads ``NUMBA_CACHE_DIR`` when it is first imported, so this runs before any module of the
 package imports numba. A checkout (editable install) caches in ``<project>/.numba_cache/<key>``,
 so every job of the pipeline reuses the kernels compiled once; an installed wheel falls back to
-the user's cache directory. Numba invalidates a cached function only when its own file changes,
+the platform's user cache directory (``platformdirs``: ``~/.cache/chainchaos/numba`` on Linux). Numba invalidates a cached function only when its own file changes,
 yet the engines (``integrators``, ``batch``, ``numerics``) compile in the bond laws of ``models``,
 the helpers of ``integrators`` and the vector operations of ``simd``: the key, a hash of those shared kernel modules, makes an edit
 there start a fresh cache instead of loading a stale one. An explicit ``NUMBA_CACHE_DIR`` always
@@ -61,5 +61,10 @@ def configure_numba_cache() -> None:
     if os.environ.get("NUMBA_CACHE_DIR"):
         return
     root = package_checkout()
-    base = root / ".numba_cache" if root else Path.home() / ".cache" / "chainchaos" / "numba"
+    if root:
+        base = root / ".numba_cache"
+    else:  # an installed package: the platform's user cache directory (~/.cache/chainchaos on Linux)
+        from platformdirs import user_cache_dir
+
+        base = Path(user_cache_dir("chainchaos")) / "numba"
     os.environ["NUMBA_CACHE_DIR"] = str(base / kernel_key())

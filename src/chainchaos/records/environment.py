@@ -5,16 +5,15 @@ import re
 from importlib import metadata
 from pathlib import Path
 
-#: A pin of a pip requirements file: ``name==version`` at the start of a line (its hashes and
-#: comments follow on continuation lines).
-PIN = re.compile(r"^([A-Za-z0-9][A-Za-z0-9._-]*)(?:\[[^\]]*\])?==([^\s;\\]+)")
+from packaging.requirements import Requirement
+from packaging.utils import canonicalize_name
 
 #: At most this many differences are named; the rest are counted.
 SHOWN = 5
 
 
 def normalized(name: str) -> str:
-    """A distribution name as PEP 503 compares it: lower case, runs of ``-_.`` as one ``-``.
+    """A distribution name as PEP 503 compares it (``packaging.utils.canonicalize_name``).
 
     Parameters
     ----------
@@ -26,7 +25,32 @@ def normalized(name: str) -> str:
     str
         The normalised name (``netcdf4``, ``typing-extensions``).
     """
-    return re.sub(r"[-_.]+", "-", name).lower()
+    return str(canonicalize_name(name))
+
+
+def lock_requirements(text: str) -> dict[str, tuple[Requirement, list[str]]]:
+    """Each requirement of a pip requirements lock file with its hashes, by normalised name
+    (continuation lines joined, comments and options dropped), as ``packaging`` parses it.
+
+    Parameters
+    ----------
+    text : str
+        The lock file's text (as written by ``uv pip compile`` or ``pip-compile``).
+
+    Returns
+    -------
+    dict of str to tuple of (packaging.requirements.Requirement, list of str)
+        The requirement and its hashes, by normalised distribution name.
+    """
+    entries = {}
+    for line in re.sub(r"\\\n", " ", text).splitlines():
+        line = line.split("#", 1)[0].strip()
+        if not line or line.startswith("-"):
+            continue
+        head, *hashes = re.split(r"\s+--hash=", line)
+        requirement = Requirement(head)
+        entries[normalized(requirement.name)] = (requirement, hashes)
+    return entries
 
 
 def lock_pins(text: str) -> dict[str, str]:
@@ -42,7 +66,8 @@ def lock_pins(text: str) -> dict[str, str]:
     dict of str to str
         Version by normalised distribution name.
     """
-    return {normalized(m[1]): m[2] for m in map(PIN.match, text.splitlines()) if m}
+    return {name: spec.version for name, (requirement, _) in lock_requirements(text).items()
+            for spec in requirement.specifier if spec.operator == "=="}
 
 
 def lock_status(lock_path) -> str:

@@ -99,15 +99,16 @@ def library_versions() -> dict:
 
 
 def numpy_simd_targets() -> str:
-    """NumPy's SIMD dispatch targets in use (those of its build that this CPU has and that
-    NPY_DISABLE_CPU_FEATURES leaves on), space-separated; "" when NumPy does not tell."""
-    try:
-        from numpy._core import _multiarray_umath as umath
+    """NumPy's SIMD targets on this CPU, space-separated: those of its build's baseline and the
+    dispatch targets it found (``numpy.show_config(mode="dicts")["SIMD Extensions"]``, the public
+    way); "" when NumPy does not tell."""
+    import numpy as np
 
-        enabled = umath.__cpu_features__
-        return " ".join(t for t in umath.__cpu_dispatch__ if enabled.get(t))
-    except (ImportError, AttributeError):
+    try:
+        simd = np.show_config(mode="dicts")["SIMD Extensions"]
+    except (KeyError, TypeError):
         return ""
+    return " ".join([*simd.get("baseline", []), *simd.get("found", [])])
 
 
 def machine_attrs() -> dict:
