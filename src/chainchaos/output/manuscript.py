@@ -17,7 +17,7 @@ import sys
 from pathlib import Path
 
 from chainchaos.errors import BuildError
-from chainchaos.records.io import atomic_output
+from chainchaos.records.atomic import atomic_output
 
 TEX_PACKAGES = "texlive-latex-base texlive-latex-recommended texlive-publishers latexmk"
 #: The generated fragments: input key -> file name under generated/ in the build.

@@ -72,16 +72,24 @@ def thresholds_table(ds: xr.Dataset) -> list[dict]:
 
 
 def thresholds_csv(rows: list[dict], ds: xr.Dataset) -> str:
-    lines = [f"# {ds.attrs['delocalization_criterion']}", f"# {ds.attrs['chaos_criterion']}",
-             *([f"# chaos by GALI: GALI_{int(ds.attrs['gali_order'])} below {ds.attrs['gali_threshold']:g} by t_final"]
-               if int(ds.attrs.get("gali_order", 0)) > 1 else []),
-             f"# t_final = {ds.attrs['t_final']:g}, dt = {ds.attrs['dt']:g}, {ds.sizes['energy']} energies "
-             f"{ds.energy.values[0]:g}..{ds.energy.values[-1]:g}",
-             "model,criterion,first_energy,always_above,fraction_of_grid,paper_value"]
+    """The thresholds as CSV (the ``csv`` module: a field with a comma is quoted), after comment
+    lines that state the criteria and the scan."""
+    import csv
+    import io
+
+    comments = [f"# {ds.attrs['delocalization_criterion']}", f"# {ds.attrs['chaos_criterion']}",
+                *([f"# chaos by GALI: GALI_{int(ds.attrs['gali_order'])} below {ds.attrs['gali_threshold']:g} by t_final"]
+                  if int(ds.attrs.get("gali_order", 0)) > 1 else []),
+                f"# t_final = {ds.attrs['t_final']:g}, dt = {ds.attrs['dt']:g}, {ds.sizes['energy']} energies "
+                f"{ds.energy.values[0]:g}..{ds.energy.values[-1]:g}"]
+    out = io.StringIO()
+    out.write("\n".join(comments) + "\n")
+    table = csv.writer(out, lineterminator="\n")
+    table.writerow(["model", "criterion", "first_energy", "always_above", "fraction_of_grid", "paper_value"])
     for r in rows:
         first, always, paper = (plain_number(r[k], missing="") for k in ("first_energy", "always_above", "paper"))
-        lines.append(f"{r['model']},{r['criterion']},{first},{always},{r['fraction']:.3f},{paper}")
-    return "\n".join(lines) + "\n"
+        table.writerow([r["model"], r["criterion"], first, always, f"{r['fraction']:.3f}", paper])
+    return out.getvalue()
 
 
 def thresholds_tex(rows: list[dict], ds: xr.Dataset) -> str:

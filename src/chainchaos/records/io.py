@@ -1,8 +1,5 @@
 """NetCDF input and output: chain files, atomic writes (docs/conventions.md#data-contract)."""
 
-import contextlib
-import os
-import tempfile
 import warnings
 from pathlib import Path
 
@@ -11,6 +8,7 @@ import xarray as xr
 
 from chainchaos.errors import ChainFileError
 from chainchaos.records import cf, kept
+from chainchaos.records.atomic import atomic_output
 from chainchaos.records.provenance import provenance_attrs
 from chainchaos.system.chain import GENERATOR, Chain
 from chainchaos.system.linear import (
@@ -21,24 +19,6 @@ from chainchaos.system.linear import (
 
 CHAIN_VARIABLES = ("radius", "mass", "A", "delta", "K2", "K3", "K4", "frequency", "mode_shape",
                    "mode_participation")
-
-
-@contextlib.contextmanager
-def atomic_output(path):
-    """Yield a temporary path beside ``path``; when the block succeeds it becomes ``path`` (readable
-    by all, mode 0644), on any failure it is removed, so an interrupted write leaves no file that
-    looks complete."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    os.close(fd)
-    try:
-        yield Path(tmp)
-        os.chmod(tmp, 0o644)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
 
 
 def write_netcdf(ds: xr.Dataset, path, seal: bool = False) -> Path:

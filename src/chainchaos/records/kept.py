@@ -35,12 +35,12 @@ import hashlib
 import json
 import math
 import shutil
-import tempfile
 from pathlib import Path
 
 import numpy as np
 
 from chainchaos.errors import KeptFileError
+from chainchaos.records.atomic import atomic_output
 
 SETTINGS_ATTR = "kept_settings"
 DIGEST_ATTR = "kept_settings_digest"
@@ -362,18 +362,11 @@ def record_checksum(path) -> None:
 
 
 def _amend(path, edit) -> None:
-    """Apply ``edit(copy)`` to a copy of ``path``, which then replaces it: an interrupted edit
-    leaves the file as it was (its bytes, permissions and times are copied first)."""
-    path = Path(path)
-    with tempfile.NamedTemporaryFile(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp", delete=False) as tmp:
-        pass
-    tmp = Path(tmp.name)
-    try:
+    """Apply ``edit(copy)`` to a copy of ``path``, which then replaces it (``records.atomic``): an
+    interrupted edit leaves the file as it was."""
+    with atomic_output(path) as tmp:
         shutil.copy2(path, tmp)
         edit(tmp)
-        tmp.replace(path)
-    finally:
-        tmp.unlink(missing_ok=True)
 
 
 def seal(path) -> None:

@@ -11,7 +11,7 @@ from pathlib import Path
 import matplotlib
 
 from chainchaos.observe.registry import REGISTRY
-from chainchaos.records.io import atomic_output
+from chainchaos.records.atomic import atomic_output
 from chainchaos.system.models import MODELS, get_model, model_label
 
 # Figures are drawn on matplotlib.figure.Figure, never through pyplot, and only ever written to

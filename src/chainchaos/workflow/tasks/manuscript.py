@@ -21,7 +21,8 @@ from chainchaos.paper.claims.writers import (
 )
 from chainchaos.paper.criteria import Criteria
 from chainchaos.records import kept
-from chainchaos.records.io import atomic_output, read_chain, write_text
+from chainchaos.records.atomic import atomic_output
+from chainchaos.records.io import read_chain, write_text
 from chainchaos.studies.indicators.report import spectra_macros
 from chainchaos.studies.search import report as search_report
 
