@@ -19,6 +19,9 @@ min_version("9.0")
 SOURCES = str(Path(workflow.basedir, "src").resolve())
 sys.path.insert(0, SOURCES)
 os.environ.update(PYTHONPATH=os.pathsep.join(filter(None, [SOURCES, os.environ.get("PYTHONPATH")])))
+# One matplotlib config directory for every job, inside the project: its font cache is built once,
+# not by each plotting job on a machine with a fresh home (a user's MPLCONFIGDIR wins).
+os.environ.setdefault("MPLCONFIGDIR", str(Path(workflow.basedir, ".matplotlib")))
 import chainchaos
 
 if str(Path(chainchaos.__file__).resolve().parents[1]) != SOURCES:

@@ -358,3 +358,15 @@ def test_a_font_subset_is_made_once_per_glyph_set_and_every_pdf_is_written_as_wi
     monkeypatch.setattr(_backend_pdf_ps, "get_glyphs_subset", shared.__wrapped__)
     fresh = save_figure(fig, tmp_path / "fresh")[0].read_bytes()
     assert first == again == fresh
+
+
+def test_the_plotting_package_loads_no_compiled_kernel():
+    """A figure job needs matplotlib and the labels and colours, not Numba: importing the plotting
+    package (and the figure task) loads neither numba nor a model's kernels."""
+    import subprocess
+    import sys
+
+    code = ("import sys; import chainchaos.output.plotting, chainchaos.workflow.tasks.figures; "
+            "print(sorted(m for m in sys.modules if m == 'numba' or m.startswith('chainchaos.system.models')))")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert done.stdout.strip() == "[]", done.stdout

@@ -10,9 +10,10 @@ from pathlib import Path
 
 import matplotlib
 
-from chainchaos.observe.registry import REGISTRY
+# plain data and the standard library: a figure job loads no compiled kernel (tests/output)
+from chainchaos.observe.labels import LABELS
 from chainchaos.records.atomic import atomic_output
-from chainchaos.system.models import MODELS, get_model, model_label
+from chainchaos.system.appearance import APPEARANCE
 
 # Figures are drawn on matplotlib.figure.Figure, never through pyplot, and only ever written to
 # files (PNG by Agg, PDF by matplotlib's PDF backend); a caller's pyplot gets Agg too.
@@ -118,7 +119,7 @@ MAP_CMAP = "viridis"
 MAP_FLOOR = 1e-8
 GAP_CMAP = "viridis"  # open bonds light (yellow), as in the paper's Fig. 7
 
-HERTZ_RED = MODELS["hertz"].colour  # also of the chain's drawing (Fig. 1b)
+HERTZ_RED = APPEARANCE["hertz"].colour  # also of the chain's drawing (Fig. 1b)
 # Several energies of one model in a panel: lower energies solid and lighter, higher ones dashed.
 ENERGY_LINESTYLES = ("-", "--", "-.", ":")
 ENERGY_SHADES = (0.0, 0.35, 0.55, 0.7)  # fraction of white mixed in, by energy rank, highest first
@@ -134,16 +135,16 @@ MODE_LABEL = r"$k$ (mode)"
 RANK_LABEL = r"$k$ (rank)"
 FREQUENCY_LABEL = r"$\omega_k$ [$\omega_{\max}$]"
 # the axis labels of scene observables are those of their registry entries
-ENERGY_DENSITY_LABEL = REGISTRY["energy_density"].label
-DVD_LABEL = REGISTRY["dvd"].label
+ENERGY_DENSITY_LABEL = LABELS["energy_density"]
+DVD_LABEL = LABELS["dvd"]
 MODE_ENERGY_LABEL = r"$v_k$"  # the modal energies normalised per sample
-P_LABEL = REGISTRY["participation"].label
-PD_LABEL = REGISTRY["dvd_participation"].label
+P_LABEL = LABELS["participation"]
+PD_LABEL = LABELS["dvd_participation"]
 MEAN_P_LABEL = r"$\langle P \rangle$"
-MLCE_LABEL = REGISTRY["mlce"].label
-ETA_LABEL = REGISTRY["eta"].label
-GAP_FRACTION_LABEL = REGISTRY["gap_fraction"].label
-GAP_COUNT_LABEL = REGISTRY["n_gaps"].label
+MLCE_LABEL = LABELS["mlce"]
+ETA_LABEL = LABELS["eta"]
+GAP_FRACTION_LABEL = LABELS["gap_fraction"]
+GAP_COUNT_LABEL = LABELS["n_gaps"]
 
 PDF_METADATA = {"CreationDate": None, "ModDate": None, "Creator": "chainchaos"}
 PNG_METADATA = {"Software": "chainchaos"}  # matplotlib writes no timestamp into PNG files
@@ -161,14 +162,30 @@ def composite_size(rows: int, columns: int) -> tuple[float, float]:
     return width, rows * ROW_HEIGHT.get(columns, ROW_HEIGHT[4])
 
 
+def _appearance(model: str):
+    """The package's table (``system.appearance``) for its models; a model of one's own, loaded by
+    the job that draws it, from the registry (which compiles its kernels)."""
+    if model in APPEARANCE:
+        return APPEARANCE[model]
+    from chainchaos.system.models import get_model
+
+    own = get_model(model)
+    return own.label, own.colour, "S" if own.is_split else "H"
+
+
 def model_colour(model: str) -> str:
-    """The model's colour (``chainchaos.system.models``): Hertz red, FPUT blue."""
-    return get_model(model).colour
+    """The model's colour: Hertz red, FPUT blue."""
+    return _appearance(model)[1]
+
+
+def model_label(model: str) -> str:
+    """How figures and tables name the model (e.g. 'Hertz', 'FPUT')."""
+    return _appearance(model)[0]
 
 
 def amount_symbol(model: str) -> str:
     """What an excitation of ``model`` is given by: its energy H, or the norm S of a split model."""
-    return "S" if get_model(model).is_split else "H"
+    return _appearance(model)[2]
 
 
 def scene_label(model: str, energy: float) -> str:

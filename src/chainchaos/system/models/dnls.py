@@ -17,6 +17,7 @@ is its norm S = sum |psi_l|^2 = sum x_l / 2.
 from numba import njit
 
 from chainchaos.system.models.split import SplitModel
+from chainchaos.system.appearance import APPEARANCE
 
 
 @njit(cache=True)
@@ -49,12 +50,14 @@ def site_parameters(lattice):
 
 
 MODEL = SplitModel(
-    name="dnls", label="DNLS", colour="#00838f", parameter_names=("eps", "beta"), parameters=site_parameters,
+    name="dnls", label=APPEARANCE["dnls"].label, colour=APPEARANCE["dnls"].colour, parameter_names=("eps", "beta"),
+    parameters=site_parameters,
     frequency=cubic_frequency, onsite_energy=cubic_energy,
     description="a(x) = eps x/2 + beta x^2/8, hopping -(q q' + p p')"
 )
 LINEAR_MODEL = SplitModel(
-    name="dnls_linear", label="linear DNLS", colour="#80deea", parameter_names=("eps", "beta"),
+    name="dnls_linear", label=APPEARANCE["dnls_linear"].label, colour=APPEARANCE["dnls_linear"].colour,
+    parameter_names=("eps", "beta"),
     parameters=site_parameters, frequency=linear_frequency, onsite_energy=linear_energy,
     description="a(x) = eps x/2, hopping -(q q' + p p')"
 )

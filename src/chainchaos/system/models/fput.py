@@ -12,6 +12,7 @@ The polynomial bonds never open (docs/conventions.md).
 from numba import njit
 
 from chainchaos.system.models.base import Model
+from chainchaos.system.appearance import APPEARANCE
 
 
 @njit(cache=True)
@@ -50,8 +51,8 @@ def parameters(chain):
 
 MODEL = Model(
     name="fput",
-    label="FPUT",
-    colour="#1565c0",
+    label=APPEARANCE["fput"].label,
+    colour=APPEARANCE["fput"].colour,
     parameter_names=("K2", "K3", "K4"),
     parameters=parameters,
     force=force,

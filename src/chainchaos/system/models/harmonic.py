@@ -7,6 +7,7 @@ with Lambda(t) t bounded, the reference case of the chaos tests (docs/convention
 from numba import njit
 
 from chainchaos.system.models.base import Model
+from chainchaos.system.appearance import APPEARANCE
 
 
 @njit(cache=True)
@@ -31,6 +32,7 @@ def parameters(chain):
 
 
 MODEL = Model(
-    name="harmonic", label="harmonic", colour="#616161", parameter_names=("K2",), parameters=parameters,
+    name="harmonic", label=APPEARANCE["harmonic"].label, colour=APPEARANCE["harmonic"].colour,
+    parameter_names=("K2",), parameters=parameters,
     force=force, force_stiffness=force_stiffness, potential=potential, description="f = K2 D"
 )

@@ -12,6 +12,7 @@ from numba import njit
 
 from chainchaos.kernels.sqrt import root
 from chainchaos.system.models.base import Model
+from chainchaos.system.appearance import APPEARANCE
 
 
 @njit(cache=True)
@@ -60,8 +61,8 @@ def parameters(chain):
 
 MODEL = Model(
     name="hertz",
-    label="Hertz",
-    colour="#c62828",
+    label=APPEARANCE["hertz"].label,
+    colour=APPEARANCE["hertz"].colour,
     parameter_names=("A", "delta"),
     parameters=parameters,
     force=force,

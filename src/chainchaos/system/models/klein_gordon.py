@@ -18,6 +18,7 @@ from numba import njit
 
 from chainchaos.system.models import harmonic
 from chainchaos.system.models.base import Model, SiteLaw
+from chainchaos.system.appearance import APPEARANCE
 
 
 @njit(cache=True)
@@ -77,12 +78,14 @@ LINEAR = SiteLaw(
 )
 
 MODEL = Model(
-    name="kg", label="KG", colour="#6a1b9a", parameter_names=("K2",), parameters=bond_parameters,
+    name="kg", label=APPEARANCE["kg"].label, colour=APPEARANCE["kg"].colour, parameter_names=("K2",),
+    parameters=bond_parameters,
     force=harmonic.force, force_stiffness=harmonic.force_stiffness, potential=harmonic.potential,
     description="f = D / W, on-site w = eps u^2/2 + u^4/4", site=QUARTIC, lattice="kg"
 )
 LINEAR_MODEL = Model(
-    name="kg_linear", label="linear KG", colour="#ce93d8", parameter_names=("K2",),
+    name="kg_linear", label=APPEARANCE["kg_linear"].label, colour=APPEARANCE["kg_linear"].colour,
+    parameter_names=("K2",),
     parameters=bond_parameters, force=harmonic.force, force_stiffness=harmonic.force_stiffness,
     potential=harmonic.potential, description="f = D / W, on-site w = eps u^2/2", site=LINEAR, lattice="kg"
 )

@@ -20,6 +20,7 @@ import numpy as np
 from numba import njit
 
 from chainchaos.system.models.base import Model
+from chainchaos.system.appearance import APPEARANCE
 
 
 @njit(cache=True)
@@ -62,8 +63,8 @@ def parameters(chain):
 
 MODEL = Model(
     name="toda",
-    label="Toda",
-    colour="#2e7d32",
+    label=APPEARANCE["toda"].label,
+    colour=APPEARANCE["toda"].colour,
     parameter_names=("K2", "beta", "K2/beta"),
     parameters=parameters,
     force=force,

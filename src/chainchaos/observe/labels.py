@@ -1,0 +1,32 @@
+"""The axis label of every observable of the registry (``chainchaos.observe.registry``), as plain
+data (matplotlib mathtext): what a figure needs of an observable, without its kernels."""
+
+LABELS = {
+    "energy_density": r"$h_n$",
+    "participation": r"$P$",
+    "energy_centre": r"$X$",
+    "second_moment": r"$m_2$",
+    "compactness": r"$\zeta$",
+    "edge_energy": r"$E_{\rm edge}/H$",
+    "largest_share": r"$\max_n h_n$",
+    "mlce": r"$\Lambda$ [$\omega_{\max}$]",
+    "log_growth": r"$\ln(|v|/|v_0|)$",
+    "lyapunov_spectrum": r"$\lambda_i$ [$\omega_{\max}$]",
+    "ks_entropy": r"$h_{\rm KS}$ [$\omega_{\max}$]",
+    "sali": "SALI",
+    "log_gali": r"$\ln {\rm GALI}_k$",
+    "dvd": r"$w_n$",
+    "dvd_participation": r"$P_{\rm D}$",
+    "initial_deviation": "component",
+    "gap_open": "open",
+    "gap_fraction": "fraction of time open",
+    "n_gaps": "number of gaps",
+    "n_gaps_max": "number of gaps",
+    "mode_energy": r"$E_k$",
+    "spectral_entropy": r"$S$",
+    "eta": r"$\eta$",
+    "frequency": r"$\omega_k$ [$\omega_{\max}$]",
+    "energy_error": r"$|\Delta H| / H$",
+    "norm_density": r"$z_n$",
+    "norm_error": r"$|\Delta S| / S$",
+}
