@@ -39,6 +39,8 @@ def time_average(t, y, t0: float, t1: float | None = None) -> float:
     inside = (t > t0) & (t < t1)
     tt = np.concatenate(([t0], t[inside], [t1]))
     yy = np.concatenate(([np.interp(t0, t, y)], y[inside], [np.interp(t1, t, y)]))
+    # by hand until the NumPy floor (1.26) is 2.0, which has numpy.trapezoid: the same products and
+    # pairwise sum, the same bits (tests/observe: equal on random samples)
     return float(np.sum(0.5 * (yy[1:] + yy[:-1]) * np.diff(tt)) / (t1 - t0))
 
 
@@ -57,6 +59,8 @@ def log_time_median(t, y, t0: float, t1: float | None = None) -> float:
     edges = np.concatenate(([exactmath.log10(np.array([float(t0)]))[0]], 0.5 * (x[1:] + x[:-1]),
                             [exactmath.log10(np.array([t1]))[0]]))
     weight = np.diff(edges)
+    # by hand until the NumPy floor (1.26) is 2.0, which has numpy.quantile(weights=...,
+    # method="inverted_cdf"): the same lower weighted median (tests/observe: equal on random samples)
     order = np.argsort(y[inside], kind="stable")
     cumulative = np.cumsum(weight[order])
     return float(y[inside][order][np.searchsorted(cumulative, 0.5 * cumulative[-1])])
