@@ -19,9 +19,7 @@ trajectories; the single engine's row is its throughput on the largest B.
 The last lines measure the square-root floor: either engine takes one square root per bond and
 force evaluation, and a vectorised loop of independent hardware square roots gives the least time
 they take on this CPU. They print each Hertz time per trajectory-step as a ratio to that floor,
-and the bound it sets on the batch/single ratio. The square root of the kernels (the machine
-line's ``square root``) is chosen by ``CHAINCHAOS_SQRT`` (hardware or fma, the same bits;
-chainchaos.kernels.sqrt): run the script once with each to see which is faster on a CPU.
+and the bound it sets on the batch/single ratio.
 """
 
 import argparse

@@ -67,7 +67,7 @@ BUILDS = {
 }
 
 #: Attributes that describe the build or the run, not the data.
-MACHINE_ATTRS = {"cpu_model", "cpu_vector_extensions", "numpy_simd_targets", "numba_target_cpu", "square_root",
+MACHINE_ATTRS = {"cpu_model", "cpu_vector_extensions", "numpy_simd_targets", "numba_target_cpu",
                  "git_commit", "python_version", "numpy_version", "scipy_version", "numba_version",
                  "llvmlite_version", "xarray_version"}
 

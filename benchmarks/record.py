@@ -222,7 +222,6 @@ def record(name: str, argv: list[str], note: str = "") -> Path:
     from chainchaos.records.provenance import (
         cpu_vector_extensions,
         numba_target_cpu,
-        sqrt_choice,
     )
 
     commit = _git("rev-parse", "HEAD")  # the code that runs: a commit made during a long run is not it
@@ -240,7 +239,7 @@ def record(name: str, argv: list[str], note: str = "") -> Path:
         "sources_differ_from_commit": sources_differ,
         "date": started.replace(microsecond=0).isoformat(),
         "cpu": {**lscpu(), "vector_extensions": cpu_vector_extensions(), "numba_target": numba_target_cpu(),
-                "simd_width_doubles": LANES, "square_root": sqrt_choice(), "cpus": os.cpu_count()},
+                "simd_width_doubles": LANES, "cpus": os.cpu_count()},
         "load_average_1min": {"before": round(load_before[0], 2), "after": round(load_after[0], 2)},
         "busy_share_before": busy_before,
         # other work at the start (a quarter of the CPUs or more); the load average after the run

@@ -130,7 +130,8 @@ def render_record(record: dict, level: str = "###") -> str:
         f"- **date**: {record['date']}; **commit**: `{record['commit'][:12]}`{state}",
         (f"- **CPU**: {cpu.get('model_name') or 'unknown'}, {cpu.get('cpus', '?')} CPUs; vector extensions "
          f"{cpu.get('vector_extensions') or 'unknown'}; Numba target {cpu.get('numba_target', '?')}, "
-         f"SIMD width {cpu.get('simd_width_doubles', '?')} doubles, square root {cpu.get('square_root', '?')}"),
+         f"SIMD width {cpu.get('simd_width_doubles', '?')} doubles"
+         + (f", square root {cpu['square_root']}" if "square_root" in cpu else "")),
         (f"- **load**: 1-minute load average {load.get('before', '?')} before, {load.get('after', '?')} after"
          + (f"; CPUs busy with other work at the start: {record['busy_share_before']:.0%}"
             if record.get("busy_share_before") is not None else "")

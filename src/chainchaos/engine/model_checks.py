@@ -75,7 +75,7 @@ CHECKS = {
     "site force = dw/du": "a site law's force w' is the derivative of its potential w, and w'' that of w'",
     "force alone": "force(P, left, right) is the force of force_stiffness, to the bit",
     "lanes": "the kernels compile for the batch engine's vectors (only + - *, max, np.sqrt or "
-             "chainchaos.kernels.sqrt.root, np.expm1) and give each lane its scalar result, to the bit",
+             "np.expm1) and give each lane its scalar result, to the bit",
 }
 
 _SIZE = 4 * LANES  # bonds of the sample lattice: whole vectors

@@ -23,18 +23,9 @@ from chainchaos.project import PACKAGE, package_checkout
 
 #: The environment variable that overrides the SIMD width fitted to the CPU (chainchaos.kernels.simd).
 LANES_VARIABLE = "CHAINCHAOS_SIMD_LANES"
-#: The environment variable that selects the Hertz kernels' square root (chainchaos.kernels.sqrt).
-SQRT_VARIABLE = "CHAINCHAOS_SQRT"
 
 #: Modules whose Numba functions are compiled into functions of other modules (patterns).
-SHARED_KERNEL_MODULES = ("system/models/*.py", "engine/integrators.py", "kernels/simd.py", "kernels/exactmath.py",
-                         "kernels/sqrt.py")
-
-
-def sqrt_choice() -> str:
-    """The square root the kernels are compiled with: ``CHAINCHAOS_SQRT`` if set, else
-    "hardware" (chainchaos.kernels.sqrt checks the value)."""
-    return os.environ.get(SQRT_VARIABLE, "").strip() or "hardware"
+SHARED_KERNEL_MODULES = ("system/models/*.py", "engine/integrators.py", "kernels/simd.py", "kernels/exactmath.py")
 
 
 def kernel_sources() -> list[Path]:
@@ -44,15 +35,13 @@ def kernel_sources() -> list[Path]:
 
 
 def kernel_key() -> str:
-    """A hash of the shared kernel modules, of a chosen vector width (``CHAINCHAOS_SIMD_LANES``)
-    and of the chosen square root (``CHAINCHAOS_SQRT``), which change compiled code without
-    changing a source file; the width fitted to the CPU needs no key, as Numba keys its cache
+    """A hash of the shared kernel modules and of a chosen vector width (``CHAINCHAOS_SIMD_LANES``),
+    which changes compiled code without changing a source file; the width fitted to the CPU needs no key, as Numba keys its cache
     entries by the target CPU."""
     digest = hashlib.sha256()
     for path in kernel_sources():
         digest.update(path.relative_to(PACKAGE).as_posix().encode() + b"\0" + path.read_bytes())
     digest.update(b"lanes\0" + os.environ.get(LANES_VARIABLE, "").strip().encode())
-    digest.update(b"sqrt\0" + sqrt_choice().encode())
     return digest.hexdigest()[:16]
 
 

@@ -11,7 +11,6 @@ import subprocess
 from functools import lru_cache
 from pathlib import Path
 
-from chainchaos.kernels.cache import sqrt_choice
 from chainchaos.project import package_checkout
 
 #: x86 vector extensions reported, in this order, when the CPU has them (/proc/cpuinfo "flags").
@@ -113,13 +112,12 @@ def numpy_simd_targets() -> str:
 
 def machine_attrs() -> dict:
     """The machine that wrote a file: CPU model, vector extensions, NumPy's SIMD targets, Numba's
-    target CPU, the kernels' square root and the library versions."""
+    target CPU and the library versions."""
     return {
         "cpu_model": cpu_model(),
         "cpu_vector_extensions": cpu_vector_extensions(),
         "numpy_simd_targets": numpy_simd_targets(),
         "numba_target_cpu": numba_target_cpu(),
-        "square_root": sqrt_choice(),  # hardware or fma: the same bits
         **library_versions(),
     }
 
@@ -133,12 +131,11 @@ def machine_line(attrs: dict | None = None) -> str:
         from chainchaos.kernels.simd import LANES
 
         attrs = {"cpu_model": cpu_model(), "cpu_vector_extensions": cpu_vector_extensions(),
-                 "numba_target_cpu": numba_target_cpu(), "square_root": sqrt_choice()}
+                 "numba_target_cpu": numba_target_cpu()}
         width = f" | SIMD width: {LANES} doubles"
     extensions = attrs.get("cpu_vector_extensions") or "unknown"
-    root = f" | square root: {attrs['square_root']}" if attrs.get("square_root") else ""
     return (f"CPU: {attrs.get('cpu_model') or '?'} | vector extensions: {extensions} | "
-            f"Numba target: {attrs.get('numba_target_cpu') or '?'}{width}{root}")
+            f"Numba target: {attrs.get('numba_target_cpu') or '?'}{width}")
 
 
 def provenance_attrs(parameters: dict) -> dict:

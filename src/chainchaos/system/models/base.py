@@ -10,7 +10,7 @@ k = df/dD), ``potential(P, left, right)`` (V, zero at rest) and, for a model who
 open, ``opening(P, left, right)`` (negative where the bond is open). P is the tuple of the bond's
 parameters, ``left`` and ``right`` the displacements u_{b-1} and u_b: floats, or vectors of the
 batch engine (``chainchaos.kernels.simd``), for which force and stiffness must use only + - *,
-``max``, ``np.sqrt`` (or ``chainchaos.kernels.sqrt.root``) and ``np.expm1`` (each lane then gets
+``max``, ``np.sqrt`` and ``np.expm1`` (each lane then gets
 exactly the scalar result).
 
 A model may also have a site law (:class:`SiteLaw`): an on-site potential w(u) of each bead, with

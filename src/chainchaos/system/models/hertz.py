@@ -10,7 +10,6 @@ rest, V >= 0). A bond with delta + D < 0 is open (a gap) and carries no force (d
 import numpy as np
 from numba import njit
 
-from chainchaos.kernels.sqrt import root
 from chainchaos.system.models.base import Model
 from chainchaos.system.appearance import APPEARANCE
 
@@ -19,14 +18,14 @@ from chainchaos.system.appearance import APPEARANCE
 def hertz_force(A, overlap):
     """Hertz bond force A [overlap]_+^(3/2), overlap = delta + D."""
     x = max(overlap, 0.0)
-    return A * x * root(x)
+    return A * x * np.sqrt(x)
 
 
 @njit(cache=True)
 def hertz_force_stiffness(A, overlap):
     """(force, stiffness df/dD) of a Hertz bond: (A x^(3/2), (3/2) A x^(1/2)), x = [overlap]_+."""
     x = max(overlap, 0.0)
-    s = root(x)
+    s = np.sqrt(x)
     return A * x * s, 1.5 * A * s
 
 
