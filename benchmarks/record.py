@@ -212,8 +212,41 @@ def kg_kernel(argv: list[str]) -> dict:
             "columns": [{"key": k, "label": k} for k in rows[0]], "rows": rows}
 
 
+def dnls_norm_table(schemes: list[dict], t_final: float) -> dict:
+    """The table of benchmarks/dnls_norm_error.py's measurements (its ``run`` per scheme)."""
+    rows = []
+    for r in schemes:
+        at = {t: (n, e) for t, n, e in zip(r["t"], r["norm_error"], r["energy_error"])}
+        rows.append({"scheme": r["scheme"], "order": r["order"], "norm_1": at[1.0][0], "norm_1e3": at[1e3][0],
+                     "norm_end": r["norm_error"][-1], "norm_exponent": r["norm_slope_last_3_decades"],
+                     "energy_1": at[1.0][1], "energy_1e3": at[1e3][1], "energy_end": r["energy_error"][-1],
+                     "energy_exponent": r["energy_slope_last_3_decades"], "cpu_s": r["cpu_s"]})
+    labels = {"scheme": "scheme", "order": "order", "norm_1": "norm error t = 1", "norm_1e3": "t = 1e3",
+              "norm_end": f"t = {t_final:g}", "norm_exponent": "growth exponent (last 3 decades)",
+              "energy_1": "energy error t = 1", "energy_1e3": "t = 1e3", "energy_end": f"t = {t_final:g}",
+              "energy_exponent": "growth exponent", "cpu_s": "CPU s"}
+    return {"columns": [{"key": k, "label": v} for k, v in labels.items()], "rows": rows}
+
+
+def dnls_norm_error(argv: list[str]) -> dict:
+    """benchmarks/dnls_norm_error.py: how the DNLS norm and energy errors grow, per split scheme."""
+    sys.path.insert(0, str(HERE))
+    import dnls_norm_error as bench
+
+    ap = argparse.ArgumentParser(prog="record.py dnls_norm_error")
+    ap.add_argument("--t-final", type=float, default=1e6)
+    ap.add_argument("--schemes", nargs="*", default=None)
+    a = ap.parse_args(argv)
+    from chainchaos import SPLIT_SCHEMES
+
+    measured = [bench.run(s, a.t_final) for s in (a.schemes or list(SPLIT_SCHEMES))]
+    return {"title": "DNLS: growth of the norm and energy errors per split scheme",
+            "parameters": {"N": bench.N, "block": bench.L, "lanes": bench.LANES, "dt": bench.DT, "t_final": a.t_final},
+            **dnls_norm_table(measured, a.t_final)}
+
+
 BENCHMARKS = {"batch_throughput": batch_throughput, "pipeline": pipeline, "kept_study": kept_study,
-              "kg_kernel": kg_kernel}
+              "kg_kernel": kg_kernel, "dnls_norm_error": dnls_norm_error}
 
 
 def record(name: str, argv: list[str], note: str = "") -> Path:
