@@ -169,15 +169,16 @@ def test_the_search_chooses_the_chain_and_the_verdicts_run_on_it(quick):
 
 def test_the_readme_s_one_panel_commands_run_at_the_scale_they_say(quick):
     """The README's one-panel command as written (results/ moved to the quick run's directory):
-    its quick form after a quick run reruns nothing; without --configfile it is the paper scale,
-    whose scenes it would integrate again."""
+    its quick form after a quick run integrates nothing again; without --configfile it is the paper
+    scale, whose scenes it would integrate again."""
     readme = (ROOT / "README.md").read_text()
     command = re.search(r"`(snakemake --cores 2 results/figures/fig4d\.pdf --configfile config/quick\.yaml)`",
                         readme).group(1).split()
     assert command[:3] == ["snakemake", "--cores", "2"]
     args = [a.replace("results/", f"{quick}/", 1) for a in command[3:]]
     code, out = snakemake("-n", *args, "--config", f"results={quick}")
-    assert code == 0 and "Nothing to be done" in out, out[-3000:]
+    # nothing but the panel's own drawing job (another test may have deleted a panel of it)
+    assert code == 0 and set(planned_jobs(out)) <= {"plot_figure_4"}, out[-3000:]
     paper = [a for a in args if a not in QUICK]
     code, out = snakemake("-n", *paper, "--config", f"results={quick}")
     jobs = planned_jobs(out)
