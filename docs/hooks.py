@@ -43,7 +43,7 @@ def _drop_title(text: str) -> str:
 def config_keys() -> str:
     from chainchaos.workflow import config_docs as cd
 
-    return _drop_title(cd.render(cd.load_schema(own_models=False), cd.HEADER))
+    return _drop_title(cd.render(cd.config_schema(own_models=False), cd.HEADER))
 
 
 def study_keys() -> str:
