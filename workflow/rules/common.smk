@@ -211,14 +211,19 @@ def kept_group_file(name, group):
     return str(kept_group_path(name, group, config["kept_studies"]))
 
 
+def is_kept_study(name):
+    """Whether study ``name``'s groups are kept files: config use_kept_studies names it, or config
+    keep makes it."""
+    return name == KEEP or name in KEPT_STUDIES
+
+
 def study_group_file(name, group):
-    """A group of a study: its kept file when config use_kept_studies names the study (or config
-    keep makes it), else the file study_group makes."""
-    if name == KEEP:
-        return kept_group_file(name, group)
-    if name in KEPT_STUDIES:
-        return kept_input(kept_group_file(name, group), name)
-    return result("studies", name, "groups", f"{group:04d}.nc")
+    """A group of a study: its kept file for a kept study (one this run makes need not exist yet),
+    else the file study_group makes."""
+    if not is_kept_study(name):
+        return result("studies", name, "groups", f"{group:04d}.nc")
+    path = kept_group_file(name, group)
+    return path if name == KEEP else kept_input(path, name)
 
 
 def study_group_files(name):
@@ -228,9 +233,7 @@ def study_group_files(name):
 def study_group_check(wildcards):
     """For a kept study, what the jobs that read its groups say when one does not match it."""
     name = wildcards.study
-    if name == KEEP or name in KEPT_STUDIES:
-        return plan.kept_study_check(name, config["kept_studies"])
-    return {}
+    return plan.kept_study_check(name, config["kept_studies"]) if is_kept_study(name) else {}
 
 
 def study_chain(wildcards):

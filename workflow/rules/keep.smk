@@ -166,7 +166,6 @@ rule check_kept_archive:
     wildcard_constraints:
         archive="|".join(plan.ARCHIVE_KEYS),
     params:
-        path=lambda wildcards: plan.archive_path(wildcards.archive, config),
         check=lambda wildcards: plan.archive_check(wildcards.archive, config),
     localrule: True
     log:

@@ -194,7 +194,7 @@ def why_not_usable(path, settings: dict, version: int, remake: str, keys=None) -
     return f"kept file {path}: {key} is {_shown(a)} in the file, {_shown(b)} in this run"
 
 
-def check_kept(path, settings: dict, version: int, remake: str, compute: str, keys=None) -> str:
+def check_kept(path, settings: dict, version: int, remake: str, compute: str, keys=None) -> dict:
     """Check that the kept file ``path``, which a run's config chose to use, stands in for the
     computation with ``settings`` by code of result version ``version``: it exists, its key
     matches (:func:`why_not_usable`) and its data match their checksum (:func:`check_data`).
@@ -220,8 +220,8 @@ def check_kept(path, settings: dict, version: int, remake: str, compute: str, ke
 
     Returns
     -------
-    str
-        The settings digest of the file, for the check's record.
+    dict
+        The file's global attributes (its settings digest among them), for the check's record.
 
     Raises
     ------
@@ -237,7 +237,7 @@ def check_kept(path, settings: dict, version: int, remake: str, compute: str, ke
     if why is not None:
         raise KeptFileError(f"{why}; {ways_out}")
     check_data(path, remake)
-    return str(read_header(path, remake)[0][DIGEST_ATTR])
+    return read_header(path, remake)[0]
 
 
 def _hash_variable(sha, name: str, var) -> None:

@@ -4,8 +4,7 @@ against i/N, and h_KS against time, per scene, with the spread over its perturbe
 import numpy as np
 from matplotlib.figure import Figure
 
-from chainchaos.output.plotting.style import PAGE_WIDTH, context, model_colour
-from chainchaos.system.models import model_label
+from chainchaos.output.plotting.style import PAGE_WIDTH, context, model_colour, model_label
 
 
 def spectra_figure(scenes: list):

@@ -11,9 +11,8 @@ import matplotlib.ticker as mticker
 import numpy as np
 from matplotlib.figure import Figure
 
-from chainchaos.output.plotting.style import PAGE_WIDTH, context, save_figure
+from chainchaos.output.plotting.style import PAGE_WIDTH, context, model_label, save_figure
 from chainchaos.studies.numerics.work_precision import STATUS
-from chainchaos.system.models import model_label
 
 SCHEME_STYLE = {
     "verlet": ("#7f7f7f", "o"),

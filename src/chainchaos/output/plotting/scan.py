@@ -8,9 +8,8 @@ tag, so a rerun on the same data gives the same bytes; files are written atomica
 import numpy as np
 from matplotlib.figure import Figure
 
-from chainchaos.output.plotting.style import PAGE_WIDTH, context, model_colour
+from chainchaos.output.plotting.style import PAGE_WIDTH, context, model_colour, model_label
 from chainchaos.paper.thresholds import PAPER_THRESHOLDS
-from chainchaos.system.models import model_label
 
 ENERGY_LABEL = r"$H$"
 

@@ -18,8 +18,15 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.ticker import FixedLocator, NullLocator
 
-from chainchaos.output.plotting.style import PAGE_WIDTH, amount_symbol, context, model_colour, scene_label
-from chainchaos.system.models import get_model, model_label
+from chainchaos.output.plotting.style import (
+    PAGE_WIDTH,
+    amount_symbol,
+    context,
+    model_colour,
+    model_label,
+    scene_label,
+)
+from chainchaos.system.models import get_model
 
 LOG_T = r"$\log_{10} t$"
 #: Under the time axis of a figure whose models have different time units.

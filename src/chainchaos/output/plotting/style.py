@@ -13,7 +13,7 @@ import matplotlib
 # plain data and the standard library: a figure job loads no compiled kernel (tests/output)
 from chainchaos.observe.labels import LABELS
 from chainchaos.records.atomic import atomic_output
-from chainchaos.system.appearance import APPEARANCE
+from chainchaos.system.appearance import APPEARANCE, Appearance
 
 # Figures are drawn on matplotlib.figure.Figure, never through pyplot, and only ever written to
 # files (PNG by Agg, PDF by matplotlib's PDF backend); a caller's pyplot gets Agg too.
@@ -162,7 +162,7 @@ def composite_size(rows: int, columns: int) -> tuple[float, float]:
     return width, rows * ROW_HEIGHT.get(columns, ROW_HEIGHT[4])
 
 
-def _appearance(model: str):
+def _appearance(model: str) -> Appearance:
     """The package's table (``system.appearance``) for its models; a model of one's own, loaded by
     the job that draws it, from the registry (which compiles its kernels)."""
     if model in APPEARANCE:
@@ -170,22 +170,22 @@ def _appearance(model: str):
     from chainchaos.system.models import get_model
 
     own = get_model(model)
-    return own.label, own.colour, "S" if own.is_split else "H"
+    return Appearance(own.label, own.colour, "S" if own.is_split else "H")
 
 
 def model_colour(model: str) -> str:
     """The model's colour: Hertz red, FPUT blue."""
-    return _appearance(model)[1]
+    return _appearance(model).colour
 
 
 def model_label(model: str) -> str:
     """How figures and tables name the model (e.g. 'Hertz', 'FPUT')."""
-    return _appearance(model)[0]
+    return _appearance(model).label
 
 
 def amount_symbol(model: str) -> str:
     """What an excitation of ``model`` is given by: its energy H, or the norm S of a split model."""
-    return _appearance(model)[2]
+    return _appearance(model).amount
 
 
 def scene_label(model: str, energy: float) -> str:

@@ -10,12 +10,12 @@ from chainchaos.errors import KeptFileError, require
 from chainchaos.records import kept
 from chainchaos.records.io import write_netcdf, write_text
 from chainchaos.records.provenance import provenance_attrs
+from chainchaos.run.progress import OrbitProgress
 from chainchaos.studies.scan import merge, runs
 from chainchaos.studies.search import archive
 from chainchaos.studies.search.stages import SEARCH_RESULT_VERSION
 from chainchaos.workflow.tasks.search import (
     as_list,
-    progress,
     search_parts,
     write_search_product,
 )
@@ -89,7 +89,7 @@ def search_rejudge_filter(inputs, outputs, params, wildcards) -> None:
     selection, plan, settings, criteria, site = search_parts(params)
     group = int(wildcards["group"])
     ds = rejudge.filter_group(_kept_search(params), selection, plan, settings, criteria,
-                              rejudge.check_ids(params["rejudge"]), group, site, progress(f"rejudge filter {group}"))
+                              rejudge.check_ids(params["rejudge"]), group, site, OrbitProgress(f"rejudge filter {group}"))
     write_search_product(ds, params, selection, outputs["result"], seal=True)
 
 
@@ -105,7 +105,7 @@ def search_rejudge_score(inputs, outputs, params, wildcards) -> None:
     candidate = rejudge.survivor(kept_search, filtered, plan, rank)
     print(f"survivor {rank}: candidate {candidate}", file=sys.stderr)
     ds = rejudge.score_candidate(kept_search, selection, plan, settings, criteria, ids, candidate, site,
-                                 progress(f"rejudge score {rank}"))
+                                 OrbitProgress(f"rejudge score {rank}"))
     write_search_product(ds, params, selection, outputs["result"], seal=True)
 
 
@@ -152,14 +152,13 @@ def check_kept_archive(inputs, outputs, params, wildcards) -> None:
     settings, result version and the checksum of its data, and against the attributes the plan
     took from the config (the full search's chosen seed): the record says which file was used
     with which settings digest; a mismatch stops this job with one line and the two ways out."""
-    check, path = params["check"], params["path"]
-    digest = kept.check_kept(path, check["settings"], check["version"], check["remake"], check["compute"],
-                             check["keys"])
-    attrs, _ = kept.read_header(path, check["remake"])
-    for (name, (key, expected)) in check["attrs"].items():
+    check, path = params["check"], inputs["archive"]
+    attrs = kept.check_kept(path, check["settings"], check["version"], check["remake"], check["compute"],
+                            check["keys"])
+    for name, (key, expected) in check["attrs"].items():
         found = attrs.get(name)
         if found is None or int(found) != int(expected):
             raise KeptFileError(f"kept file {path}: {name} is {found} in the file, {expected} in config {key}; "
-                                     f"set {key}: {found}, or {check['compute']}")
-    write_text(f"{path}\tsettings digest {digest}\tused\n", outputs["record"])
+                                f"set {key}: {found}, or {check['compute']}")
+    write_text(f"{path}\tsettings digest {attrs[kept.DIGEST_ATTR]}\tused\n", outputs["record"])
 

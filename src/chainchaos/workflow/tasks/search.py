@@ -13,15 +13,10 @@ from chainchaos.records import kept
 from chainchaos.records.io import read_chain, write_netcdf
 from chainchaos.records.provenance import provenance_attrs
 from chainchaos.run.orbits import OrbitSettings
-from chainchaos.run.progress import OrbitProgress
 from chainchaos.studies.search import stages as search
 from chainchaos.studies.search.selection import SelectionCriteria
 from chainchaos.studies.search.stages import SearchPlan
 from chainchaos.workflow.tasks.chain import selection_criteria
-
-
-def progress(label: str) -> OrbitProgress:
-    return OrbitProgress(label)
 
 
 def _plan(params: dict) -> tuple[SelectionCriteria, SearchPlan]:
