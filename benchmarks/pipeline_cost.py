@@ -33,7 +33,7 @@ PARTS = (
     ("realization search: linear rule and filter",
      r"search_(seeds|candidates|filter)|study_group/search(_full)?-filter-"),
     ("realization search: scores", r"search_merge|select_chain|study_group/search(_full)?-score-"),
-    ("scenes", r"simulate_scenes"),
+    ("scenes", r"simulate_scene"),
     ("ensemble verdicts", r"ensemble_verdicts|study_group/verdicts_"),
     ("energy scan", r"study_group/energy_scan-|merge_energy_scan"),
     ("disorder statistics", r"study_group/disorder(_full)?-|merge_disorder"),

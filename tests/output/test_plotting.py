@@ -291,27 +291,25 @@ def test_interrupted_save_leaves_no_complete_looking_file(data, tmp_path, monkey
     assert sorted(p.name for p in tmp_path.iterdir()) == ["fig2d.pdf"]
 
 
-def test_a_figure_s_job_draws_each_panel_and_the_composite_as_drawn_alone(data, tmp_path):
-    """One job per figure (rule plot_figure_<N>): every panel and the composite, the same bytes
-    as each drawn and saved on its own."""
-    from chainchaos.workflow.tasks.figures import figure_outputs
+def test_the_panel_and_figure_jobs_draw_what_the_plotting_functions_draw(data, tmp_path):
+    """Rules plot_panel and plot_figure: the same bytes as plot_panel and plot_figure drawn and
+    saved on their own."""
     from chainchaos.workflow.tasks.figures import plot_figure as figure_job
+    from chainchaos.workflow.tasks.figures import plot_panel as panel_job
 
     number = 1
     inputs = {}
     for name in ("chain", "ensemble"):
         inputs[name] = str(tmp_path / f"{name}.nc")
         data[name].to_netcdf(inputs[name])
-    outputs = {key: str(tmp_path / "job" / name) for key, name in figure_outputs(number).items()}
-    assert set(outputs) == {f"{ext}{key}" for ext in ("pdf", "png")
-                            for key in ["", *(f"_{p}" for p in panels.panels_of_figure(number))]}
-    figure_job(inputs, outputs, {"number": number, "dpi": 50}, {})
     loaded = {name: xr.load_dataset(path) for name, path in inputs.items()}
-    alone = [save_figure(plot_panel(p, loaded), tmp_path / "alone" / f"fig{p}", dpi=50)
-             for p in panels.panels_of_figure(number)]
-    alone.append(save_figure(plot_figure(number, loaded), tmp_path / "alone" / f"fig{number}", dpi=50))
-    for path in (path for pair in alone for path in pair):
-        assert (tmp_path / "job" / path.name).read_bytes() == path.read_bytes(), path.name
+    jobs = [(panel_job, {"panel": p}, f"fig{p}", plot_panel(p, loaded)) for p in panels.panels_of_figure(number)]
+    jobs.append((figure_job, {"number": str(number)}, f"fig{number}", plot_figure(number, loaded)))
+    for job, wildcards, stem, figure in jobs:
+        outputs = {ext: str(tmp_path / "job" / f"{stem}.{ext}") for ext in ("pdf", "png")}
+        job(inputs, outputs, {"dpi": 50}, wildcards)
+        for path in save_figure(figure, tmp_path / "alone" / stem, dpi=50):
+            assert (tmp_path / "job" / path.name).read_bytes() == path.read_bytes(), path.name
 
 
 def test_mathtext_is_parsed_once_per_output_type_for_every_renderer():

@@ -15,8 +15,6 @@ import pytest
 import xarray as xr
 from matplotlib.image import imread
 
-from chainchaos.engine.batch import SERIAL_REMAINDER
-from chainchaos.kernels.simd import LANES
 from chainchaos.paper import panels, statements
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -74,7 +72,7 @@ def test_deleted_panel_reruns_only_its_figure_s_drawing_job(quick):
     assert planned_jobs(out) == {"plot_figure_4": 1}
 
 
-def test_deleted_study_figure_reruns_only_its_study_s_drawing_job(quick, tmp_path):
+def test_deleted_study_figure_reruns_only_its_drawing_job(quick, tmp_path):
     figure = quick / "studies" / "kg_weak_chaos" / "figures" / "chaos.pdf"
     kept = shutil.copy2(figure, tmp_path / "chaos.pdf")
     figure.unlink()
@@ -83,24 +81,21 @@ def test_deleted_study_figure_reruns_only_its_study_s_drawing_job(quick, tmp_pat
     finally:
         shutil.copy2(kept, figure)  # the other tests of the quick run read it
     assert code == 0, out
-    assert planned_jobs(out) == {"plot_study_kg_weak_chaos": 1}
+    assert planned_jobs(out) == {"plot_study": 1}
 
 
-def test_changed_scene_parameter_reruns_only_its_batch(quick, tmp_path):
-    """The changed scene leaves its batch (its step differs now), so it and the scenes it shared a
-    SIMD block with rerun, and the panels drawn from them; nothing else."""
+def test_changed_scene_parameter_reruns_only_its_scene(quick, tmp_path):
+    """A changed setting of one scene reruns that scene, the panels drawn from it and their
+    figures; nothing else."""
     override = tmp_path / "override.yaml"
     override.write_text("scenes:\n  hertz_H1.8:\n    dt: 0.005\n")
     code, out = snakemake(*QUICK, str(override), "--config", f"results={quick}", "-n")
     assert code == 0, out
     jobs = planned_jobs(out)
-    batches = re.findall(r"(?:local)?rule simulate_scenes_\w+:\n(?:[ \t]+\w+:.*\n)*?[ \t]+output: (.*)\n", out)
-    rerun = {name for outputs in batches for name in re.findall(r"/scenes/(\w+_H[\d.]+)\.nc", outputs)}
-    assert "hertz_H1.8" in rerun and all(name.startswith("hertz_") for name in rerun)
-    assert sum(n for rule, n in jobs.items() if rule.startswith("simulate_scenes_")) == len(batches) == 2
-    affected = {p for p, panel in panels.PANELS.items() if rerun & {s.name for s in panel.scenes}}
-    drawn = {rule for rule in jobs if rule.startswith("plot_figure_")}
-    assert drawn == {f"plot_figure_{p[:-1]}" for p in affected} and all(jobs[rule] == 1 for rule in drawn)
+    assert jobs["simulate_scene"] == 1 and "/scenes/hertz_H1.8.nc" in out
+    affected = {p for p, panel in panels.PANELS.items() if "hertz_H1.8" in {s.name for s in panel.scenes}}
+    assert jobs["plot_panel"] == len(affected)
+    assert jobs["plot_figure"] == len({p[:-1] for p in affected})
     assert "compute_ensemble" not in jobs and "select_chain" not in jobs
 
 
@@ -108,20 +103,13 @@ def test_paper_scale_dry_run_plans_every_scene(tmp_path):
     code, out = snakemake("-n", "--config", f"results={tmp_path}")
     assert code == 0, out[-4000:]
     jobs = planned_jobs(out)
-    # every scene's file is written by the job of its batch
-    batches = {rule: n for rule, n in jobs.items() if rule.startswith("simulate_scenes_")}
+    # one job per scene, per panel and per composite
     assert set(re.findall(r"/scenes/(\w+_H[\d.]+)\.nc", out)) == set(panels.scenes())
-    # one drawing job per figure: its panels and its composite
-    assert {rule: n for rule, n in jobs.items() if rule.startswith(("plot_figure", "plot_panel"))} == {
-        f"plot_figure_{n}": 1 for n in panels.LAYOUTS}
-    # scenes that share their settings run together, one SIMD block per job, and the few left over
-    # (at most batch.SERIAL_REMAINDER) one per job, on the single engine
-    per_model = [divmod(sum(s.model == model for s in panels.scenes().values()), LANES) for model in ("hertz", "fput")]
-    assert sum(batches.values()) == len(batches) == sum(whole + (rest if rest <= SERIAL_REMAINDER else 1) for whole, rest in per_model)
-    # the realization search: stage 0 (its size decides stage 1: a checkpoint), the verdicts one job per model
+    assert jobs["simulate_scene"] == len(panels.scenes())
+    assert (jobs["plot_panel"], jobs["plot_figure"]) == (len(panels.PANELS), len(panels.LAYOUTS))
+    # the realization search: stage 0 (its size decides stage 1: a checkpoint), the verdicts one job per scene
     assert jobs["search_seeds"] == 1 and jobs["search_candidates"] == 1 and jobs["search_merge"] == 1
-    assert {rule: n for rule, n in jobs.items() if rule.startswith("ensemble_verdicts")} == {
-        f"ensemble_verdicts_{model}": 1 for model in statements.statement_scenes_by_model()}
+    assert jobs["ensemble_verdicts"] == len(statements.statement_scenes())
 
 
 def test_an_archived_full_search_pins_its_chain_and_none_searches(tmp_path):

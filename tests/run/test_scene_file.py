@@ -11,7 +11,7 @@ import xarray as xr
 from chainchaos.errors import ParameterError
 from chainchaos.observe.registry import NORM, OBSERVABLES, needing
 from chainchaos.records.io import write_netcdf
-from chainchaos.run.scenes import SceneParameters, scene_batches, simulate
+from chainchaos.run.scenes import SceneParameters, simulate
 
 
 def test_only_requested_observables_are_written(tmp_path, chain):
@@ -70,27 +70,3 @@ def test_radii_file(tmp_path):
         assert np.isclose(ds.radius.values.mean(), 1.0)
 
 
-def _scenes(model, energies, observables=("mlce",)):
-    return {f"{model}_H{E:g}": SceneParameters(model=model, energy=E, t_final=10.0, dt=0.01, observables=observables)
-            for E in energies}
-
-
-def test_scene_batches_fill_blocks_and_leave_a_few_scenes_to_the_single_engine():
-    scenes = {**_scenes("hertz", [0.25, 0.5, 1.8, 3.0, 4.0, 6.0]), **_scenes("fput", [0.5, 1.0, 2.0])}
-    hertz, fput = list(scenes)[:6], list(scenes)[6:]
-    # two scenes beyond a job of four: one job each (the single engine, jobs side by side)
-    assert scene_batches(scenes, 4, 2) == {"hertz_1": hertz[:4], "hertz_2": [hertz[4]], "hertz_3": [hertz[5]],
-                                           "fput_1": fput}
-    # more left over than `singles`: one job, a padded block
-    assert scene_batches(scenes, 4, 1) == {"hertz_1": hertz[:4], "hertz_2": hertz[4:], "fput_1": fput}
-    assert scene_batches(scenes, 8, 0) == {"hertz_1": hertz, "fput_1": fput}
-    assert scene_batches(scenes, 8, 3) == {"hertz_1": hertz, "fput_1": [fput[0]], "fput_2": [fput[1]],
-                                           "fput_3": [fput[2]]}
-    # several deviation vectors per orbit run on the batch engine only: a block, never singles
-    gali = _scenes("hertz", [0.25, 0.5], observables=("mlce", "sali"))
-    assert scene_batches(gali, 8, 4) == {"hertz_1": list(gali)}
-
-
-def test_scene_batches_name_a_bad_count():
-    with pytest.raises(ParameterError, match="single_scenes.*-1"):
-        scene_batches(_scenes("fput", [0.5]), 8, -1)

@@ -26,31 +26,16 @@ def config(**overrides):
     return {**CONFIG, **overrides}
 
 
-# ---- scene jobs: a count of the config ---------------------------------------------------------
+# ---- scenes: one job each, from the config --------------------------------------------------
 
 
-def test_scene_jobs_follow_the_config_counts_and_cover_every_scene_once():
-    for per_job, singles in [(8, 4), (4, 0), (2, 1), (16, 0)]:
-        jobs = plan.scene_jobs(config(scene_batches={"scenes_per_job": per_job, "single_scenes": singles}))
-        names = [scene.name for scenes in jobs.values() for scene in scenes]
-        assert sorted(names) == sorted(panels.scenes()), (per_job, singles)
-        assert all(1 <= len(scenes) <= per_job for scenes in jobs.values())
-        for scenes in jobs.values():
-            assert len({(s.model, s.dt, s.t_final) for s in scenes}) == 1  # one job, one set of settings
-    one_each = plan.scene_jobs(config(scene_batches={"scenes_per_job": 1, "single_scenes": 0}))
-    assert len(one_each) == len(panels.scenes())
-
-
-def test_scene_jobs_do_not_depend_on_the_simd_width(monkeypatch):
-    from chainchaos.engine import batch
-    from chainchaos.kernels import simd
-
-    cut = config()
-    expected = plan.scene_jobs(cut)
-    for lanes in (2, 4, 8, 16):
-        monkeypatch.setattr(simd, "LANES", lanes)
-        monkeypatch.setattr(batch, "SERIAL_REMAINDER", lanes // 2)
-        assert plan.scene_jobs(cut) == expected
+def test_scene_run_takes_the_simulation_block_and_the_scene_override():
+    overridden = config(scenes={"hertz_H1.8": {"dt": 2.5e-4}})
+    for name, scene in panels.scenes().items():
+        run = plan.scene_run(overridden, name)
+        assert (run.name, run.model, run.energy) == (name, scene.model, scene.energy)
+        assert run.dt == (2.5e-4 if name == "hertz_H1.8" else CONFIG["simulation"]["dt"])
+        assert set(panels.scene_observables(name)) <= set(run.observables)
 
 
 def job_list(lanes: int) -> list[str]:
@@ -137,7 +122,10 @@ def test_paper_targets_are_every_panel_and_figure_as_pdf_and_png():
     assert len(targets) == 2 * (len(panels.PANELS) + len(panels.LAYOUTS))
 
 
-def test_a_figure_reads_its_panels_scenes_and_only_them():
+def test_a_panel_and_a_figure_read_their_scenes_and_only_them():
+    for panel_id, panel in panels.PANELS.items():
+        files = plan.panel_inputs(panel_id, "out")
+        assert {k for k in files if k not in ("chain", "ensemble")} == {s.name for s in panel.scenes}
     for number in panels.LAYOUTS:
         files = plan.figure_inputs(number, "out")
         scenes = {s.name for p in panels.panels_of_figure(number) for s in panels.PANELS[p].scenes}
@@ -145,7 +133,7 @@ def test_a_figure_reads_its_panels_scenes_and_only_them():
         assert all(path.startswith("out/") for path in files.values())
 
 
-def test_beyond_entries_and_asked_figures():
+def test_beyond_entries():
     figures = {"a": ["spreading", "chaos"], "b": ["spreading"]}.__getitem__
     entries = plan.beyond_entries(["a", {"b": []}], figures)
     assert entries == {"a": ["spreading", "chaos"], "b": []}
@@ -153,9 +141,6 @@ def test_beyond_entries_and_asked_figures():
         plan.beyond_entries([{"a": ["maps"]}], figures)
     with pytest.raises(ValueError, match="study a is named twice"):
         plan.beyond_entries(["a", "a"], figures)
-    assert plan.asked_figures("a", ["spreading", "chaos"], {"a": ["chaos"]}, None) == ["chaos"]
-    assert plan.asked_figures("a", ["spreading", "chaos"], {}, "a") == ["spreading", "chaos"]
-    assert plan.asked_figures("b", ["spreading"], {"a": ["chaos"]}, "a") == []
 
 
 def test_study_name_and_cluster_minutes():

@@ -23,7 +23,7 @@ from chainchaos.output.manuscript import GENERATED
 from chainchaos.records.io import ensemble_dataset
 from chainchaos.workflow.tasks import run
 from chainchaos.workflow.tasks.chain import compute_ensemble
-from chainchaos.workflow.tasks.simulate import simulate_scenes
+from chainchaos.workflow.tasks.simulate import simulate_scene
 
 ROOT = Path(__file__).resolve().parents[2]
 SCRIPTS = ROOT / "workflow" / "scripts"
@@ -31,17 +31,13 @@ RULE_FILES = [ROOT / "Snakefile", *sorted((ROOT / "workflow" / "rules").glob("*.
 
 
 def rules() -> dict[str, tuple[Path, str]]:
-    """Every rule of the workflow: name -> (its rule file, its rule's text). The rules of a loop
-    (``for number in FIGURES: rule: name: f"plot_figure_{number}"``) count once, by the name
-    before the loop variable (plot_figure), the name of their script and task."""
+    """Every rule of the workflow: name -> (its rule file, its rule's text)."""
     found = {}
     for path in RULE_FILES:
         text = path.read_text()
-        pattern = r"^( *)(?:rule|checkpoint) (\w+):|^( +)rule:\n\s+name:\n\s+f\"(\w+)_\{\w+\}\"$"
-        for m in re.finditer(pattern, text, re.M):
-            indent = m.group(1) or m.group(3) or ""
-            end = re.search(rf"^ {{0,{len(indent)}}}\S", text[m.end():], re.M)  # the next line at the rule's level
-            found[m.group(2) or m.group(4)] = (path, text[m.start():m.end() + (end.start() if end else len(text))])
+        for m in re.finditer(r"^( *)(?:rule|checkpoint) (\w+):", text, re.M):
+            end = re.search(rf"^ {{0,{len(m.group(1))}}}\S", text[m.end():], re.M)  # the next line at the rule's level
+            found[m.group(2)] = (path, text[m.start():m.end() + (end.start() if end else len(text))])
     return found
 
 
@@ -71,9 +67,17 @@ def fake_rule(rule, log, input=(), output=(), params=(), wildcards=()):
 # ------------------------------------------------------------------ one path: rule = script = task
 
 
+def test_every_rule_is_written_once_with_its_name():
+    """No rule made in a loop or named at run time (``rule:`` with ``name:``): wildcards instead."""
+    for path in RULE_FILES:
+        text = path.read_text()
+        assert not re.search(r"^\s*(?:rule|checkpoint)\s*:", text, re.M), path.name
+        assert not re.search(r"^\s+name:", text, re.M), path.name
+
+
 def test_every_rule_runs_the_script_named_like_it_and_its_task_from_its_rule_file_s_module():
     found = rules()
-    assert {"all", "simulate_scenes", "numerics_work_precision", "build_manuscript", "keep_study_group",
+    assert {"all", "simulate_scene", "numerics_work_precision", "build_manuscript", "keep_study_group",
             "search_full"} <= set(found)
     for name, (path, text) in found.items():
         script = script_of(text)
@@ -152,23 +156,20 @@ def test_compute_ensemble_honours_every_key_of_the_ensemble_block(tmp_path):
                               ensemble_dataset([2.0, 5.0], 4, 12)["mean_participation"].values)
 
 
-def test_simulate_scenes_writes_each_scene_of_its_batch_to_its_own_file(tmp_path):
-    """A batch job's scenes, integrated together, each in the file of its name: the scene file
-    of the scene run alone (chainchaos.run.scenes.simulate), to the bit."""
+def test_simulate_scene_writes_the_scene_as_simulate_integrates_it(tmp_path):
+    """The job of one scene writes the Dataset of chainchaos.run.scenes.simulate, to the bit."""
     from chainchaos.records.io import chain_dataset, write_netcdf
     from chainchaos.run.scenes import SceneParameters, simulate
     from chainchaos.system.chain import random_chain
 
     chain = random_chain(879, 5.0, 12)
     chain_file = write_netcdf(chain_dataset(chain), tmp_path / "chain.nc")
-    common = {"model": "fput", "t_final": 5.0, "dt": 0.01, "samples_per_decade": 4, "check_every": 100}
-    scenes = [SceneParameters(energy=1.8, excited_site=6, observables=("participation", "mlce"), name="fput_H1.8", **common),
-              SceneParameters(energy=0.5, excited_site=6, observables=("energy_density",), name="fput_H0.5", **common)]
-    outputs = {s.name: str(tmp_path / "scenes" / f"{s.name}.nc") for s in scenes}
-    run(fake_rule("simulate_scenes", tmp_path / "log", input={"chain": str(chain_file), "kernels": []},
-                  output=outputs, params={"scenes": scenes, "batch": "fput_1"}), simulate_scenes)
-    for params in scenes:
-        written, alone = xr.load_dataset(outputs[params.name]), simulate(chain, params)
-        assert set(written.data_vars) == set(alone.data_vars), params.name
-        for name in alone.data_vars:
-            np.testing.assert_array_equal(written[name].values, alone[name].values, err_msg=f"{params.name}: {name}")
+    scene = SceneParameters(model="fput", t_final=5.0, dt=0.01, samples_per_decade=4, check_every=100, energy=1.8,
+                            excited_site=6, observables=("participation", "mlce"), name="fput_H1.8")
+    output = str(tmp_path / "scenes" / "fput_H1.8.nc")
+    run(fake_rule("simulate_scene", tmp_path / "log", input={"chain": str(chain_file), "kernels": []},
+                  output={"scene": output}, params={"scene": scene}, wildcards={"scene": scene.name}), simulate_scene)
+    written, alone = xr.load_dataset(output), simulate(chain, scene)
+    assert set(written.data_vars) == set(alone.data_vars)
+    for name in alone.data_vars:
+        np.testing.assert_array_equal(written[name].values, alone[name].values, err_msg=name)

@@ -13,11 +13,11 @@ from chainchaos.errors import StudyError
 from chainchaos.kernels.cache import kernel_sources
 from chainchaos.output import report_captions
 from chainchaos.paper import panels, statements
+from chainchaos.paper.ensembles import verdict_study_name
 from chainchaos.studies.study.spec import kept_group_path, study_names
 from chainchaos.system.models import PACKAGE_MODELS
 from chainchaos.workflow import plan
 from chainchaos.workflow.tasks.chain import selection_criteria
-from chainchaos.workflow.tasks.figures import figure_outputs as figure_files
 
 RESULTS = config["results"]
 FIGURES = sorted(panels.LAYOUTS)
@@ -59,29 +59,7 @@ REPORT_CATEGORIES = report_captions.CATEGORIES
 
 
 # ---- scenes and figures (simulate.smk, figures.smk) --------------------------------------------
-SCENE_JOBS = plan.scene_jobs(config)
 ALL_TARGETS = plan.paper_targets(RESULTS)
-
-
-def figure_outputs(number):
-    """Each panel's and the composite's PDF and PNG; every PNG in the report with its caption."""
-    outputs = {}
-    for key, name in figure_files(number).items():
-        path, panel_id = result("figures", name), key.partition("_")[2]
-        if key.startswith("png"):
-            path = report(
-                path,
-                caption=f"../report/figures/{Path(name).stem}.rst",
-                category=REPORT_CATEGORIES["figures"],
-                subcategory=report_captions.figure_subcategory(number),
-                labels=(
-                    report_captions.panel_labels(panel_id)
-                    if panel_id
-                    else report_captions.figure_labels(number)
-                ),
-            )
-        outputs[key] = path
-    return outputs
 
 
 def kernel_flags(models=None):
@@ -257,21 +235,18 @@ KEEP = plan.kept_product(config.get("keep"), [*study_names(), *filter(None, [NAM
 SHOWN = plan.beyond_entries(config.get("manuscript", {}).get("beyond", []), study_figure_names)
 
 
-def asked_figures(name):
-    return plan.asked_figures(name, study_figure_names(name), SHOWN, NAMED_STUDY)
-
-
-# The studies whose figures a run can ask for (only those are read: a half-written file in
-# studies/ stops no other run).
-FIGURE_STUDIES = [
-    name for name in sorted({*SHOWN, *filter(None, [NAMED_STUDY])}) if asked_figures(name)
-]
-
-
-def study_figure_inputs(name):
-    """The statistics a study's asked figures read: its own, and its comparison's studies'."""
-    compared = study_of(name).spec["compare_with"] if "comparison" in asked_figures(name) else []
-    return {n: result("studies", n, "statistics.nc") for n in [name, *compared]}
+def study_figure_inputs(wildcards):
+    """The statistics a study's figure reads: its own, and for ``comparison`` its compared
+    studies'."""
+    figures = study_figure_names(wildcards.study)
+    if wildcards.figure not in figures:
+        raise ValueError(
+            f"study {wildcards.study} draws no figure {wildcards.figure}; its figures: {figures}"
+        )
+    compared = (
+        study_of(wildcards.study).spec["compare_with"] if wildcards.figure == "comparison" else []
+    )
+    return {n: result("studies", n, "statistics.nc") for n in [wildcards.study, *compared]}
 
 
 def named_study():
@@ -280,27 +255,6 @@ def named_study():
             f"the target study needs a study: --config study=<name>, one of {study_names()}"
         )
     return NAMED_STUDY
-
-
-def rule_key(name):
-    """``name`` as a part of a rule's name (a study may be named ``my-study.v2``)."""
-    return re.sub(r"\W", "_", name)
-
-
-def study_figure_outputs(name):
-    """Each asked figure of a study as PDF and PNG, the PNG in the report."""
-    outputs = {}
-    for figure in asked_figures(name):
-        path = result("studies", name, "figures", figure)
-        outputs[f"{figure}_pdf"] = f"{path}.pdf"
-        outputs[f"{figure}_png"] = report(
-            f"{path}.png",
-            caption=f"../report/{'study_comparison' if figure == 'comparison' else 'study'}.rst",
-            category=REPORT_CATEGORIES["studies"],
-            subcategory=name,
-            labels={"study": name, "figure": figure},
-        )
-    return outputs
 
 
 # ---- kept results (keep.smk) -------------------------------------------------------------------

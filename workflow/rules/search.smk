@@ -136,30 +136,28 @@ rule plot_search:
 
 
 # The scenes of one model are one study (paper.ensembles.verdict_study, study verdicts_<model>): its
-# orbits run in the study's jobs (rule study_group), and this rule judges every scene's statements
-# on its own ensemble (seconds of work).
-for model, verdict_scenes in statements.statement_scenes_by_model().items():
-
-    rule:
-        name:
-            f"ensemble_verdicts_{model}"
-        localrule: True
-        input:
-            chain=result("chain", "chain.nc"),
-            groups=study_group_files(f"verdicts_{model}"),
-        output:
-            **{name: VERDICT_FILES[name] for name in verdict_scenes},
-        priority: 3
-        params:
-            scenes=verdict_scenes,
-            verdicts=config["verdicts"],
-            claims=config.get("claims", {}),
-        log:
-            log_file("ensemble_verdicts", model),
-        benchmark:
-            benchmark_file("ensemble_verdicts", model)
-        script:
-            "../scripts/ensemble_verdicts.py"
+# orbits run in the study's jobs (rule study_group), and this rule judges one scene's statements on
+# its ensemble (seconds of work).
+rule ensemble_verdicts:
+    """The verdicts of one scene's statements over its ensemble on the chosen chain."""
+    localrule: True
+    input:
+        chain=result("chain", "chain.nc"),
+        groups=lambda wildcards: study_group_files(
+            verdict_study_name(SCENES[wildcards.scene].model)
+        ),
+    output:
+        verdicts=result("verdicts", "{scene}.nc"),
+    priority: 3
+    params:
+        verdicts=config["verdicts"],
+        claims=config.get("claims", {}),
+    log:
+        log_file("ensemble_verdicts", "{scene}"),
+    benchmark:
+        benchmark_file("ensemble_verdicts", "{scene}")
+    script:
+        "../scripts/ensemble_verdicts.py"
 
 
 SEARCH_TARGETS = [

@@ -1,6 +1,4 @@
-# The scenes, integrated in jobs of those that share their settings (plan.scene_jobs: a count of
-# the config, the same on every CPU), each computing only the observables its panels use and
-# written one file per scene.
+# The scenes, one job each (plan.scene_run), each computing only the observables its panels use.
 
 import re
 
@@ -34,27 +32,23 @@ rule compile_kernels:
         "../scripts/compile_kernels.py"
 
 
-# One job per batch of scenes (rule simulate_scenes_<batch>), one target per scene.
-for batch, batch_scenes in SCENE_JOBS.items():
-
-    rule:
-        name:
-            f"simulate_scenes_{batch}"
-        input:
-            chain=result("chain", "chain.nc"),
-            kernels=kernel_flags([batch_scenes[0].model]),
-        output:
-            **{scene.name: scene_file(scene.name) for scene in batch_scenes},
-        priority: 5  # the longest jobs: before the many short scan and plot jobs, so the figures do not wait
-        params:
-            scenes=batch_scenes,
-            batch=batch,
-        log:
-            log_file("simulate_scenes", batch),
-        benchmark:
-            benchmark_file("simulate_scenes", batch)
-        resources:
-            mem_mb=1000,
-            runtime=60,  # paper scale: 2e8 steps of one SIMD block
-        script:
-            "../scripts/simulate_scenes.py"
+rule simulate_scene:
+    """One scene of the paper on the chosen chain, on the single-trajectory engine (the batch
+    engine where it needs several deviation vectors)."""
+    input:
+        chain=result("chain", "chain.nc"),
+        kernels=lambda wildcards: kernel_flags([SCENES[wildcards.scene].model]),
+    output:
+        scene=scene_file("{scene}"),
+    priority: 5  # the longest jobs: before the many short scan and plot jobs, so the figures do not wait
+    params:
+        scene=lambda wildcards: plan.scene_run(config, wildcards.scene),
+    log:
+        log_file("simulate_scene", "{scene}"),
+    benchmark:
+        benchmark_file("simulate_scene", "{scene}")
+    resources:
+        mem_mb=1000,
+        runtime=60,  # paper scale: 2e8 steps of one trajectory
+    script:
+        "../scripts/simulate_scene.py"

@@ -4,16 +4,17 @@
 #
 # in resumable jobs of `jobs.orbits_per_job` orbits (study_group), merged into one NetCDF file
 # per model and energy holding every realization (study_scene) and the ensemble statistics
-# and its power laws (study_statistics), drawn as the study's figures (plot_study_<name>) and shown
+# and its power laws (study_statistics), drawn as the study's figures (plot_study, one job each) and shown
 # in the HTML report (category "Studies"). Nothing of the paper (search, claims, manuscript) runs.
 
 
 wildcard_constraints:
     group=r"\d+",
+    figure=r"[a-z_]+",
     study=r"[A-Za-z0-9][A-Za-z0-9_.-]*",
 
 
-# Seconds of work each: on a cluster they run on the submitting host (as does plot_study_<name>).
+# Seconds of work each: on a cluster they run on the submitting host (as does plot_study).
 localrules:
     study,
     study_scene,
@@ -76,31 +77,29 @@ rule study_statistics:
         "../scripts/study_statistics.py"
 
 
-# One job per study draws the figures of it the run asks for (rule plot_study_<name>): all of the
-# study config `study` names, those the manuscript shows of the others; one target per figure
-# (asking for one runs its study's job), paying the plotting set-up once.
-for study_with_figures in FIGURE_STUDIES:
-    key = rule_key(study_with_figures)
-
-    rule:
-        name:
-            f"plot_study_{key}"
-        localrule: True
-        input:
-            **study_figure_inputs(study_with_figures),
-        output:
-            **study_figure_outputs(study_with_figures),
-        params:
-            study=study_with_figures,
-            figures=asked_figures(study_with_figures),
-            models=plan.own_models(study_of(study_with_figures)),
-            dpi=config["figures"]["dpi"],
-        log:
-            log_file("plot_study", study_with_figures),
-        benchmark:
-            benchmark_file("plot_study", study_with_figures)
-        script:
-            "../scripts/plot_study.py"
+rule plot_study:
+    """One figure of a study (key ``figures``; ``comparison`` with ``compare_with``)."""
+    localrule: True
+    input:
+        unpack(study_figure_inputs),
+    output:
+        pdf=result("studies", "{study}", "figures", "{figure}.pdf"),
+        png=report(
+            result("studies", "{study}", "figures", "{figure}.png"),
+            caption="../report/study.rst",
+            category=REPORT_CATEGORIES["studies"],
+            subcategory="{study}",
+            labels={"study": "{study}", "figure": "{figure}"},
+        ),
+    params:
+        models=lambda wildcards: plan.own_models(study_of(wildcards.study)),
+        dpi=config["figures"]["dpi"],
+    log:
+        log_file("plot_study", "{study}-{figure}"),
+    benchmark:
+        benchmark_file("plot_study", "{study}-{figure}")
+    script:
+        "../scripts/plot_study.py"
 
 
 rule study:

@@ -1,7 +1,7 @@
 """The paper's scenes as studies: the ensembles of perturbed orbits on which its statements are judged.
 
 The ensemble verdicts of a model's scenes on the chosen chain (config ``verdicts``, workflow rule
-``ensemble_verdicts_<model>``) and the realization search's filter runs and scored ensembles on
+``ensemble_verdicts``) and the realization search's filter runs and scored ensembles on
 candidate chains (``studies.search.stages``) are studies (``studies.study``): a model, its scenes'
 energies, the bead of the excitation, lanes and settings. Their orbits are integrated and grouped
 by the study's mechanism; what is the paper's own is the step after it, which reads a scene's

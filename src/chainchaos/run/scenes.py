@@ -164,58 +164,6 @@ def batch_key(params: SceneParameters) -> tuple:
     return tuple(getattr(params, key) for key in BATCH_KEYS)
 
 
-def scene_batches(scenes: dict[str, SceneParameters], per_job: int, singles: int = 0) -> dict[str, list[str]]:
-    """The scenes (by name, in order) that run together in one job: those sharing ``BATCH_KEYS``,
-    at most ``per_job`` at a time, named ``<model>_<n>`` (the batch engine packs a job's scenes
-    into its SIMD lanes). A group's last scenes beyond whole jobs, if at most ``singles`` and none
-    needs several deviation vectors (which only the batch engine carries), go one per job: each
-    then runs on the single-trajectory engine, which costs less than a mostly padded block, and
-    the jobs run side by side. Counts, not the machine's SIMD width: the same scenes give the same
-    jobs on every CPU, and every scene the same numbers in any job.
-
-    Parameters
-    ----------
-    scenes : dict of str to SceneParameters
-        The scenes by name, in order.
-    per_job : int
-        The most scenes one job runs (>= 1).
-    singles : int, default 0
-        A group's remainder of at most this many scenes runs one per job (>= 0).
-
-    Returns
-    -------
-    dict of str to list of str
-        Each job's name, ``<model>_<n>``, to its scenes' names.
-
-    Raises
-    ------
-    ParameterError
-        For ``per_job`` < 1 or ``singles`` < 0.
-    """
-    require(int(per_job) >= 1, "scene_batches.scenes_per_job", per_job, "an integer >= 1")
-    require(int(singles) >= 0, "scene_batches.single_scenes", singles, "an integer >= 0")
-    per_job = int(per_job)
-    several_vectors = needing(SPECTRUM) | needing(ALIGNMENT)
-    groups: dict[tuple, list[str]] = {}
-    for name, params in scenes.items():
-        groups.setdefault(batch_key(params), []).append(name)
-    batches, count = {}, {}
-    for key, names in groups.items():
-        whole = len(names) // per_job * per_job
-        chunks = [names[start:start + per_job] for start in range(0, whole, per_job)]
-        rest = names[whole:]
-        if rest and len(rest) <= int(singles) and not any(several_vectors & set(scenes[n].observables)
-                                                          for n in rest):
-            chunks += [[name] for name in rest]
-        elif rest:
-            chunks.append(rest)
-        model = key[0]
-        for chunk in chunks:
-            count[model] = count.get(model, 0) + 1
-            batches[f"{model}_{count[model]}"] = chunk
-    return batches
-
-
 def _disorder_attrs(chain) -> dict:
     """The lattice's disorder strength as the scene file records it: a bead chain's alpha
     (radii ratio), a KG lattice's W."""

@@ -8,31 +8,20 @@ without Snakemake:
   studies of config ``use_kept_studies``), and what the jobs that check them compare them with
   (:func:`archive_check`): no function here opens a file while the workflow is parsed (a search
   stage's study reads the stage before it, a checkpoint's output, once it ran);
-- which scenes share a job (:func:`scene_jobs`), what the paper's targets are
-  (:func:`paper_targets`), which files a figure reads (:func:`figure_inputs`);
+- how each scene of the paper runs (:func:`scene_run`), what the paper's targets are
+  (:func:`paper_targets`), which files a panel or a figure reads (:func:`panel_inputs`,
+  :func:`figure_inputs`);
 - the settings each kind of job gets (:func:`scan_params`, :func:`search_params`) and how many
   jobs a search stage has (:func:`search_plans`);
-- which studies and figures a run asks for (:func:`beyond_entries`, :func:`asked_figures`,
-  :func:`study_targets`), and what a cluster job may take (:func:`cluster_minutes`).
+- which studies and figures a run asks for (:func:`beyond_entries`, :func:`study_targets`), and
+  what a cluster job may take (:func:`cluster_minutes`).
 """
 
 import math
 from pathlib import Path
 
 from chainchaos.paper import panels
-from chainchaos.run.scenes import SceneParameters, scene_batches, scene_parameters
-
-#: The scans are studies too (``studies.scan.runs.scan_study``), named by their kind.
-SCAN_STUDIES = ("energy_scan", "disorder", "disorder_full")
-
-
-def verdict_studies() -> dict[str, str]:
-    """The studies of the paper's statement scenes on the chosen chain, one per model
-    (``paper.ensembles.verdict_study``): {study name: model}."""
-    from chainchaos.paper.ensembles import verdict_study_name
-    from chainchaos.paper.statements import statement_scenes_by_model
-
-    return {verdict_study_name(model): model for model in statement_scenes_by_model()}
+from chainchaos.run.scenes import SceneParameters, scene_parameters
 
 #: Kept results a run can make when config ``keep`` names them (a study's name keeps its groups).
 KEPT_PRODUCTS = ("search_full", "search_rejudge", "disorder_full")
@@ -99,32 +88,25 @@ def kept_study_check(name: str, kept_root) -> dict:
 # ---- the paper's scenes and figures --------------------------------------------------------------
 
 
-def scene_jobs(config: dict) -> dict[str, list[SceneParameters]]:
-    """The paper's scenes as the config runs them, cut into jobs: up to
-    ``scene_batches.scenes_per_job`` scenes that share their integration settings per job, and a
-    group's last ``scene_batches.single_scenes`` or fewer scenes each in a job of its own (one
-    trajectory on the single engine: cheaper than a mostly padded SIMD block).
-
-    A count of the config, not the machine's SIMD width: the same config gives the same jobs on
-    every CPU (the batch engine packs lanes inside a job), and every scene's numbers are the
-    same whatever job it runs in.
+def scene_run(config: dict, name: str) -> SceneParameters:
+    """Scene ``name`` of the paper as the config runs it: the settings of every scene (config
+    ``simulation``), its own overrides (config ``scenes.<name>``) and the observables its panels
+    use. One job per scene (rule simulate_scene).
 
     Parameters
     ----------
     config : dict
-        The workflow's config (blocks ``simulation``, ``scenes``, ``scene_batches``).
+        The workflow's config (blocks ``simulation`` and ``scenes``).
+    name : str
+        A scene of ``panels.scenes()``.
 
     Returns
     -------
-    dict
-        ``{job name (<model>_<n>): [SceneParameters, ...]}``.
+    SceneParameters
+        The scene, validated.
     """
-    scenes = {name: scene_parameters(config["simulation"], config.get("scenes", {}).get(name, {}), scene, name,
-                                 panels.scene_observables(name))
-              for name, scene in panels.scenes().items()}
-    cut = config["scene_batches"]
-    batches = scene_batches(scenes, cut["scenes_per_job"], cut["single_scenes"])
-    return {batch: [scenes[name] for name in names] for batch, names in batches.items()}
+    return scene_parameters(config["simulation"], config.get("scenes", {}).get(name, {}),
+                            panels.scenes()[name], name, panels.scene_observables(name))
 
 
 def paper_targets(results: str) -> list[str]:
@@ -133,17 +115,23 @@ def paper_targets(results: str) -> list[str]:
     return [f"{results}/figures/{stem}.{ext}" for stem in stems for ext in ("pdf", "png")]
 
 
+def panel_inputs(panel_id: str, results: str) -> dict[str, str]:
+    """The files panel ``panel_id`` is drawn from: its scenes, and the ensemble statistics or
+    the chain where it shows them."""
+    panel = panels.PANELS[panel_id]
+    files = {s.name: f"{results}/scenes/{s.name}.nc" for s in panel.scenes}
+    if panel.kind == "ensemble_participation":
+        files["ensemble"] = f"{results}/ensemble/participation_stats.nc"
+    if panel.kind == "chain_spectrum":
+        files["chain"] = f"{results}/chain/chain.nc"
+    return files
+
+
 def figure_inputs(number: int, results: str) -> dict[str, str]:
-    """The files figure ``number``'s panels are drawn from: their scenes, and the ensemble
-    statistics or the chain where a panel shows them."""
+    """The files figure ``number``'s panels are drawn from (:func:`panel_inputs` of each)."""
     files = {}
     for panel_id in panels.panels_of_figure(number):
-        panel = panels.PANELS[panel_id]
-        files.update({s.name: f"{results}/scenes/{s.name}.nc" for s in panel.scenes})
-        if panel.kind == "ensemble_participation":
-            files["ensemble"] = f"{results}/ensemble/participation_stats.nc"
-        if panel.kind == "chain_spectrum":
-            files["chain"] = f"{results}/chain/chain.nc"
+        files.update(panel_inputs(panel_id, results))
     return files
 
 
@@ -208,17 +196,6 @@ def study_name(given) -> str:
     return Path(given).stem if str(given).endswith((".yaml", ".yml")) else str(given)
 
 
-def search_stage_study(name: str) -> tuple[str, str, str] | None:
-    """(search, stage, model) of the study of a search's stage (``<search>-<stage>-<model>``,
-    ``studies.search.stages.stage_studies``), or None for another name."""
-    import re
-
-    from chainchaos.studies.search.stages import STUDY_STAGES
-
-    found = re.fullmatch(rf"(search|search_full)-({'|'.join(STUDY_STAGES)})-(\w+)", name)
-    return None if found is None else found.groups()
-
-
 def search_studies(search: str, stage: str) -> list[str]:
     """The studies of a stage of search ``search``, one per model of the statement scenes."""
     from chainchaos.studies.search.stages import search_models, study_name
@@ -246,33 +223,44 @@ def _search_stage_keys(search: str, stage: str, model: str, config: dict) -> dic
     return stage_studies(search, stage, selection, search_plan, settings, criteria, site, seeds)[model]
 
 
-def load_run_study(name: str, config: dict):
-    """The study ``name`` as this run reads it: a scan kind (from config block ``scan``), the
-    scenes of a model on the chosen chain (``verdicts_<model>``), a stage of a search
-    (:func:`search_stage_study`), the file config ``study`` names (whose stem is ``name``), or
-    ``studies/<name>.yaml``. Its keys are checked, but no chain file it names is read: its jobs
-    read it (while the workflow is parsed, it may be absent, or made by an earlier run)."""
+def config_studies(config: dict) -> dict:
+    """The studies the config itself defines, by name, each as a function that makes its keys
+    (``studies/README.md``): the scans (config ``scan``: ``energy_scan``, ``disorder``,
+    ``disorder_full``), the ensemble of each model's statement scenes on the chosen chain (config
+    ``verdicts``: ``verdicts_<model>``) and the stages of each search (config ``search``,
+    ``search_full``: ``<search>-<stage>-<model>``). A study of a search's stage reads the stage
+    before it (a checkpoint's output): call its function once that ran."""
     from functools import partial
 
+    from chainchaos.paper.ensembles import verdict_study, verdict_study_name
+    from chainchaos.paper.statements import statement_scenes_by_model
+    from chainchaos.studies.scan.runs import scan_study
+    from chainchaos.studies.search.stages import STUDY_STAGES, search_models
+    from chainchaos.studies.search.stages import study_name as stage_name
+
+    chain_file = f"{config['results']}/chain/chain.nc"
+    studies = {kind: partial(scan_study, kind, config["scan"], config["chain"]["N"], chain_file)
+               for kind in ("energy_scan", "disorder", "disorder_full")}
+    studies.update({verdict_study_name(model): partial(verdict_study, model, config["verdicts"], config.get("claims"),
+                                                       config["simulation"]["excited_site"], chain_file)
+                    for model in statement_scenes_by_model()})
+    studies.update({stage_name(search, stage, model): partial(_search_stage_keys, search, stage, model, config)
+                    for search in ("search", "search_full") for stage in STUDY_STAGES for model in search_models()})
+    return studies
+
+
+def load_run_study(name: str, config: dict):
+    """The study ``name`` as this run reads it: one the config defines (:func:`config_studies`),
+    the file config ``study`` names (whose stem is ``name``), or ``studies/<name>.yaml``. Its keys
+    are checked, but no chain file it names is read: its jobs read it (while the workflow is
+    parsed, it may be absent, or made by an earlier run)."""
     from chainchaos.studies.study.spec import load_study
 
-    load_study = partial(load_study, read_files=False)
-    stage = search_stage_study(name)
-    if stage is not None:
-        return load_study(_search_stage_keys(*stage, config))
-
-    if name in SCAN_STUDIES:
-        from chainchaos.studies.scan.runs import scan_study
-
-        chain_file = f"{config['results']}/chain/chain.nc"
-        return load_study(scan_study(name, config["scan"], config["chain"]["N"], chain_file))
-    if name in verdict_studies():
-        from chainchaos.paper.ensembles import verdict_study
-
-        return load_study(verdict_study(verdict_studies()[name], config["verdicts"], config.get("claims"),
-                                        config["simulation"]["excited_site"], f"{config['results']}/chain/chain.nc"))
+    defined = config_studies(config)
+    if name in defined:
+        return load_study(defined[name](), read_files=False)
     given = str(config.get("study") or "")
-    return load_study(given if study_name(given) == name and given != name else name)
+    return load_study(given if study_name(given) == name and given != name else name, read_files=False)
 
 
 def study_figure_names(study) -> list[str]:
@@ -302,16 +290,6 @@ def beyond_entries(beyond: list, figure_names) -> dict[str, list[str]]:
                 raise ValueError(f"config manuscript.beyond: study {name} is named twice")
             entries[name] = known if figures is None else list(figures)
     return entries
-
-
-def asked_figures(name: str, figure_names: list[str], shown: dict, named_study: str | None) -> list[str]:
-    """The figures of study ``name`` a run asks for, in the study's order: every one of the study
-    config ``study`` names (``named_study``), those the manuscript shows (``shown``: study ->
-    figures, of the studies it shows)."""
-    asked = set(shown.get(name, ()))
-    if named_study == name:
-        asked.update(figure_names)
-    return [figure for figure in figure_names if figure in asked]
 
 
 def study_targets(study, results: str, figure_names: list[str]) -> list[str]:

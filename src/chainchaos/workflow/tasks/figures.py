@@ -1,35 +1,29 @@
-"""Tasks of workflow/rules/figures.smk: one job per figure of the paper draws each of its panels and
-its composite (PDF and PNG) from the NetCDF files the panel table names (scenes, 'chain',
-'ensemble'), so a job pays matplotlib's, mathtext's and the fonts' set-up once per figure."""
+"""Tasks of workflow/rules/figures.smk: a panel of the paper, or a composite figure laid out like the
+original, drawn (PDF and PNG) from the NetCDF files the panel table names (scenes, 'chain',
+'ensemble')."""
 
 from pathlib import Path
 
-from chainchaos.paper import panels
+
+def _draw(inputs, outputs, params, figure) -> None:
+    import xarray as xr
+
+    from chainchaos.output.plotting.style import save_figure  # matplotlib: only in the plotting jobs
+
+    data = {name: xr.load_dataset(path) for name, path in inputs.items()}
+    save_figure(figure(data), str(Path(outputs["pdf"]).with_suffix("")), dpi=params["dpi"])
 
 
-def figure_outputs(number: int) -> dict[str, str]:
-    """The output keys of figure ``number``'s job, by what they hold: ``pdf``/``png`` of the
-    composite and ``pdf_<panel>``/``png_<panel>`` of each panel (e.g. ``png_4d``)."""
-    keys = {"": f"fig{number}", **{f"_{p}": f"fig{p}" for p in panels.panels_of_figure(number)}}
-    return {f"{ext}{key}": f"{stem}.{ext}" for key, stem in keys.items() for ext in ("pdf", "png")}
+def plot_panel(inputs, outputs, params, wildcards) -> None:
+    """Panel ``wildcards["panel"]`` of the paper (panels.PANELS), alone."""
+    from chainchaos.output.plotting.panels import plot_panel as panel
+
+    _draw(inputs, outputs, params, lambda data: panel(wildcards["panel"], data))
 
 
 def plot_figure(inputs, outputs, params, wildcards) -> None:
-    """Figure ``params["number"]`` of the paper: each of its panels alone (panels.PANELS) and the
-    composite laid out like the original (panels.LAYOUTS), every Dataset read once."""
-    import xarray as xr
-
-    # matplotlib: only in the plotting jobs
+    """Figure ``wildcards["number"]`` of the paper, its panels laid out like the original
+    (panels.LAYOUTS)."""
     from chainchaos.output.plotting.composite import plot_figure as composite
-    from chainchaos.output.plotting.panels import plot_panel
-    from chainchaos.output.plotting.style import save_figure
 
-    number = int(params["number"])
-    data = {name: xr.load_dataset(path) for name, path in inputs.items()}
-
-    def save(fig, key: str) -> None:
-        save_figure(fig, str(Path(outputs[f"pdf{key}"]).with_suffix("")), dpi=params["dpi"])
-
-    for panel_id in panels.panels_of_figure(number):
-        save(plot_panel(panel_id, data), f"_{panel_id}")
-    save(composite(number, data), "")
+    _draw(inputs, outputs, params, lambda data: composite(int(wildcards["number"]), data))

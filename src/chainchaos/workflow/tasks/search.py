@@ -113,25 +113,23 @@ def plot_search(inputs, outputs, params, wildcards) -> None:
 
 
 def ensemble_verdicts(inputs, outputs, params, wildcards) -> None:
-    """Each scene's statements' verdicts (output keyed by the scene's name) from the study of a
-    model's scenes on the chosen chain (``paper.ensembles.verdict_study``, its groups ``groups``)."""
+    """The verdicts of scene ``wildcards["scene"]``'s statements from the study of its model's
+    scenes on the chosen chain (``paper.ensembles.verdict_study``, its groups ``groups``)."""
     block = params["verdicts"]
-    lanes = int(block["lanes"])
     settings = OrbitSettings.from_config(block["settings"])
     criteria = Criteria.from_config(params.get("claims"))
     chain = read_chain(inputs["chain"])
-    groups = [xr.load_dataset(p) for p in as_list(inputs["groups"])]
-    of = statements.statement_scenes()
-    t, runs = study_runs(groups)
-    for k, name in enumerate(params["scenes"]):
-        scene = of[name]
-        attrs = provenance_attrs({"verdicts": block, "scene": name})
-        if settings.alignment:
-            attrs.update(gali_order=int(settings.gali_order))
-        attrs.update(model=scene.model, energy=float(scene.energy), dt=float(settings.dt),
-                     t_final=float(settings.t_final), integrator=settings.integrator, lanes=lanes,
-                     perturbation=float(settings.perturbation), seed=-1 if chain.seed is None else int(chain.seed))
-        ds = verdict_dataset(name, t, runs[k, 0], criteria, attrs)
-        for st, frac, v in zip(ds.statement.values, ds["fraction"].values, ds["verdict"].values):
-            print(f"{name:14s} {st:28s} fraction {frac:.3f} verdict {v}", file=sys.stderr)
-        write_netcdf(ds, outputs[name])
+    name = wildcards["scene"]
+    scene = statements.statement_scenes()[name]
+    k = statements.statement_scenes_by_model()[scene.model].index(name)  # the study's energy index
+    t, runs = study_runs([xr.load_dataset(p) for p in as_list(inputs["groups"])])
+    attrs = provenance_attrs({"verdicts": block, "scene": name})
+    if settings.alignment:
+        attrs.update(gali_order=int(settings.gali_order))
+    attrs.update(model=scene.model, energy=float(scene.energy), dt=float(settings.dt),
+                 t_final=float(settings.t_final), integrator=settings.integrator, lanes=int(block["lanes"]),
+                 perturbation=float(settings.perturbation), seed=-1 if chain.seed is None else int(chain.seed))
+    ds = verdict_dataset(name, t, runs[k, 0], criteria, attrs)
+    for st, frac, v in zip(ds.statement.values, ds["fraction"].values, ds["verdict"].values):
+        print(f"{name:14s} {st:28s} fraction {frac:.3f} verdict {v}", file=sys.stderr)
+    write_netcdf(ds, outputs["verdicts"])

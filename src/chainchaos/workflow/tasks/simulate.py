@@ -1,11 +1,11 @@
-"""Tasks of workflow/rules/simulate.smk: the compiled kernels, and the scenes in batches, one file per scene."""
+"""Tasks of workflow/rules/simulate.smk: the compiled kernels, and the scenes, one file each."""
 
 import sys
 import time
 
 from chainchaos.records.io import read_chain, write_netcdf, write_text
 from chainchaos.run.progress import ProgressReporter
-from chainchaos.run.scenes import simulate_scenes as integrate_scenes
+from chainchaos.run.scenes import simulate
 from chainchaos.run.warmup import warm_up
 
 
@@ -18,11 +18,8 @@ def compile_kernels(inputs, outputs, params, wildcards) -> None:
     write_text(message + "\n", outputs["flag"])
 
 
-def simulate_scenes(inputs, outputs, params, wildcards) -> None:
-    """The scenes of one batch (rule simulate_scenes_<batch>) integrated together, each written
-    to its own file (output keyed by the scene's name)."""
-    scenes = params["scenes"]  # SceneParameters, built and checked when the workflow was read
+def simulate_scene(inputs, outputs, params, wildcards) -> None:
+    """One scene of the paper (rule simulate_scene), written to its file."""
+    scene = params["scene"]  # SceneParameters, built and checked when the workflow was read
     chain = read_chain(inputs["chain"])
-    datasets = integrate_scenes(chain, scenes, ProgressReporter(params["batch"], scenes[0].t_final, every=10.0))
-    for scene, ds in zip(scenes, datasets):
-        write_netcdf(ds, outputs[scene.name])
+    write_netcdf(simulate(chain, scene, ProgressReporter(scene.name, scene.t_final, every=10.0)), outputs["scene"])

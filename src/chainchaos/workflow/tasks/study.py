@@ -113,9 +113,9 @@ def study_statistics(inputs, outputs, params, wildcards) -> None:
 
 
 def plot_study(inputs, outputs, params, wildcards) -> None:
-    """A study's figures, PDF and PNG each: those its key ``figures`` names and, with
-    ``compare_with``, its ensemble means beside those of the studies it names (``inputs``: each
-    study's statistics by name, the study's own first)."""
+    """Figure ``wildcards["figure"]`` of study ``wildcards["study"]``: one its key ``figures`` names,
+    or ``comparison``, its ensemble means beside those of the studies its ``compare_with`` names
+    (``inputs``: each study's statistics by name, the study's own first)."""
     from chainchaos.engine.model_checks import load_model
     from chainchaos.output.plotting.style import (
         save_figure,  # matplotlib: only in the plotting jobs
@@ -125,10 +125,9 @@ def plot_study(inputs, outputs, params, wildcards) -> None:
     for reference, directory in params.get("models", []):  # one's own models: their labels and colours
         load_model(reference, directory)
     named = {name: xr.load_dataset(path) for name, path in inputs.items()}
-    stats = named[params["study"]]
-    for figure in params["figures"]:
-        if figure == "comparison":
-            fig = comparison_figure(named, f"study {params['study']} beside {', '.join(list(named)[1:])}")
-        else:
-            fig = study_figure(figure, stats, stats.attrs["study_title"])
-        save_figure(fig, Path(outputs[f"{figure}_pdf"]).with_suffix(""), dpi=params["dpi"])
+    study, figure = wildcards["study"], wildcards["figure"]
+    if figure == "comparison":
+        fig = comparison_figure(named, f"study {study} beside {', '.join(list(named)[1:])}")
+    else:
+        fig = study_figure(figure, named[study], named[study].attrs["study_title"])
+    save_figure(fig, Path(outputs["pdf"]).with_suffix(""), dpi=params["dpi"])
