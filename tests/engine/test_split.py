@@ -25,8 +25,8 @@ def run(lattice, q, p, scheme, dt, steps, model=DNLS, dq=None, dp=None):
     dp = np.zeros_like(p) if dp is None else np.array(dp, dtype=float)
     s = SPLIT_SCHEMES[scheme]
     diagnostics = np.zeros(2)
-    assert advance_split(model, q, p, dq, dp, model.site_parameters(lattice), s.parts, s.coefficients, dt, steps,
-                         tangent, 10**9, diagnostics) == -1
+    assert advance_split(model, q, p, dq, dp, model.site_parameters(lattice), lattice.geometry.shape2, s.parts,
+                         s.coefficients, dt, steps, tangent, 10**9, diagnostics) == -1
     return q, p, dq, dp, diagnostics[0]
 
 
@@ -57,10 +57,10 @@ def test_the_rotation_keeps_every_site_s_norm_and_the_hopping_parts_do_not():
     _rotate(DNLS, False, q, p, dq, dp, DNLS.site_parameters(lattice), 0.7)
     np.testing.assert_allclose(q**2 + p**2, x0, rtol=4e-16, atol=0)
     S0 = norm(q, p)
-    _hop(p, q, 0.3)  # B alone
+    _hop(p, q, 0.3, (16, 1))  # B alone
     assert abs(norm(q, p) - S0) > 1e-3
     q2, p2 = packet(16, 1)
-    _hop(q2, p2, -0.3)  # C alone
+    _hop(q2, p2, -0.3, (16, 1))  # C alone
     assert abs(norm(q2, p2) - norm(*packet(16, 1))) > 1e-3
 
 

@@ -8,11 +8,14 @@ derivative (the tangent map method, Skokos & Gerlach, PRE 82, 036704 (2010)):
   x = q^2 + p^2 (which A keeps); (s, c) = sincos(theta) from ``kernels.exactmath`` (the same bits on
   every CPU), q' = c q + s p, p' = c p - s q; a deviation (dq, dp) turns with it and shears by
   d theta = t g (q dq + p dp): dq' = (c dq + s dp) + d theta p', dp' = (c dp - s dq) - d theta q';
-- B(t): p_l += t (q_{l-1} + q_{l+1}), and dp_l += t (dq_{l-1} + dq_{l+1});
-- C(t): q_l -= t (p_{l-1} + p_{l+1}), and dq_l -= t (dp_{l-1} + dp_{l+1}) (written as
+- B(t): p_l += t (sum of q over l's neighbours), and dp_l likewise with dq;
+- C(t): q_l -= t (sum of p over l's neighbours), and dq_l likewise with dp (written as
   q_l + (-t)(...), the same bits),
 
-with q = p = 0 beyond the ends. Every ``check_every`` steps and at the end of a call the state is
+with q = p = 0 beyond the edges. The lattice is a chain or a square lattice (``system.geometry``),
+passed as ``shape2`` = (Nx, Ny): on a chain (Ny = 1) the neighbours of l are l - 1 and l + 1,
+summed as (q_{l-1} + q_{l+1}); on a square lattice the pair across the lines, (q_{l-Nx} +
+q_{l+Nx}), is added to that sum, so a lattice of width 1 gives the chain's numbers to the bit. Every ``check_every`` steps and at the end of a call the state is
 checked for finiteness and the deviation vector renormalised, ln of its norm added to the growth
 (``integrators._renormalise``), as the bond engines do.
 
@@ -28,6 +31,7 @@ import numpy as np
 from numba import njit
 
 from chainchaos.engine.batch import Batch
+from chainchaos.errors import require
 from chainchaos.engine.integrators import _aligned_zeros, _renormalise
 from chainchaos.kernels.exactmath import gram_schmidt, sincos
 from chainchaos.kernels.simd import LANES, vload, vstore
@@ -58,24 +62,31 @@ def _rotate(model, tangent, q, p, dq, dp, sites, t):
 
 
 @njit(cache=True, error_model="numpy")
-def _hop(y, x, c):
-    """y_l += c (x_{l-1} + x_{l+1}), x = 0 beyond the ends: B(t) with (y, x, c) = (p, q, t), C(t)
-    with (q, p, -t)."""
-    N = y.shape[0]
-    left = 0.0
-    for n in range(N):
-        right = x[n + 1] if n + 1 < N else 0.0
-        here = x[n]
-        y[n] = y[n] + c * (left + right)
-        left = here
+def _hop(y, x, c, shape2):
+    """y_l += c (sum of x over l's neighbours), x = 0 beyond the edges, on the lattice of
+    ``shape2`` = (Nx, Ny): B(t) with (y, x, c) = (p, q, t), C(t) with (q, p, -t)."""
+    nx, ny = shape2
+    for j in range(ny):
+        left = 0.0
+        for i in range(nx):
+            n = j * nx + i
+            right = x[n + 1] if i + 1 < nx else 0.0
+            here = x[n]
+            around = left + right
+            if ny > 1:
+                around = around + ((x[n - nx] if j > 0 else 0.0) + (x[n + nx] if j + 1 < ny else 0.0))
+            y[n] = y[n] + c * around
+            left = here
 
 
 @njit(cache=True, error_model="numpy")
-def advance_split(model, q, p, dq, dp, sites, parts, coefficients, dt, n_steps, tangent, check_every, diagnostics):
+def advance_split(model, q, p, dq, dp, sites, shape2, parts, coefficients, dt, n_steps, tangent, check_every,
+                  diagnostics):
     """Advance one trajectory (q, p) of a split ``model`` and, with ``tangent``, its deviation
     vector (dq, dp), each (N,), by n_steps steps of the scheme (parts, coefficients).
 
-    sites (MAX_SITE_PARAMETERS, N): the model's site parameters (``SplitModel.site_parameters``).
+    sites (MAX_SITE_PARAMETERS, N): the model's site parameters (``SplitModel.site_parameters``);
+    shape2 (Nx, Ny): the lattice (``Geometry.shape2``), N = Nx Ny.
     Every ``check_every`` steps and at the end the state is checked for finiteness and the
     deviation vector renormalised, ln of its norm added to diagnostics[0]. Returns -1, or the
     number of steps done when a non-finite state stopped the run.
@@ -87,13 +98,13 @@ def advance_split(model, q, p, dq, dp, sites, parts, coefficients, dt, n_steps, 
             if parts[i] == A:
                 _rotate(model, tangent, q, p, dq, dp, sites, t)
             elif parts[i] == B:
-                _hop(p, q, t)
+                _hop(p, q, t, shape2)
                 if tangent:
-                    _hop(dp, dq, t)
+                    _hop(dp, dq, t, shape2)
             else:
-                _hop(q, p, -t)
+                _hop(q, p, -t, shape2)
                 if tangent:
-                    _hop(dq, dp, -t)
+                    _hop(dq, dp, -t, shape2)
         if (step + 1) % check_every == 0 or step + 1 == n_steps:
             s = 0.0
             for n in range(q.shape[0]):
@@ -109,9 +120,16 @@ def advance_split(model, q, p, dq, dp, sites, parts, coefficients, dt, n_steps, 
 
 # ---- blocks of LANES trajectories ------------------------------------------------------------
 
-#: A block's buffer, row r = site r - 1 (rows 0 and N + 1: the ends, zero): the LANES lanes of
-#: q, p and the two site parameters, then dq and dp of each deviation vector in turn.
+#: A block's buffer, row r = site r - pad (``_pad``: rows before the first site and after the last,
+#: zero, where the neighbours beyond the edges are read): the LANES lanes of q, p and the two site
+#: parameters, then dq and dp of each deviation vector in turn.
 _Q, _P, _S0, _S1, _V = 0, LANES, 2 * LANES, 3 * LANES, 4 * LANES
+
+
+@njit(cache=True)
+def _pad(shape2):
+    """Zero rows before and after the sites: one on a chain, a line on a square lattice."""
+    return shape2[0] if shape2[1] > 1 else 1
 
 
 @njit(cache=True)
@@ -121,9 +139,9 @@ def _row(vectors):
 
 
 @njit(cache=True, error_model="numpy")
-def _rotate_block(model, N, Z, row, vectors, t):
+def _rotate_block(model, N, pad, Z, row, vectors, t):
     """A(t) of every site of a block and of its first ``vectors`` deviation vectors."""
-    for r in range(1, N + 1):
+    for r in range(pad, N + pad):
         base = r * row
         q, p = vload(Z, base + _Q), vload(Z, base + _P)
         w, g = onsite_frequency(model, (vload(Z, base + _S0), vload(Z, base + _S1)), q * q + p * p)
@@ -141,16 +159,24 @@ def _rotate_block(model, N, Z, row, vectors, t):
 
 
 @njit(cache=True, error_model="numpy")
-def _hop_block(N, Z, row, y, x, c):
-    """y_l += c (x_{l-1} + x_{l+1}) on every site of a block: y and x the offsets of two of a
-    row's quantities (the end rows hold zero)."""
-    for r in range(1, N + 1):
-        base = r * row
-        vstore(Z, base + y, vload(Z, base + y) + c * (vload(Z, base - row + x) + vload(Z, base + row + x)))
+def _hop_block(shape2, pad, Z, row, y, x, c):
+    """y_l += c (sum of x over l's neighbours) on every site of a block: y and x the offsets of
+    two of a row's quantities (the pad rows hold zero; row 0 stands for a neighbour beyond the
+    end of a line)."""
+    nx, ny = shape2
+    for j in range(ny):
+        for i in range(nx):
+            base = (j * nx + i + pad) * row
+            left = vload(Z, base - row + x) if i > 0 else vload(Z, x)
+            right = vload(Z, base + row + x) if i + 1 < nx else vload(Z, x)
+            around = left + right
+            if ny > 1:
+                around = around + (vload(Z, base - nx * row + x) + vload(Z, base + nx * row + x))
+            vstore(Z, base + y, vload(Z, base + y) + c * around)
 
 
 @njit(cache=True, error_model="numpy")
-def _normalise_block_vectors(N, Z, row, lane, extra, orthogonal, growth, W, lane_growth):
+def _normalise_block_vectors(N, pad, Z, row, lane, extra, orthogonal, growth, W, lane_growth):
     """Lane ``lane``'s extra deviation vectors at a check, gathered with its first (already
     normalised) into W (extra + 1, 2N), the first ``orthogonal`` orthonormalised against it and
     each other and the rest normalised (``exactmath.gram_schmidt``), ln of their norms added to
@@ -158,61 +184,63 @@ def _normalise_block_vectors(N, Z, row, lane, extra, orthogonal, growth, W, lane
     for k in range(extra + 1):
         at = _V + 2 * k * LANES + lane
         for n in range(N):
-            W[k, n] = Z[(n + 1) * row + at]
-            W[k, N + n] = Z[(n + 1) * row + at + LANES]
+            W[k, n] = Z[(n + pad) * row + at]
+            W[k, N + n] = Z[(n + pad) * row + at + LANES]
     lane_growth[:] = 0.0
     gram_schmidt(W, 1, orthogonal + 1, lane_growth)
     for k in range(1, extra + 1):
         growth[k - 1, lane] += lane_growth[k - 1]
         at = _V + 2 * k * LANES + lane
         for n in range(N):
-            Z[(n + 1) * row + at] = W[k, n]
-            Z[(n + 1) * row + at + LANES] = W[k, N + n]
+            Z[(n + pad) * row + at] = W[k, n]
+            Z[(n + pad) * row + at + LANES] = W[k, N + n]
 
 
 @njit(cache=True, error_model="numpy")
-def _advance_block(model, N, Z, row, vectors, parts, coefficients, dt, n_steps, check_every, log_growth, bad, extra,
-                   orthogonal, x_growth):
+def _advance_block(model, shape2, Z, row, vectors, parts, coefficients, dt, n_steps, check_every, log_growth, bad,
+                   extra, orthogonal, x_growth):
     """``advance_split_batch`` for one block in its buffer Z: ``vectors`` deviation vectors (0
     without the tangent map; the first is each lane's mLCE vector, ``extra`` more follow it)."""
+    N, pad = shape2[0] * shape2[1], _pad(shape2)
     W = np.empty((extra + 1, 2 * N))
     lane_growth = np.empty(max(extra, 1))
     for step in range(n_steps):
         for i in range(parts.shape[0]):
             t = coefficients[i] * dt
             if parts[i] == A:
-                _rotate_block(model, N, Z, row, vectors, t)
+                _rotate_block(model, N, pad, Z, row, vectors, t)
             elif parts[i] == B:
-                _hop_block(N, Z, row, _P, _Q, t)
+                _hop_block(shape2, pad, Z, row, _P, _Q, t)
                 for k in range(vectors):
-                    _hop_block(N, Z, row, _V + (2 * k + 1) * LANES, _V + 2 * k * LANES, t)
+                    _hop_block(shape2, pad, Z, row, _V + (2 * k + 1) * LANES, _V + 2 * k * LANES, t)
             else:
-                _hop_block(N, Z, row, _Q, _P, -t)
+                _hop_block(shape2, pad, Z, row, _Q, _P, -t)
                 for k in range(vectors):
-                    _hop_block(N, Z, row, _V + 2 * k * LANES, _V + (2 * k + 1) * LANES, -t)
+                    _hop_block(shape2, pad, Z, row, _V + 2 * k * LANES, _V + (2 * k + 1) * LANES, -t)
         if (step + 1) % check_every == 0 or step + 1 == n_steps:
             for j in range(LANES):
                 s = 0.0
                 for n in range(N):
-                    s += Z[(n + 1) * row + _Q + j] + Z[(n + 1) * row + _P + j]
+                    s += Z[(n + pad) * row + _Q + j] + Z[(n + pad) * row + _P + j]
                 if vectors:
-                    log_growth[j] += _renormalise(Z[row + _V + j:(N + 1) * row + _V + j:row],
-                                                  Z[row + _V + LANES + j:(N + 1) * row + _V + LANES + j:row])
-                    s += Z[row + _V + j]
+                    log_growth[j] += _renormalise(Z[pad * row + _V + j:(N + pad) * row + _V + j:row],
+                                                  Z[pad * row + _V + LANES + j:(N + pad) * row + _V + LANES + j:row])
+                    s += Z[pad * row + _V + j]
                     if extra:
-                        _normalise_block_vectors(N, Z, row, j, extra, orthogonal, x_growth, W, lane_growth)
+                        _normalise_block_vectors(N, pad, Z, row, j, extra, orthogonal, x_growth, W, lane_growth)
                 if bad[j] < 0 and not np.isfinite(s):
                     bad[j] = step + 1
 
 
 @njit(cache=True, error_model="numpy")
-def advance_split_batch(model, q, p, dq, dp, sites, parts, coefficients, dt, n_steps, tangent, check_every,
+def advance_split_batch(model, q, p, dq, dp, sites, shape2, parts, coefficients, dt, n_steps, tangent, check_every,
                         log_growth, bad, lanes, xq, xp, orthogonal, x_growth, vectors_on):
     """Advance the first ``lanes`` of the B trajectories (q, p) of a split ``model``, shape (N, B),
     and, with ``tangent``, their deviation vectors (dq, dp) and the K more (xq, xp) (K, N, B), by
     n_steps steps of the scheme (parts, coefficients), in blocks of LANES.
 
-    sites (MAX_SITE_PARAMETERS, N, B): the model's site parameters of every trajectory. Every
+    sites (MAX_SITE_PARAMETERS, N, B): the model's site parameters of every trajectory; shape2
+    (Nx, Ny): their lattice (``Geometry.shape2``). Every
     ``check_every`` steps and at the end: each lane's state checked for finiteness (``bad[j]``
     set to the step count of the first failed check if it is still < 0) and, with ``tangent``,
     its deviation vector renormalised, ln|v| added to ``log_growth[j]``; the first ``orthogonal``
@@ -225,7 +253,8 @@ def advance_split_batch(model, q, p, dq, dp, sites, parts, coefficients, dt, n_s
     extra = xq.shape[0] if tangent else 0
     vectors_max = 1 + extra if tangent else 0
     row = _row(vectors_max)
-    Z = _aligned_zeros((N + 2) * row)
+    pad = _pad(shape2)
+    Z = _aligned_zeros((N + 2 * pad) * row)
     block_growth = np.zeros(LANES)
     block_bad = np.zeros(LANES, dtype=np.int64)
     block_x_growth = np.zeros((max(extra, 1), LANES))
@@ -234,7 +263,7 @@ def advance_split_batch(model, q, p, dq, dp, sites, parts, coefficients, dt, n_s
         for lane in range(LANES):
             j = min(first + lane, lanes - 1)  # padding lanes repeat the last trajectory
             for n in range(N):
-                base = (n + 1) * row
+                base = (n + pad) * row
                 Z[base + _Q + lane] = q[n, j]
                 Z[base + _P + lane] = p[n, j]
                 Z[base + _S0 + lane] = sites[0, n, j]
@@ -251,12 +280,12 @@ def advance_split_batch(model, q, p, dq, dp, sites, parts, coefficients, dt, n_s
                 block_x_growth[k, lane] = x_growth[k, j]
         block_extra = extra if np.any(vectors_on[first:min(first + LANES, lanes)]) else 0
         vectors = 1 + block_extra if tangent else 0
-        _advance_block(model, N, Z, row, vectors, parts, coefficients, dt, n_steps, check_every, block_growth,
+        _advance_block(model, shape2, Z, row, vectors, parts, coefficients, dt, n_steps, check_every, block_growth,
                        block_bad, block_extra, orthogonal, block_x_growth)
         for lane in range(min(LANES, lanes - first)):
             j = first + lane
             for n in range(N):
-                base = (n + 1) * row
+                base = (n + pad) * row
                 q[n, j] = Z[base + _Q + lane]
                 p[n, j] = Z[base + _P + lane]
                 if tangent:
@@ -280,6 +309,9 @@ class SplitBatch(Batch):
 
     def _take_parameters(self, problem) -> None:
         self._sites = problem.site_parameters
+        shapes = {chain.geometry for chain in problem.chains}
+        require(len(shapes) == 1, "chains", sorted(g.shape for g in shapes), "one lattice shape for every lane")
+        self._shape2 = problem.chains[0].geometry.shape2
         self._stages = (self.scheme.parts, self.scheme.coefficients)
 
     def _serial_lane(self, j: int) -> tuple:
@@ -287,16 +319,16 @@ class SplitBatch(Batch):
 
     def _advance_blocks(self, n_steps: int, bad: np.ndarray) -> None:
         pr = self.problem
-        advance_split_batch(self.model, self.q, self.p, self.dq, self.dp, self._sites, *self._stages, pr.dt, n_steps,
-                            pr.tangent, pr.check_every, self.log_growth, bad, self.block_lanes, self.xq, self.xp,
-                            pr.spectrum - 1, self.x_growth, self.vectors_on)
+        advance_split_batch(self.model, self.q, self.p, self.dq, self.dp, self._sites, self._shape2, *self._stages,
+                            pr.dt, n_steps, pr.tangent, pr.check_every, self.log_growth, bad, self.block_lanes,
+                            self.xq, self.xp, pr.spectrum - 1, self.x_growth, self.vectors_on)
 
     def _advance_serial(self, j: int, lane: tuple, n_steps: int) -> int:
         pr = self.problem
         q, p, dq, dp = (np.ascontiguousarray(a[:, j]) for a in (self.q, self.p, self.dq, self.dp))
         diagnostics = np.array([self.log_growth[j], 0.0])
-        bad = advance_split(self.model, q, p, dq, dp, lane[0], *self._stages, pr.dt, n_steps, pr.tangent,
-                            pr.check_every, diagnostics)
+        bad = advance_split(self.model, q, p, dq, dp, lane[0], self._shape2, *self._stages, pr.dt, n_steps,
+                            pr.tangent, pr.check_every, diagnostics)
         self.q[:, j], self.p[:, j], self.dq[:, j], self.dp[:, j] = q, p, dq, dp
         self.log_growth[j] = diagnostics[0]
         return bad

@@ -20,13 +20,27 @@ def energy_centre(h: np.ndarray) -> np.ndarray:
     return exactmath.matmul(h, np.arange(1, h.shape[-1] + 1, dtype=np.float64))
 
 
-def second_moment(h: np.ndarray) -> np.ndarray:
-    """Second moment of the energy distribution about its centre, m2 = sum_n (n - X)^2 h_n with
-    X = sum_n n h_n (sites n = 1..N): the packet's squared width, the spreading measure of the
-    disordered-lattice literature (m2 ~ t^a while a packet spreads subdiffusively)."""
-    n = np.arange(1, h.shape[-1] + 1, dtype=np.float64)
-    offset = n - energy_centre(h)[..., None]
-    return exactmath.matmul(h * offset * offset, np.ones(h.shape[-1]))
+def site_positions(geometry) -> np.ndarray:
+    """(N, d) positions of the sites of a lattice (``system.geometry``), counted from 1 along
+    every axis: n on a chain, (i + 1, j + 1) on a square lattice."""
+    return geometry.coordinates().astype(np.float64) + 1.0
+
+
+def second_moment(h: np.ndarray, positions: np.ndarray | None = None) -> np.ndarray:
+    """Second moment of a distribution about its centre, m2 = sum_n |r_n - R|^2 h_n with
+    R = sum_n r_n h_n: the packet's squared width, the spreading measure of the disordered-lattice
+    literature (m2 ~ t^a while a packet spreads subdiffusively). ``positions`` (N, d) the sites'
+    r_n (:func:`site_positions`; default the chain's, n = 1..N); in d dimensions the sum of the
+    second moments along each axis."""
+    if positions is None:
+        positions = np.arange(1, h.shape[-1] + 1, dtype=np.float64)[:, None]
+    total = None
+    for axis in range(positions.shape[1]):
+        r = np.ascontiguousarray(positions[:, axis])
+        offset = r - exactmath.matmul(h, r)[..., None]
+        along = exactmath.matmul(h * offset * offset, np.ones(h.shape[-1]))
+        total = along if total is None else total + along
+    return total
 
 
 #: Sites at each end whose energy ``edge_energy`` sums.
@@ -136,6 +150,8 @@ __all__ = [
     "log_volume",
     "sali",
     "energy_centre",
+    "second_moment",
+    "site_positions",
     "deviation_vector_density",
     "finite_time_mlce",
     "spectral_entropy",

@@ -155,6 +155,11 @@ def _density(run: SampledRun) -> dict:
     return {"density": "norm density |psi_n|^2 / S"} if run.model.is_split else {}
 
 
+def _positions(run: SampledRun) -> np.ndarray:
+    """The sites' positions on the run's lattice (``formulas.site_positions`` of its geometry)."""
+    return obs.site_positions(run.chain.geometry)
+
+
 def _gap_fraction(run: SampledRun) -> np.ndarray:
     """Fraction of the steps since the previous sample that each bond ended open (at t = 0: open
     or not)."""
@@ -232,11 +237,12 @@ REGISTRY: dict[str, Observable] = _registry(
     Observable(name="second_moment", dims=("time",),
                long_name="second moment m2 = sum_n (n - X)^2 h_n of the energy distribution",
                label=LABELS["second_moment"],
-               compute=lambda run: obs.second_moment(run.density), attrs=_density, by_default=False),
+               compute=lambda run: obs.second_moment(run.density, _positions(run)), attrs=_density,
+               by_default=False),
     Observable(name="compactness", dims=("time",),
                long_name="compactness index zeta = P^2 / m2 of the energy distribution", label=LABELS["compactness"],
                compute=lambda run: obs.compactness(participation_number(run.density, axis=-1),
-                                                   obs.second_moment(run.density)),
+                                                   obs.second_moment(run.density, _positions(run))),
                attrs=_density, by_default=False),
     Observable(name="edge_energy", dims=("time",),
                long_name=f"fraction of the energy within {obs.EDGE_MARGIN} sites of either end",

@@ -31,6 +31,7 @@ import numpy as np
 
 from chainchaos.errors import require
 from chainchaos.kernels.exactmath import rational, root
+from chainchaos.system.geometry import Geometry, chain_geometry
 
 F0 = 1.0 / 6.0
 GENERATOR = "numpy.random.default_rng (PCG64)"
@@ -202,6 +203,11 @@ class Chain:
     def N(self) -> int:
         """Number of moving beads."""
         return self.radius.size
+
+    @property
+    def geometry(self) -> Geometry:
+        """The chain of N beads between two walls (``system.geometry``)."""
+        return chain_geometry(self.N)
 
     def with_k4_sign(self, sign: float) -> "Chain":
         """The same chain with K4 of sign ``sign`` (+1 the paper's, -1 the Taylor expansion).
@@ -543,6 +549,11 @@ class KGLattice:
         return self.eps.size
 
     @property
+    def geometry(self) -> Geometry:
+        """The chain of N sites between two walls (``system.geometry``)."""
+        return chain_geometry(self.N)
+
+    @property
     def site_stiffness(self) -> np.ndarray:
         """w''(0) of every site, eps_l: what the linear modes add to the diagonal of the bonds'
         stiffness matrix (``linear.normal_modes``)."""
@@ -627,6 +638,9 @@ class DNLSLattice:
         Nonlinearity (finite, default 1); the linear lattice has beta = 0.
     seed : int, optional
         Seed of the draw (None: eps given, not drawn).
+    geometry : Geometry, optional
+        The lattice's shape (``system.geometry``; eps in its flat order), default the chain of
+        ``eps.size`` sites.
 
     Attributes
     ----------
@@ -648,10 +662,14 @@ class DNLSLattice:
     W: float
     beta: float = 1.0
     seed: int | None = None
+    geometry: Geometry | None = None
 
     def __post_init__(self):
         eps = np.ascontiguousarray(self.eps, dtype=float)
         require(eps.ndim == 1 and eps.size >= 2, "N", eps.size, "N >= 2 sites")
+        geometry = chain_geometry(eps.size) if self.geometry is None else self.geometry
+        require(geometry.N == eps.size, "geometry", list(geometry.shape), f"a shape of {eps.size} sites (eps)")
+        object.__setattr__(self, "geometry", geometry)
         require(bool(np.all(np.isfinite(eps))), "eps", eps.tolist(), "finite on-site energies")
         require(isinstance(self.W, (int, float, np.floating)) and np.isfinite(self.W) and self.W > 0, "W", self.W,
                 "a finite disorder strength W > 0")
@@ -715,9 +733,50 @@ def dnls_chain(seed: int, W: float, N: int, beta: float = 1.0) -> DNLSLattice:
     >>> lattice.N, bool(-2 <= lattice.eps.min() and lattice.eps.max() <= 2)
     (64, True)
     """
-    require(isinstance(seed, (int, np.integer)) and seed >= 0, "seed", seed, "an integer >= 0")
     require(isinstance(N, (int, np.integer)) and N >= 2, "N", N, "an integer >= 2")
+    return dnls_lattice(seed, W, (int(N),), beta)
+
+
+def dnls_lattice(seed: int, W: float, shape, beta: float = 1.0, boundary=None) -> DNLSLattice:
+    """The disordered DNLS lattice of shape ``shape`` (a chain (N,) or a square lattice (Nx, Ny),
+    ``system.geometry``) and disorder strength W drawn with ``seed``: eps =
+    default_rng(seed).uniform(-W/2, W/2, N) in the geometry's flat order (lines one after the
+    other), so a lattice of width 1 is the chain :func:`dnls_chain` draws with that seed.
+
+    Parameters
+    ----------
+    seed : int
+        Seed of ``numpy.random.default_rng``.
+    W : float
+        Disorder strength (> 0).
+    shape : int or tuple of int
+        (N,) or (Nx, Ny).
+    beta : float, optional
+        Nonlinearity (default 1).
+    boundary : tuple of str, optional
+        Per axis, "fixed" or "free" (default "fixed"; the hopping is the same either way).
+
+    Returns
+    -------
+    DNLSLattice
+        The lattice, in the DNLS Hamiltonian's units (hopping 1 on every bond).
+
+    Raises
+    ------
+    ParameterError
+        For a negative or non-integer seed, a bad shape or boundary, W not finite and > 0, or
+        beta not finite.
+
+    Examples
+    --------
+    >>> from chainchaos.system.chain import dnls_lattice
+    >>> lattice = dnls_lattice(seed=1, W=10.0, shape=(5, 4), beta=1.0)
+    >>> lattice.N, lattice.geometry.shape
+    (20, (5, 4))
+    """
+    require(isinstance(seed, (int, np.integer)) and seed >= 0, "seed", seed, "an integer >= 0")
     require(isinstance(W, (int, float, np.floating)) and np.isfinite(W) and W > 0, "W", W,
             "a finite disorder strength W > 0")
-    eps = np.random.default_rng(int(seed)).uniform(-0.5 * W, 0.5 * W, int(N))
-    return DNLSLattice(eps, W, beta, int(seed))
+    geometry = Geometry(shape, boundary)
+    eps = np.random.default_rng(int(seed)).uniform(-0.5 * W, 0.5 * W, geometry.N)
+    return DNLSLattice(eps, W, beta, int(seed), geometry)

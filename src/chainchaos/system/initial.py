@@ -99,7 +99,10 @@ class Excitation:
     exp(i phi_l) with phases phi_l alternating 0, pi, 0, ... or (``random``) uniform in [0, 2 pi)
     from the same generator (their cosine and sine from ``exactmath.sin_cos``: the same bits
     everywhere); ``variable`` does not apply, and a mode is not offered (its shape would need the
-    DNLS eigenvectors).
+    DNLS eigenvectors). On a square lattice (``system.geometry``) ``site`` is (i, j), 1-based, and a
+    block is the square of ``width`` x ``width`` sites centred on it as on a chain along each axis,
+    its phases alternating as a checkerboard (0 at its first site) or random, in the lattice's
+    flat order.
     """
 
     kind: str = "site"
@@ -118,10 +121,15 @@ class Excitation:
                 f"one of {list(EXCITATION_PHASES)}")
         require(isinstance(self.seed, (int, np.integer)) and self.seed >= 0, "excitation seed", self.seed,
                 "an integer >= 0")
-        for key in ("site", "mode", "width"):
+        for key in ("mode", "width"):
             value = getattr(self, key)
             require(isinstance(value, (int, np.integer)) and value >= 1, f"excitation {key}", value,
                     "an integer >= 1")
+        site = self.site if isinstance(self.site, (tuple, list)) else (self.site,)
+        require(len(site) in (1, 2) and all(isinstance(v, (int, np.integer)) and not isinstance(v, bool) and v >= 1
+                                            for v in site),
+                "excitation site", self.site, "an integer >= 1, or (i, j) of integers >= 1 on a square lattice")
+        object.__setattr__(self, "site", site[0] if len(site) == 1 else tuple(int(v) for v in site))
 
     def check(self, N: int) -> None:
         """ParameterError where the excitation does not fit a chain of N beads."""
@@ -160,22 +168,41 @@ class Excitation:
     def _generator(self) -> np.random.Generator:
         return np.random.default_rng([int(self.seed), PHASE_STREAM])
 
+    def lattice_sites(self, geometry) -> tuple[np.ndarray, np.ndarray]:
+        """(numbers, signs): the excited sites of a site or block excitation on ``geometry``
+        (``system.geometry``), 0-based in its flat order, and their alternating signs (a
+        checkerboard on a square lattice). A chain's are :meth:`beads`' range."""
+        site = self.site if isinstance(self.site, tuple) else (self.site,)
+        require(len(site) == geometry.dimension, "excitation site", self.site,
+                f"{'an integer' if geometry.dimension == 1 else '(i, j)'} on a lattice of shape {list(geometry.shape)}")
+        width = self.width if self.kind == "block" else 1
+        firsts = [s - (width - 1) // 2 for s in site]
+        for axis, (first, length) in enumerate(zip(firsts, geometry.shape)):
+            require(1 <= first and first + width - 1 <= length,
+                    "excitation site" if self.kind == "site" else "excitation block",
+                    self.site if self.kind == "site" else f"sites {first}..{first + width - 1} along axis {axis}",
+                    f"sites within 1..{length} along axis {axis}")
+        offsets = np.arange(width)
+        if geometry.dimension == 1:
+            return firsts[0] - 1 + offsets, np.where(offsets % 2 == 0, 1.0, -1.0)
+        di, dj = np.meshgrid(offsets, offsets, indexing="xy")  # the block's lines in the flat order
+        numbers = (firsts[1] - 1 + dj.ravel()) * geometry.shape[0] + (firsts[0] - 1 + di.ravel())
+        return numbers, np.where((di + dj).ravel() % 2 == 0, 1.0, -1.0)
+
     def split_state(self, chain, norm: float) -> tuple[np.ndarray, np.ndarray, float]:
         """(q, p, a) of a split model's lattice: norm S = ``norm`` on the site or block, a = its
-        amplitude sqrt(2 S / width) in q, p (the class docstring)."""
+        amplitude sqrt(2 S / sites) in q, p (the class docstring)."""
         require(self.kind != "mode", "excitation kind", self.kind, "site or block for a split model (DNLS)")
-        self.check(chain.N)
-        first, last = self.beads()
-        width = last - first + 1
-        a = math.sqrt(2.0 * norm / width)
+        numbers, signs = self.lattice_sites(chain.geometry)
+        a = math.sqrt(2.0 * norm / numbers.size)
         q, p = np.zeros(chain.N), np.zeros(chain.N)
         if self.phases == "random":
             from chainchaos.kernels.exactmath import sin_cos
 
-            sine, cosine = sin_cos(self._generator().uniform(0.0, 2.0 * math.pi, width))
-            q[first - 1:last], p[first - 1:last] = a * cosine, a * sine
+            sine, cosine = sin_cos(self._generator().uniform(0.0, 2.0 * math.pi, numbers.size))
+            q[numbers], p[numbers] = a * cosine, a * sine
         else:
-            q[first - 1:last] = a * np.where(np.arange(width) % 2 == 0, 1.0, -1.0)
+            q[numbers] = a * signs
         return q, p, a
 
     def state(self, model, chain, energy: float) -> tuple[np.ndarray, np.ndarray, float]:

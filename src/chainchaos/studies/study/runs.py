@@ -57,7 +57,8 @@ _PRESENTATION = ("title", "extends", "figures", "compare_with", "laws")
 #: Keys added to the study schema after studies were first kept, with their defaults: a key at its
 #: default is left out of the numbers' key, so that a file kept before the key existed (whose
 #: numbers are those of the default) stays usable.
-ADDED_DEFAULTS = {("lattice", "beta"): 1.0, ("excitation", "phases"): "alternating"}
+ADDED_DEFAULTS = {("lattice", "beta"): 1.0, ("excitation", "phases"): "alternating", ("lattice", "shape"): None,
+                  ("lattice", "boundary"): None}
 
 
 def numbers_spec(study) -> dict:
@@ -149,6 +150,14 @@ def orbit_runs(group: xr.Dataset, series, orbits=None) -> list[dict]:
              "valid": bool(valid[i])} for i in index]
 
 
+def _excitation_text(study, exc) -> str:
+    """What a study excites, in words: a rule, a mode, the beads of a chain or a block's sites."""
+    where = ("the bead of the paper's excitation rule" if study.selected else f"mode {exc.mode}" if exc.kind == "mode"
+             else f"beads {exc.beads()[0]}..{exc.beads()[1]}" if study.geometry.dimension == 1
+             else f"{exc.width if exc.kind == 'block' else 1}^2 sites centred on (i, j) = {exc.site}")
+    return f"{exc.kind} {exc.variable}: {where}"
+
+
 def study_attrs(study) -> dict:
     """The provenance, settings and criteria every file of a study states."""
     settings = study.settings
@@ -156,10 +165,7 @@ def study_attrs(study) -> dict:
     attrs = provenance_attrs({"study": study.name, **study.spec})
     attrs.update(criteria_attrs(settings))
     attrs.update(study=study.name, study_title=study.title, study_settings=json.dumps(study.spec, sort_keys=True),
-                 N=int(study.N), excitation=(f"{exc.kind} {exc.variable}: "
-                                             + ("the bead of the paper's excitation rule" if study.selected else
-                                                f"mode {exc.mode}" if exc.kind == "mode" else
-                                                f"beads {exc.beads()[0]}..{exc.beads()[1]}")),
+                 N=int(study.N), **study.geometry.as_attrs(), excitation=_excitation_text(study, exc),
                  integrator=settings.integrator, dt=float(settings.dt), t_final=float(settings.t_final),
                  lanes=int(study.lanes), perturbation=float(settings.perturbation),
                  time_units=time_comment(study))

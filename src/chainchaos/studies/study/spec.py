@@ -33,7 +33,8 @@ from chainchaos.studies.study.orbits import (
     energy_grid,
     select_excitation,
 )
-from chainchaos.system.chain import dnls_chain, kg_chain, random_chain
+from chainchaos.system.chain import dnls_lattice, kg_chain, random_chain
+from chainchaos.system.geometry import Geometry
 from chainchaos.system.initial import Excitation
 from chainchaos.system.models import BEAD_MODELS, MODELS
 
@@ -364,21 +365,22 @@ class Study:
         lattice = self.spec["lattice"]
         if lattice["chain_file"]:
             return [self.file_chain]
-        return [random_chain(seed, float(lattice["alpha"]), int(lattice["N"]), float(lattice["wall_radius"]))
+        return [random_chain(seed, float(lattice["alpha"]), self.N, float(lattice["wall_radius"]))
                 for seed in self.seeds]
 
     @cached_property
     def kg_lattices(self) -> list:
         """One Klein-Gordon lattice per realization (disorder strength W), in the order of :attr:`seeds`."""
         lattice = self.spec["lattice"]
-        return [kg_chain(seed, float(lattice["W"]), int(lattice["N"])) for seed in self.seeds]
+        return [kg_chain(seed, float(lattice["W"]), self.N) for seed in self.seeds]
 
     @cached_property
     def dnls_lattices(self) -> list:
         """One DNLS lattice per realization (disorder strength W, nonlinearity beta), in the order
         of :attr:`seeds`."""
         lattice = self.spec["lattice"]
-        return [dnls_chain(seed, float(lattice["W"]), int(lattice["N"]), float(lattice["beta"])) for seed in self.seeds]
+        return [dnls_lattice(seed, float(lattice["W"]), self.geometry.shape, float(lattice["beta"]),
+                             lattice["boundary"]) for seed in self.seeds]
 
     def lattices(self, model: str) -> list:
         """The realizations ``model`` runs on: KG lattices for a KG model, DNLS lattices for a
@@ -395,13 +397,22 @@ class Study:
             One lattice per realization, in the order of :attr:`seeds`.
         """
         kind = MODELS[model].lattice
-        return {"kg": self.kg_lattices, "dnls": self.dnls_lattices}[kind] if kind != "beads" else self.chains
+        return self.kg_lattices if kind == "kg" else self.dnls_lattices if kind == "dnls" else self.chains
 
     @property
     def N(self) -> int:
         """Number of sites of every lattice."""
         lattice = self.spec["lattice"]
-        return self.file_chain.N if lattice["chain_file"] else int(lattice["N"])
+        return self.file_chain.N if lattice["chain_file"] else self.geometry.N
+
+    @cached_property
+    def geometry(self) -> Geometry:
+        """The shape of every lattice (``system.geometry``): ``lattice.shape``, or the chain of
+        ``lattice.N`` sites, with ``lattice.boundary``."""
+        lattice = self.spec["lattice"]
+        if lattice["chain_file"]:
+            return self.file_chain.geometry
+        return Geometry(tuple(lattice["shape"] or [lattice["N"]]), lattice["boundary"])
 
     @property
     def selected(self) -> bool:
@@ -429,10 +440,14 @@ class Study:
             Its kind, variable, site (1-based), mode and width (``excitation``).
         """
         e = self.spec["excitation"]
-        site = {"centre": (self.N + 1) // 2}.get(e["site"], e["site"])
+        centre = tuple((n + 1) // 2 for n in self.geometry.shape) if not self.spec["lattice"]["chain_file"] else None
+        site = e["site"]
+        if site == "centre":
+            site = centre if centre and len(centre) == 2 else (self.N + 1) // 2
         if self.selected:
             site = self.picks[realization]["site"]
-        return Excitation(kind=e["kind"], variable=e["variable"], site=int(site), mode=int(e["mode"]),
+        site = tuple(int(v) for v in site) if isinstance(site, (list, tuple)) else int(site)
+        return Excitation(kind=e["kind"], variable=e["variable"], site=site, mode=int(e["mode"]),
                           width=int(e["width"]), phases=e["phases"], seed=max(self.seeds[realization], 0))
 
     @property
@@ -444,6 +459,14 @@ class Study:
                 if name not in ALIGNMENT_SERIES}
 
     # ---- checks between keys ----------------------------------------------------------------
+
+    def _check_excitation(self) -> None:
+        """ParameterError where the excitation does not fit the lattice."""
+        excitation = self.excitation()
+        if excitation.kind == "mode" or self.geometry.dimension == 1:
+            excitation.check(self.N)
+        else:
+            excitation.lattice_sites(self.geometry)
 
     def check(self, read_files: bool = True) -> None:
         """Raise StudyError naming every key that does not fit the others.
@@ -471,6 +494,9 @@ class Study:
                 if key in ("integration", "ensemble", "criteria"):  # the block's key that the error names
                     block = next((b for b in ("integration", "ensemble", "criteria") if err.name in self.spec[b]), key)
                     key = f"{block}.{err.name}"
+                elif key == "lattice":
+                    key = {"window": "integration.window", "excitation.site": "excitation.site"}.get(
+                        err.name, f"lattice.{err.name}")
                 errors.append(f"study key {key} = {err.value!r}: allowed is {err.allowed}")
 
         def models():
@@ -519,23 +545,37 @@ class Study:
                                      "restrict to a window)")
 
         def lattice():
+            given = self.spec["lattice"]
             if chain_file and known_chain:
                 self.file_chain  # noqa: B018 (reads and checks the file)
-            elif not chain_file and "N" not in self.spec["lattice"]:
-                raise ParameterError("N", None, "an integer >= 2, or lattice.chain_file")
+            elif not chain_file and ("N" in given) == bool(given["shape"]):
+                raise ParameterError("N", given.get("N"), "an integer >= 2, or lattice.shape, or lattice.chain_file "
+                                     "(one of them)")
+            if not chain_file:
+                geometry = self.geometry
+                flat = [m for m in self.models if MODELS[m].lattice != "dnls"]
+                if geometry.dimension == 2 and flat:
+                    raise ParameterError("shape", list(geometry.shape),
+                                         f"[N] with the models {flat} (two axes: the DNLS models only, for now)")
+                if geometry.dimension == 2 and self.window is not None:
+                    raise ParameterError("window", self.spec["integration"]["window"],
+                                         "absent on a square lattice (the growing window follows a packet along a "
+                                         "chain)")
+                if geometry.dimension == 2 and self.selected:
+                    raise ParameterError("excitation.site", "selected", "centre or [i, j] on a square lattice")
 
         check("lattice.model", models)
         check("observables", observables)
         check("figures", figures)
         check("laws.fits", laws)
         check("laws.walls.edge_energy", walls)
-        check("lattice.N", lattice)
+        check("lattice", lattice)
         check("integration", lambda: self.settings)
         check("integration.window", window)
         kind = self.spec["excitation"]["kind"]
         # a site picked by the excitation rule is a bead of the chain (no need to pick it here)
         if not errors and known_chain and not (self.selected and kind == "site"):
-            check("excitation.mode" if kind == "mode" else "excitation.site", lambda: self.excitation().check(self.N))
+            check("excitation.mode" if kind == "mode" else "excitation.site", self._check_excitation)
         if errors:
             raise StudyError(errors)
 

@@ -193,14 +193,20 @@ def _onsite_energy(model, S, x):
 
 
 @njit(cache=True)
-def energy_kernel(model, q, p, sites):
-    """H of one state (q, p) (N,) of a split model, sites its (MAX_SITE_PARAMETERS, N) parameters:
-    the on-site energies, then the hopping -(q_l q_{l+1} + p_l p_{l+1}), summed in order."""
+def energy_kernel(model, q, p, sites, shape2):
+    """H of one state (q, p) (N,) of a split model on the lattice ``shape2`` = (Nx, Ny)
+    (``Geometry.shape2``), sites its (MAX_SITE_PARAMETERS, N) parameters: the on-site energies,
+    then the hopping -(q_a q_b + p_a p_b) of every bond, along the lines, then across them,
+    summed in order."""
+    nx, ny = shape2
     H = 0.0
     for n in range(q.shape[0]):
         H += onsite_energy(model, (sites[0, n], sites[1, n]), q[n] * q[n] + p[n] * p[n])
-    for n in range(q.shape[0] - 1):
-        H -= q[n] * q[n + 1] + p[n] * p[n + 1]
+    for j in range(ny):
+        for n in range(j * nx, (j + 1) * nx - 1):
+            H -= q[n] * q[n + 1] + p[n] * p[n + 1]
+    for n in range(q.shape[0] - nx):
+        H -= q[n] * q[n + nx] + p[n] * p[n + nx]
     return H
 
 
@@ -225,9 +231,10 @@ def split_energy(model: SplitModel, lattice, q: np.ndarray, p: np.ndarray) -> np
     model : SplitModel
         The model.
     lattice : DNLSLattice
-        A lattice of its kind.
+        A lattice of its kind (its ``geometry`` says which sites are bonded).
     q, p : numpy.ndarray of shape (..., N)
-        The real canonical coordinates, psi = (q + i p)/sqrt(2), the site on the last axis.
+        The real canonical coordinates, psi = (q + i p)/sqrt(2), the site on the last axis (in
+        the geometry's flat order).
 
     Returns
     -------
@@ -236,7 +243,8 @@ def split_energy(model: SplitModel, lattice, q: np.ndarray, p: np.ndarray) -> np
     """
     sites = model.site_parameters(lattice)
     Q, P = _states(q, p)
-    out = np.array([energy_kernel(model, Q[i], P[i], sites) for i in range(Q.shape[0])])
+    shape2 = lattice.geometry.shape2
+    out = np.array([energy_kernel(model, Q[i], P[i], sites, shape2) for i in range(Q.shape[0])])
     return out.reshape(np.shape(q)[:-1])[()]
 
 

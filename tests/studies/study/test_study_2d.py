@@ -1,0 +1,55 @@
+"""A study of the DNLS model on a square lattice from one spec (lattice.shape): its lattices and
+block, the packet's m2 about its centre in two dimensions, the norm kept; the chain's study
+unchanged by the new keys at their defaults; a shape, block or boundary that does not fit named
+with what is allowed, before anything runs."""
+
+import numpy as np
+import pytest
+
+from chainchaos.errors import StudyError
+from chainchaos.studies.study import run_study
+from chainchaos.studies.study.runs import group_settings
+from chainchaos.studies.study.spec import load_study
+from chainchaos.system.chain import dnls_lattice
+
+SPEC = {"lattice": {"model": "dnls", "shape": [15, 13], "W": 10.0, "beta": 1.0, "realizations": 2},
+        "excitation": {"kind": "block", "width": 3, "energies": [4.5]},
+        "integration": {"integrator": "s9ABC6", "dt": 0.05, "t_final": 50.0, "samples_per_decade": 5},
+        "observables": ["participation", "second_moment", "mlce", "norm_error"]}
+
+
+def test_a_square_lattice_study_runs_from_one_spec():
+    study = load_study(SPEC)
+    assert study.N == 195 and study.geometry.shape == (15, 13)
+    assert study.excitation().site == (8, 7)
+    lattice = study.lattices("dnls")[1]
+    np.testing.assert_array_equal(lattice.eps, dnls_lattice(1, 10.0, (15, 13), 1.0).eps)
+    ds = run_study(SPEC)
+    assert (ds["valid"] == 1).all() and list(np.ravel(ds.attrs["lattice_shape"])) == [15, 13]
+    m2 = ds["second_moment"].isel(model=0, energy=0, lane=0)
+    np.testing.assert_allclose(m2.isel(time=0), 2 * (9 - 1) / 12, rtol=1e-14)  # the uniform 3 x 3 block
+    assert float(m2.isel(time=-1).min()) > 2 * (9 - 1) / 12  # it spreads
+    assert float(ds["norm_error"].max()) < 1e-6
+
+
+def test_the_chain_keys_stay_the_kept_groups_key():
+    chain = {**SPEC, "lattice": {"model": "dnls", "N": 40, "W": 4.0}}
+    explicit = {**chain, "lattice": {**chain["lattice"], "shape": None, "boundary": None}}
+    assert group_settings(load_study(chain), 0) == group_settings(load_study(explicit), 0)
+    assert "shape" not in group_settings(load_study(chain), 0)["lattice"]
+
+
+@pytest.mark.parametrize("lattice, excitation, message", [
+    ({"model": "kg", "shape": [8, 8]}, {}, "lattice.shape = [8, 8]: allowed is [N] with the models ['kg']"),
+    ({"model": "dnls", "shape": [8, 8], "N": 64}, {}, "lattice.N = 64: allowed is an integer >= 2, or lattice.shape"),
+    ({"model": "dnls", "shape": [8, 8, 8]}, {}, "lattice.shape"),
+    ({"model": "dnls", "shape": [8, 8], "boundary": ["fixed", "open"]}, {}, "lattice.boundary"),
+    ({"model": "dnls", "shape": [8, 8]}, {"kind": "block", "width": 5, "site": [2, 4]}, "excitation.site"),
+    ({"model": "dnls", "shape": [8, 8]}, {"site": 4}, "excitation.site"),
+])
+def test_a_bad_shape_block_or_boundary_is_named_before_anything_runs(lattice, excitation, message):
+    spec = {**SPEC, "lattice": lattice, "excitation": {"energies": [1.0], **excitation}}
+    if lattice["model"] == "kg":
+        spec["integration"] = {"dt": 0.05, "t_final": 50.0}
+    with pytest.raises(StudyError, match=message.replace("[", r"\[").replace("]", r"\]")):
+        load_study(spec)
