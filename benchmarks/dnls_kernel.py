@@ -1,10 +1,12 @@
 """The DNLS engines: ns per site and step against a hand-written C loop of the same scheme.
 
-    python benchmarks/dnls_kernel.py [--N 64 256 1024 4096] [--integrator s9ABC6] [--sites-steps 1e7]
-                                     [--repeats 3] [--check-steps 1000] [--note TEXT] [--no-record]
+    python benchmarks/dnls_kernel.py [--N 64 256 1024 4096] [--width 1] [--integrator s9ABC6]
+                                     [--sites-steps 1e7] [--repeats 3] [--check-steps 1000] [--note TEXT]
+                                     [--no-record]
 
 A line naming the machine, then one table: the disordered DNLS lattice (``dnls_chain(0, W = 4,
-N, beta = 1)``) from a random state of amplitude 0.3 on every site (q and p uniform in
+N, beta = 1)``, or with ``--width`` w > 1 the square lattice ``dnls_lattice(0, 4, (N / w, w), 1)``
+of w lines, whose cost per site a chain's should match) from a random state of amplitude 0.3 on every site (q and p uniform in
 [-0.3, 0.3], a random deviation vector), integrated by the three-part scheme ``--integrator``
 (``engine.split_schemes.SPLIT_SCHEMES``) at dt = 0.1, the deviation vector renormalised every
 1000 steps: the single-trajectory engine (``engine.split.advance_split``: one trajectory), the
@@ -36,7 +38,7 @@ from kernel_vs_c import CFLAGS, HERE
 from chainchaos.engine.split_schemes import SPLIT_SCHEMES, get_split_scheme
 from chainchaos.kernels.simd import LANES
 from chainchaos.records.provenance import machine_line
-from chainchaos.system.chain import dnls_chain
+from chainchaos.system.chain import dnls_chain, dnls_lattice
 from chainchaos.system.models.dnls import MODEL
 
 SOURCE = HERE / "c_reference" / "dnls_chain.c"
@@ -44,8 +46,11 @@ DT, W, BETA, AMPLITUDE, CHECK_EVERY = 0.1, 4.0, 1.0, 0.3, 1000
 TITLE = "DNLS kernels: ns per site and step against a C loop"
 
 
-def lattice(N: int):
-    return dnls_chain(0, W, N, beta=BETA)
+def lattice_of(width: int):
+    """The lattice of N sites the runs integrate: the chain, or ``width`` lines of N / width."""
+    def lattice(N: int):
+        return dnls_chain(0, W, N, beta=BETA) if width == 1 else dnls_lattice(0, W, (N // width, width), beta=BETA)
+    return lattice
 
 
 def start(N: int, B: int):
@@ -60,10 +65,10 @@ def c_run(args, exe: Path):
     scheme = get_split_scheme(args.integrator)
 
     def run(N: int, steps: int, tangent: bool):
-        sites = MODEL.site_parameters(lattice(N))
+        sites = MODEL.site_parameters(lattice_of(args.width)(N))
         q, p, dq, dp = (a[:, 0] for a in start(N, 1))
-        ns, final = run_c(exe, f"dnls_input_{N}_{int(tangent)}", {
-            "N": N, "steps": steps, "tangent": int(tangent), "check_every": CHECK_EVERY, "repeats": args.repeats,
+        ns, final = run_c(exe, f"dnls_input_{N}_{args.width}_{int(tangent)}", {
+            "width": args.width, "N": N, "steps": steps, "tangent": int(tangent), "check_every": CHECK_EVERY, "repeats": args.repeats,
             "dt": DT, "stages": scheme.stages, "parts": np.asarray(scheme.parts, dtype=int),
             "coefficients": scheme.coefficients, "eps": sites[0], "beta": sites[1], "q": q, "p": p, "dq": dq, "dp": dp})
         return ns / N, final
@@ -79,6 +84,8 @@ COLUMNS = [("N", "N"), ("tangent", "tangent map"), ("single_ns", "single engine:
 def parse(argv=None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--N", type=int, nargs="+", default=[64, 256, 1024, 4096])
+    parser.add_argument("--width", type=int, default=1,
+                        help="lines of a square lattice of N sites (default 1: the chain); divides every N")
     parser.add_argument("--integrator", default="s9ABC6", choices=sorted(SPLIT_SCHEMES))
     parser.add_argument("--sites-steps", type=float, default=1e7, help="site-steps per timed run (default 1e7)")
     parser.add_argument("--repeats", type=int, default=3)
@@ -92,14 +99,20 @@ def parse(argv=None) -> argparse.Namespace:
 def main(argv=None) -> dict:
     """Print the table; return ``record.py``'s part of a record (title, parameters, columns, rows)."""
     args = parse(argv)
+    bad = [N for N in args.N if N % args.width or N // args.width < 2]
+    if args.width < 1 or bad:
+        raise SystemExit(f"--width {args.width}: allowed is an integer >= 1 dividing every N into lines of >= 2 sites "
+                         f"(not {bad})")
     exe = compile_c(SOURCE)
     print(machine_line())
-    print(f"DNLS lattice W = {W}, beta = {BETA}, amplitude {AMPLITUDE}, {args.integrator} at dt = {DT}, "
+    shape = "chain" if args.width == 1 else f"square lattice of {args.width} lines"
+    print(f"DNLS {shape}, W = {W}, beta = {BETA}, amplitude {AMPLITUDE}, {args.integrator} at dt = {DT}, "
           f"CPU time (time.process_time; C: CLOCK_PROCESS_CPUTIME_ID), best of {args.repeats}; batch: one "
           f"block of {LANES} trajectories; C: gcc {' '.join(CFLAGS)}\n")
-    engine = engine_runner("dnls", lattice, start, args.integrator, DT, CHECK_EVERY, args.repeats, LANES)
+    engine = engine_runner("dnls", lattice_of(args.width), start, args.integrator, DT, CHECK_EVERY, args.repeats,
+                           LANES)
     rows = per_site(args.N, args.sites_steps, args.check_steps, LANES, engine, c_run(args, exe))
-    parameters = {"W": W, "beta": BETA, "amplitude": AMPLITUDE, "integrator": args.integrator, "dt": DT,
+    parameters = {"width": args.width, "W": W, "beta": BETA, "amplitude": AMPLITUDE, "integrator": args.integrator, "dt": DT,
                   "check_every": CHECK_EVERY, "sites_steps": args.sites_steps, "repeats": args.repeats,
                   "check_steps": args.check_steps, "lanes": LANES, "cflags": " ".join(CFLAGS),
                   "timer": "process CPU time, best of the repeats"}

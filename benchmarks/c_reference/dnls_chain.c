@@ -15,6 +15,10 @@
  *   B(t): p_l += t (q_{l-1} + q_{l+1}),   dp_l += t (dq_{l-1} + dq_{l+1})
  *   C(t): q_l += (-t) (p_{l-1} + p_{l+1}), dq_l += (-t) (dp_{l-1} + dp_{l+1})
  *
+ * With width > 1, the square lattice of Nx = N / width sites per line and width lines (site
+ * (i, j) is number j Nx + i, docs/conventions.md "Lattices"): B and C add the pair across the
+ * lines, (x_{l-Nx} + x_{l+Nx}), to the pair along the line, as the engines do.
+ *
  * The sine and cosine are the C library's (glibc's sincos, within 1 ulp), not
  * the engines' kernels.exactmath.sincos (fdlibm's kernels in + - * only, within 1 ulp): enough
  * for a speed reference, and the reason the final states differ from the engines' in the last
@@ -25,7 +29,8 @@
  *
  * Build: gcc -O3 -march=native -std=c99 -fno-math-errno -o dnls_chain dnls_chain.c -lm
  * Run:   dnls_chain INPUT   with INPUT lines "key v1 v2 ..." (written by benchmarks/dnls_kernel.py):
- *        N, steps, tangent (0/1), check_every, repeats, dt, stages s, parts (s integers),
+ *        width (optional, before N; default 1), N, steps, tangent (0/1), check_every, repeats, dt,
+ *        stages s, parts (s integers),
  *        coefficients (s values), eps, beta, q, p, dq, dp (N values each).
  * Output: "ns_per_step X" (best of the repeats, each from the input state; the process's CPU
  *        time, as the Python side's time.process_time), "bad_step", "log_growth", and the final
@@ -40,16 +45,17 @@
 
 #define MAX_STAGES 128
 
-static int N;
+static int N, NX, NY = 1, PAD = 1;
 static double *eps, *beta, *q0, *p0, *dq0, *dp0, *q, *p, *dq, *dp;
 
-/* The arrays are padded: index 0 and N + 1 are the ends (zero), the sites 1..N. Restrict-qualified
- * local copies tell gcc that they do not overlap. */
+/* The arrays are padded: PAD zeros before the sites PAD..N + PAD - 1 and after them (one on a
+ * chain, a line on a square lattice: the neighbours beyond the edges). Restrict-qualified local
+ * copies tell gcc that they do not overlap. */
 static void rotate(double t, int tangent)
 {
     double *restrict Q = q, *restrict P = p, *restrict DQ = dq, *restrict DP = dp;
     const double *restrict E = eps, *restrict G = beta;
-    for (int n = 1; n <= N; n++) {
+    for (int n = PAD; n < N + PAD; n++) {
         double qn = Q[n], pn = P[n];
         double x = qn * qn + pn * pn;
         double w = E[n] + 0.5 * G[n] * x, g = G[n];
@@ -68,20 +74,31 @@ static void rotate(double t, int tangent)
     }
 }
 
-/* y_l += c (x_{l-1} + x_{l+1}) on every site (x = 0 beyond the ends: the padding). */
+/* y_l += c (sum of x over l's neighbours) on every site (x = 0 beyond the edges: the padding, and
+ * at the ends of a line of the square lattice). */
 static void hop(double *restrict Y, const double *restrict X, double c)
 {
-    for (int n = 1; n <= N; n++)
-        Y[n] = Y[n] + c * (X[n - 1] + X[n + 1]);
+    if (NY == 1) {
+        for (int n = 1; n <= N; n++)
+            Y[n] = Y[n] + c * (X[n - 1] + X[n + 1]);
+        return;
+    }
+    for (int j = 0; j < NY; j++) {
+        int first = PAD + j * NX;
+        for (int n = first; n < first + NX; n++) {
+            double left = n > first ? X[n - 1] : 0.0, right = n + 1 < first + NX ? X[n + 1] : 0.0;
+            Y[n] = Y[n] + c * ((left + right) + (X[n - NX] + X[n + NX]));
+        }
+    }
 }
 
 static double renormalise(void)
 {
     double s = 0.0;
-    for (int n = 1; n <= N; n++)
+    for (int n = PAD; n < N + PAD; n++)
         s += dq[n] * dq[n] + dp[n] * dp[n];
     double norm = sqrt(s);
-    for (int n = 1; n <= N; n++) {
+    for (int n = PAD; n < N + PAD; n++) {
         dq[n] /= norm;
         dp[n] /= norm;
     }
@@ -110,11 +127,11 @@ static long integrate(long n_steps, int tangent, long check_every, double dt, in
         }
         if ((step + 1) % check_every == 0 || step + 1 == n_steps) {
             double s = 0.0;
-            for (int n = 1; n <= N; n++)
+            for (int n = PAD; n < N + PAD; n++)
                 s += q[n] + p[n];
             if (tangent) {
                 *log_growth += renormalise();
-                s += dq[1];
+                s += dq[PAD];
             }
             if (!isfinite(s))
                 return step + 1;
@@ -135,14 +152,14 @@ static void read_values(FILE *in, const char *key, double *dst, int count)
 static void print_state(const char *key, const double *v)
 {
     printf("%s", key);
-    for (int n = 1; n <= N; n++)
+    for (int n = PAD; n < N + PAD; n++)
         printf(" %.17g", v[n]);
     printf("\n");
 }
 
 static double *padded(void)
 {
-    double *v = calloc((size_t)N + 2, sizeof(double)); /* v[0] = v[N+1] = 0: the ends */
+    double *v = calloc((size_t)N + 2 * (size_t)PAD, sizeof(double)); /* zero padding: the edges */
     if (!v) {
         fprintf(stderr, "dnls_chain: out of memory\n");
         exit(2);
@@ -173,8 +190,13 @@ int main(int argc, char **argv)
     double dt = 0.0, coefficients[MAX_STAGES];
     char key[64];
     while (fscanf(in, "%63s", key) == 1) {
-        if (!strcmp(key, "N")) {
-            if (N || fscanf(in, "%d", &N) != 1 || N < 1) return 2;
+        if (!strcmp(key, "width")) {
+            if (N || fscanf(in, "%d", &NY) != 1 || NY < 1) return 2;
+        }
+        else if (!strcmp(key, "N")) {
+            if (N || fscanf(in, "%d", &N) != 1 || N < 1 || N % NY) return 2;
+            NX = N / NY;
+            PAD = NY > 1 ? NX : 1;
             eps = padded(), beta = padded();
             q0 = padded(), p0 = padded(), dq0 = padded(), dp0 = padded();
             q = padded(), p = padded(), dq = padded(), dp = padded();
@@ -197,12 +219,12 @@ int main(int argc, char **argv)
         }
         else if (!strcmp(key, "coefficients")) read_values(in, key, coefficients, stages);
         else if (!N) { fprintf(stderr, "dnls_chain: N must come before %s\n", key); return 2; }
-        else if (!strcmp(key, "eps")) read_values(in, key, eps + 1, N);
-        else if (!strcmp(key, "beta")) read_values(in, key, beta + 1, N);
-        else if (!strcmp(key, "q")) read_values(in, key, q0 + 1, N);
-        else if (!strcmp(key, "p")) read_values(in, key, p0 + 1, N);
-        else if (!strcmp(key, "dq")) read_values(in, key, dq0 + 1, N);
-        else if (!strcmp(key, "dp")) read_values(in, key, dp0 + 1, N);
+        else if (!strcmp(key, "eps")) read_values(in, key, eps + PAD, N);
+        else if (!strcmp(key, "beta")) read_values(in, key, beta + PAD, N);
+        else if (!strcmp(key, "q")) read_values(in, key, q0 + PAD, N);
+        else if (!strcmp(key, "p")) read_values(in, key, p0 + PAD, N);
+        else if (!strcmp(key, "dq")) read_values(in, key, dq0 + PAD, N);
+        else if (!strcmp(key, "dp")) read_values(in, key, dp0 + PAD, N);
         else { fprintf(stderr, "dnls_chain: unknown key %s\n", key); return 2; }
     }
     fclose(in);
@@ -211,7 +233,7 @@ int main(int argc, char **argv)
         return 2;
     }
 
-    size_t bytes = ((size_t)N + 2) * sizeof(double);
+    size_t bytes = ((size_t)N + 2 * (size_t)PAD) * sizeof(double);
     double best = INFINITY, log_growth = 0.0;
     long bad = -1;
     for (long r = 0; r < repeats; r++) {
