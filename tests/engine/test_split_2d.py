@@ -211,3 +211,27 @@ def test_second_moment_of_a_uniform_square_is_twice_that_of_its_side():
     chain = np.random.default_rng(1).random(17)
     chain /= chain.sum()
     assert second_moment(chain, site_positions(Geometry((17,)))) == second_moment(chain)
+
+
+def test_the_growing_window_follows_a_packet_on_the_square_lattice():
+    """A rectangle of sites that widens on each side the packet nears: the orbit and the mLCE
+    vector of the whole lattice, to within what the cut leaves (tails below the threshold), while
+    the window stays smaller than the lattice."""
+    from chainchaos.run.window import Window, WindowedEngine, restricted_deviation
+    from chainchaos.system.initial import Excitation
+
+    lattice = dnls_lattice(2, 10.0, (201, 201), beta=1.0)
+    q, p, _ = Excitation(kind="block", site=(101, 101), width=3).split_state(lattice, 4.5)
+    rng = np.random.default_rng(0)
+    dq, dp = rng.normal(size=lattice.N), rng.normal(size=lattice.N)
+    problem = Problem("dnls", [lattice], dt=0.05, check_every=100)
+    windowed = WindowedEngine(problem, Window(), q[:, None], p[:, None], dq[:, None], dp[:, None])
+    windowed.advance(800)
+    start = restricted_deviation(dq[:, None], dp[:, None], *Window.excited(q[:, None], p[:, None], lattice.geometry),
+                                 geometry=lattice.geometry)
+    whole = problem.engine(q[:, None].copy(), p[:, None].copy(), *start)
+    whole.advance(800)
+    _, lo_x, hi_x, lo_y, hi_y = windowed.spans[-1]
+    assert len(windowed.spans) > 1 and 0 < lo_x and hi_x < 201 and 0 < lo_y and hi_y < 201
+    assert np.abs(windowed.q - whole.q).max() < 1e-6 and np.abs(windowed.p - whole.p).max() < 1e-6
+    assert abs(windowed.log_growth[0] - whole.log_growth[0]) < 1e-8

@@ -76,7 +76,9 @@ class Problem:
     gali : int, optional
         k of GALI_k: the mLCE vector and ``gali - 1`` more vectors (default 1: none).
     sites : tuple of int, optional
-        ``(lo, hi)``: only beads lo..hi-1 move, the others held at rest (default: all move).
+        ``(lo, hi)``: only beads lo..hi-1 move, the others held at rest (default: all move); on a
+        square lattice ``(lo_x, hi_x, lo_y, hi_y)``, the rectangle of sites (i, j) with
+        lo_x <= i < hi_x and lo_y <= j < hi_y.
 
     Raises
     ------
@@ -102,7 +104,7 @@ class Problem:
     check_every: int = 1000
     spectrum: int = 1  # Lyapunov exponents: the mLCE vector and spectrum - 1 vectors kept orthonormal to it
     gali: int = 1  # k of GALI_k: the mLCE vector and gali - 1 more vectors, each only normalised
-    sites: tuple | None = None  # (lo, hi): only beads lo..hi-1 move, the others held at rest (restricted)
+    sites: tuple | None = None  # (lo, hi) or (lo_x, hi_x, lo_y, hi_y): only those sites move (restricted)
 
     def __post_init__(self):
         object.__setattr__(self, "model", get_model(self.model))
@@ -115,10 +117,15 @@ class Problem:
         require(not wrong, "chains", wrong, f"for model {self.model.name!r}, {LATTICES[self.model.lattice]}")
         Ns = sorted({c.N for c in self.chains})
         require(len(Ns) == 1, "N", Ns, "one N per problem")
+        shapes = sorted({c.geometry.shape for c in self.chains})
+        require(len(shapes) == 1, "chains", shapes, "one lattice shape for every lane")
         if self.sites is not None:
-            lo, hi = (int(i) for i in self.sites)
-            require(0 <= lo < hi <= Ns[0], "sites", self.sites, f"(lo, hi) with 0 <= lo < hi <= N = {Ns[0]}")
-            object.__setattr__(self, "sites", (lo, hi))
+            spans = [int(i) for i in self.sites]
+            lengths = self.chains[0].geometry.shape
+            require(len(spans) == 2 * len(lengths)
+                    and all(0 <= spans[2 * a] < spans[2 * a + 1] <= n for a, n in enumerate(lengths)),
+                    "sites", self.sites, f"(lo, hi) per axis, 0 <= lo < hi <= the lattice's {list(lengths)}")
+            object.__setattr__(self, "sites", tuple(spans))
         check_step(self.dt)
         require(int(self.check_every) >= 1, "check_every", self.check_every, "an integer >= 1")
         require(not self.track_gaps or self.model.has_gaps, "track_gaps", self.track_gaps,
@@ -136,18 +143,31 @@ class Problem:
 
     @property
     def N(self) -> int:
-        """Beads that move: the chains' N, or the width of ``sites``."""
-        return self.chains[0].N if self.sites is None else self.sites[1] - self.sites[0]
+        """Sites that move: the chains' N, or those of ``sites``."""
+        return self.geometry.N
 
-    def restricted(self, lo: int, hi: int) -> "Problem":
-        """This problem on beads lo..hi-1 of its chains, the others held at rest: its first and
-        last bonds join a moving bead to one at zero displacement (the window of
-        ``chainchaos.run.window``).
+    @property
+    def geometry(self):
+        """The lattice of the moving sites (``system.geometry``): the chains', or the window of
+        ``sites`` with a wall beyond each of its edges (the sites beyond are at rest)."""
+        full = self.chains[0].geometry
+        if self.sites is None:
+            return full
+        from chainchaos.system.geometry import Geometry
+
+        return Geometry(tuple(self.sites[2 * a + 1] - self.sites[2 * a] for a in range(full.dimension)))
+
+    def restricted(self, *span: int) -> "Problem":
+        """This problem on the sites of ``span`` of its chains, the others held at rest: its
+        first and last bonds join a moving bead to one at zero displacement (the window of
+        ``chainchaos.run.window``); on a square lattice the rectangle ``span``, whose hopping to
+        the sites beyond is to sites at rest.
 
         Parameters
         ----------
-        lo, hi : int
-            The moving beads, lo..hi-1 (0-based), 0 <= lo < hi <= N.
+        *span : int
+            ``lo, hi``: the moving beads, lo..hi-1 (0-based), 0 <= lo < hi <= N; on a square
+            lattice ``lo_x, hi_x, lo_y, hi_y``.
 
         Returns
         -------
@@ -162,7 +182,7 @@ class Problem:
         from dataclasses import replace
 
         require(self.sites is None, "sites", self.sites, "None: a restricted problem is not restricted again")
-        return replace(self, sites=(lo, hi))
+        return replace(self, sites=tuple(span))
 
     @property
     def lanes(self) -> int:
@@ -181,8 +201,16 @@ class Problem:
         return get_split_scheme(self.integrator) if self.model.is_split else get_scheme(self.integrator)
 
     @property
-    def _span(self) -> slice:
-        return slice(None) if self.sites is None else slice(*self.sites)
+    def _span(self):
+        """The moving sites, as an index of the chains' arrays: a slice, or on a square lattice
+        the rectangle's site numbers in its own flat order."""
+        if self.sites is None:
+            return slice(None)
+        if len(self.sites) == 2:
+            return slice(*self.sites)
+        lo_x, hi_x, lo_y, hi_y = self.sites
+        nx = self.chains[0].geometry.shape[0]
+        return (np.arange(lo_y, hi_y)[:, None] * nx + np.arange(lo_x, hi_x)[None, :]).ravel()
 
     @cached_property
     def lane_parameters(self) -> tuple[np.ndarray, np.ndarray]:
@@ -190,6 +218,8 @@ class Problem:
         (a bond model's: a split model has neither)."""
         require(not self.model.is_split, "model", self.model.name, "a bond model (a split model has no masses and "
                 "bonds: its site_parameters are all its engines read)")
+        require(self.chains[0].geometry.dimension == 1, "chains", self.chains[0].geometry.shape,
+                "a chain for a bond model (two axes: the DNLS models only, for now)")
         lo, hi = self.sites or (0, self.chains[0].N)
         inv_mass = np.ascontiguousarray(np.stack([1.0 / c.mass[lo:hi] for c in self.chains], axis=1))
         bonds = np.ascontiguousarray(np.stack([self.model.bond_parameters(c)[:, lo:hi + 1] for c in self.chains],

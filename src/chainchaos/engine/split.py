@@ -31,7 +31,6 @@ import numpy as np
 from numba import njit
 
 from chainchaos.engine.batch import Batch
-from chainchaos.errors import require
 from chainchaos.engine.integrators import _aligned_zeros, _renormalise
 from chainchaos.kernels.exactmath import gram_schmidt, sincos
 from chainchaos.kernels.simd import LANES, vload, vstore
@@ -309,9 +308,7 @@ class SplitBatch(Batch):
 
     def _take_parameters(self, problem) -> None:
         self._sites = problem.site_parameters
-        shapes = {chain.geometry for chain in problem.chains}
-        require(len(shapes) == 1, "chains", sorted(g.shape for g in shapes), "one lattice shape for every lane")
-        self._shape2 = problem.chains[0].geometry.shape2
+        self._shape2 = problem.geometry.shape2  # the moving sites' (a window's, when restricted)
         self._stages = (self.scheme.parts, self.scheme.coefficients)
 
     def _serial_lane(self, j: int) -> tuple:

@@ -14,9 +14,13 @@ deviation vectors start on the excited sites (the run's own vectors, set to zero
 scaled back to their norms, :func:`restricted_deviation`), ``2 margin`` sites inside the first
 window.
 
-The engine has the interface the sampling driver (``chainchaos.run.driver``) reads: full-chain
+On a square lattice (``system.geometry``) the window is a rectangle of sites, each of its four
+sides measured and moved out the same way, the sites beyond held at rest (a DNLS lattice's
+hopping to them adds nothing).
+
+The engine has the interface the sampling driver (``chainchaos.run.driver``) reads: full-lattice
 states and deviation vectors, ln|v|, gap counts, ``bad`` steps; its cost follows the window's
-width, not N. Only the mLCE vector runs beside the orbit (no spectrum or GALI vectors, whose
+size, not N. Only the mLCE vector runs beside the orbit (no spectrum or GALI vectors, whose
 orthonormal sets do not restrict to a window).
 """
 
@@ -51,25 +55,45 @@ class Window:
         return None if block is None else (block if isinstance(block, cls) else cls(**block))
 
     @staticmethod
-    def excited(q: np.ndarray, p: np.ndarray) -> tuple[int, int]:
+    def excited(q: np.ndarray, p: np.ndarray, geometry=None) -> tuple[int, ...]:
         """The sites lo..hi-1 from the first to the last one where some lane's state (q, p:
-        (N, B)) is not at rest."""
-        moving = np.flatnonzero(np.any(q != 0.0, axis=1) | np.any(p != 0.0, axis=1))
-        require(moving.size > 0, "window", "a state at rest", "a state with a moving site")
-        return int(moving[0]), int(moving[-1]) + 1
+        (N, B)) is not at rest; on a square lattice ``geometry``, (lo_x, hi_x, lo_y, hi_y) of the
+        smallest rectangle holding them."""
+        moving = np.any(q != 0.0, axis=1) | np.any(p != 0.0, axis=1)
+        require(moving.any(), "window", "a state at rest", "a state with a moving site")
+        if geometry is None or geometry.dimension == 1:
+            at = np.flatnonzero(moving)
+            return int(at[0]), int(at[-1]) + 1
+        grid = moving.reshape(geometry.shape[1], geometry.shape[0])  # [j, i]
+        i, j = np.flatnonzero(grid.any(axis=0)), np.flatnonzero(grid.any(axis=1))
+        return int(i[0]), int(i[-1]) + 1, int(j[0]), int(j[-1]) + 1
 
-    def first_span(self, q: np.ndarray, p: np.ndarray) -> tuple[int, int]:
+    def first_span(self, q: np.ndarray, p: np.ndarray, geometry=None) -> tuple[int, ...]:
         """The sites of the first window: the :meth:`excited` ones and ``2 margin`` more on each
-        side, within the chain."""
-        lo, hi = self.excited(q, p)
-        return max(0, lo - 2 * self.margin), min(q.shape[0], hi + 2 * self.margin)
+        side, within the lattice."""
+        lengths = (q.shape[0],) if geometry is None else geometry.shape
+        span = self.excited(q, p, geometry)
+        return tuple(v for a, n in enumerate(lengths)
+                     for v in (max(0, span[2 * a] - 2 * self.margin), min(n, span[2 * a + 1] + 2 * self.margin)))
 
 
-def restricted_deviation(dq: np.ndarray, dp: np.ndarray, lo: int, hi: int) -> tuple[np.ndarray, np.ndarray]:
-    """Deviation vectors (N, B) set to zero outside sites lo..hi-1 and scaled back to their norms."""
+def window_sites(span: tuple, geometry) -> np.ndarray | slice:
+    """The sites of window ``span`` ((lo, hi), or (lo_x, hi_x, lo_y, hi_y) on a square lattice)
+    as an index of a lattice's arrays: a slice, or the rectangle's numbers in its flat order."""
+    if len(span) == 2:
+        return slice(*span)
+    lo_x, hi_x, lo_y, hi_y = span
+    return (np.arange(lo_y, hi_y)[:, None] * geometry.shape[0] + np.arange(lo_x, hi_x)[None, :]).ravel()
+
+
+def restricted_deviation(dq: np.ndarray, dp: np.ndarray, *span: int, geometry=None) -> tuple[np.ndarray, np.ndarray]:
+    """Deviation vectors (N, B) set to zero outside the sites of window ``span`` (lo, hi, or the
+    rectangle lo_x, hi_x, lo_y, hi_y of ``geometry``) and scaled back to their norms."""
     dq, dp = np.array(dq, dtype=float), np.array(dp, dtype=float)
     norm = np.sqrt(np.sum(dq**2 + dp**2, axis=0))
-    dq[:lo], dq[hi:], dp[:lo], dp[hi:] = 0.0, 0.0, 0.0, 0.0
+    inside = np.zeros(dq.shape[0], dtype=bool)
+    inside[window_sites(span, geometry)] = True
+    dq[~inside], dp[~inside] = 0.0, 0.0
     inside = np.sqrt(np.sum(dq**2 + dp**2, axis=0))
     scale = np.divide(norm, inside, out=np.zeros_like(norm), where=inside > 0)
     return dq * scale, dp * scale
@@ -96,48 +120,50 @@ def site_weights(problem, q, p, dq, dp) -> tuple[np.ndarray, np.ndarray]:
 
 
 class WindowedEngine:
-    """The engine of a problem run on a growing window (:class:`Window`); built from full-chain
+    """The engine of a problem run on a growing window (:class:`Window`); built from full-lattice
     states q, p, dq, dp (N, B), read as the driver reads ``batch.Batch``."""
 
     def __init__(self, problem, window: Window, q, p, dq, dp, kind: str = "auto"):
         require(problem.extra_vectors == 0, "window", window,
                 "None with Lyapunov spectrum or GALI vectors (only the mLCE vector runs on a window)")
         self.problem, self.window, self.kind = problem, window, kind
-        self.N = problem.N
+        self.N, self.geometry = problem.N, problem.geometry
         q, p = np.asarray(q, dtype=float), np.asarray(p, dtype=float)
         dq = np.zeros_like(q) if dq is None else np.array(dq, dtype=float)
         dp = np.zeros_like(p) if dp is None else np.array(dp, dtype=float)
-        lo, hi = window.first_span(q, p)
+        span = window.first_span(q, p, self.geometry)
         if problem.tangent:  # the deviation vectors start on the excited sites, well inside the window
-            dq, dp = restricted_deviation(dq, dp, *window.excited(q, p))
+            dq, dp = restricted_deviation(dq, dp, *window.excited(q, p, self.geometry), geometry=self.geometry)
         B = q.shape[1]
         self.bad = np.full(B, -1, dtype=np.int64)
         self.steps = 0
-        self.spans = [(0, lo, hi)]  # (step, lo, hi) of every window, for the record
-        self._start(lo, hi, q, p, dq, dp)
+        self.spans = [(0, *span)]  # (step, lo, hi) (per axis) of every window, for the record
+        self._start(span, q, p, dq, dp)
 
-    def _start(self, lo, hi, q, p, dq, dp, old=None, old_span=None) -> None:
-        """A fresh engine on sites lo..hi-1 from full-chain states, carrying the sums of ``old``
-        (the engine of the window ``old_span``)."""
-        self.lo, self.hi = lo, hi
-        self.sub = self.problem.restricted(lo, hi)
-        self.engine = self.sub.engine(q[lo:hi], p[lo:hi], dq[lo:hi], dp[lo:hi], self.kind)
+    def _start(self, span, q, p, dq, dp, old=None, old_span=None) -> None:
+        """A fresh engine on the sites of window ``span`` from full-lattice states, carrying the
+        sums of ``old`` (the engine of the window ``old_span``)."""
+        self.span = span
+        inside = window_sites(span, self.geometry)
+        self.sub = self.problem.restricted(*span)
+        self.engine = self.sub.engine(q[inside], p[inside], dq[inside], dp[inside], self.kind)
         self.engine.steps = self.steps
         if old is not None:
             self.engine.log_growth[:] = old.log_growth
             self.engine.max_gaps[:] = old.max_gaps
             self.engine.bad[:] = old.bad
-            self.engine.gap_steps[:] = self._full(old.gap_steps, old_span, extra=1)[lo:hi + 1]
+            if len(span) == 2:  # bonds open only on a chain
+                lo, hi = span
+                self.engine.gap_steps[:] = self._full(old.gap_steps, old_span, extra=1)[lo:hi + 1]
 
     def _full(self, part, span, extra: int = 0) -> np.ndarray:
-        lo, hi = span
         out = np.zeros((self.N + extra,) + part.shape[1:], dtype=part.dtype)
-        out[lo:hi + extra] = part
+        if len(span) == 2:
+            lo, hi = span
+            out[lo:hi + extra] = part
+        elif not extra:
+            out[window_sites(span, self.geometry)] = part
         return out
-
-    @property
-    def span(self) -> tuple[int, int]:
-        return self.lo, self.hi
 
     q = property(lambda self: self._full(self.engine.q, self.span))
     p = property(lambda self: self._full(self.engine.p, self.span))
@@ -167,16 +193,27 @@ class WindowedEngine:
                 self._check()
 
     def _check(self) -> None:
-        """Widen the window where a lane's energy or deviation vector reaches its outer margin."""
-        e = self.engine
-        lo, hi, m, N = self.lo, self.hi, self.window.margin, self.N
+        """Widen the window where a lane's energy or deviation vector reaches its outer margin:
+        each side (each end of each axis) on its own."""
+        e, m, t = self.engine, self.window.margin, self.window.threshold
+        sub = self.sub.geometry
         H, D = site_weights(self.sub, e.q, e.p, e.dq, e.dp)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            shares = [(w[:m].sum(axis=0) / w.sum(axis=0), w[-m:].sum(axis=0) / w.sum(axis=0)) for w in (H, D)]
-        t = self.window.threshold
-        new_lo = max(0, lo - 2 * m) if lo > 0 and any(np.any(s[0] > t) for s in shares) else lo
-        new_hi = min(N, hi + 2 * m) if hi < N and any(np.any(s[1] > t) for s in shares) else hi
-        if (new_lo, new_hi) == (lo, hi):
+        new = list(self.span)
+        for axis, length in enumerate(self.geometry.shape):
+            lo, hi = self.span[2 * axis], self.span[2 * axis + 1]
+            near_lo, near_hi = [], []
+            for w in (H, D):
+                grid = w.reshape(sub.shape[1], sub.shape[0], -1) if sub.dimension == 2 else w[None]  # [j, i, lane]
+                along = grid.sum(axis=0) if axis == 0 else grid.sum(axis=1)  # per position along the axis
+                with np.errstate(invalid="ignore", divide="ignore"):
+                    near_lo.append(along[:m].sum(axis=0) / along.sum(axis=0))
+                    near_hi.append(along[-m:].sum(axis=0) / along.sum(axis=0))
+            if lo > 0 and any(np.any(s > t) for s in near_lo):
+                new[2 * axis] = max(0, lo - 2 * m)
+            if hi < length and any(np.any(s > t) for s in near_hi):
+                new[2 * axis + 1] = min(length, hi + 2 * m)
+        new = tuple(new)
+        if new == self.span:
             return
-        self._start(new_lo, new_hi, self.q, self.p, self.dq, self.dp, e, (lo, hi))
-        self.spans.append((self.steps, new_lo, new_hi))
+        self._start(new, self.q, self.p, self.dq, self.dp, e, self.span)
+        self.spans.append((self.steps, *new))

@@ -557,10 +557,6 @@ class Study:
                 if geometry.dimension == 2 and flat:
                     raise ParameterError("shape", list(geometry.shape),
                                          f"[N] with the models {flat} (two axes: the DNLS models only, for now)")
-                if geometry.dimension == 2 and self.window is not None:
-                    raise ParameterError("window", self.spec["integration"]["window"],
-                                         "absent on a square lattice (the growing window follows a packet along a "
-                                         "chain)")
                 if geometry.dimension == 2 and self.selected:
                     raise ParameterError("excitation.site", "selected", "centre or [i, j] on a square lattice")
 
