@@ -245,8 +245,16 @@ def dnls_norm_error(argv: list[str]) -> dict:
             **dnls_norm_table(measured, a.t_final)}
 
 
+def window_2d(argv: list[str]) -> dict:
+    """benchmarks/window_2d.py: the growing window's cost on square DNLS lattices of growing size."""
+    sys.path.insert(0, str(HERE))
+    import window_2d as bench
+
+    return bench.main(argv)
+
+
 BENCHMARKS = {"batch_throughput": batch_throughput, "pipeline": pipeline, "kept_study": kept_study,
-              "kg_kernel": kg_kernel, "dnls_norm_error": dnls_norm_error}
+              "kg_kernel": kg_kernel, "dnls_norm_error": dnls_norm_error, "window_2d": window_2d}
 
 
 def record(name: str, argv: list[str], note: str = "") -> Path:

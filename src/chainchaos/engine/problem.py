@@ -218,8 +218,11 @@ class Problem:
         (a bond model's: a split model has neither)."""
         require(not self.model.is_split, "model", self.model.name, "a bond model (a split model has no masses and "
                 "bonds: its site_parameters are all its engines read)")
-        require(self.chains[0].geometry.dimension == 1, "chains", self.chains[0].geometry.shape,
-                "a chain for a bond model (two axes: the DNLS models only, for now)")
+        if self.chains[0].geometry.dimension == 2:  # a square lattice's bonds: geometry.bonds()
+            require(self.sites is None, "sites", self.sites, "None for a bond model on a square lattice (no window)")
+            inv_mass = np.ascontiguousarray(np.stack([1.0 / c.mass for c in self.chains], axis=1))
+            bonds = np.ascontiguousarray(np.stack([self.model.bond_parameters(c) for c in self.chains], axis=2))
+            return inv_mass, bonds
         lo, hi = self.sites or (0, self.chains[0].N)
         inv_mass = np.ascontiguousarray(np.stack([1.0 / c.mass[lo:hi] for c in self.chains], axis=1))
         bonds = np.ascontiguousarray(np.stack([self.model.bond_parameters(c)[:, lo:hi + 1] for c in self.chains],
@@ -355,5 +358,10 @@ class Problem:
         remainder = self.lanes % LANES
         serial = {"batch": 0, "single": self.lanes,
                   "auto": remainder if remainder <= SERIAL_REMAINDER and not self.extra_vectors else 0}[kind]
-        engine = SplitBatch if self.model.is_split else Batch
+        if self.model.is_split:
+            engine = SplitBatch
+        elif self.geometry.dimension == 2:
+            from chainchaos.engine.lattice import LatticeBatch as engine
+        else:
+            engine = Batch
         return engine(self, q, p, dq, dp, serial_lanes=serial, xq=xq, xp=xp)

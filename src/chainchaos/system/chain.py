@@ -505,6 +505,9 @@ class KGLattice:
         Disorder strength (> 0); every bond's harmonic coupling is 1/W.
     seed : int, optional
         Seed of the draw (None: eps given, not drawn).
+    geometry : Geometry, optional
+        The lattice's shape (``system.geometry``; eps in its flat order), default the chain of
+        ``eps.size`` sites between two walls.
 
     Attributes
     ----------
@@ -512,8 +515,8 @@ class KGLattice:
         Number of sites.
     mass : numpy.ndarray of shape (N,)
         1 on every site.
-    K2 : numpy.ndarray of shape (N + 1,)
-        1/W on every bond.
+    K2 : numpy.ndarray of shape (bonds,)
+        1/W on every bond, in the order of ``geometry.bonds()`` (N + 1 on a chain).
 
     Examples
     --------
@@ -529,6 +532,7 @@ class KGLattice:
     eps: np.ndarray
     W: float
     seed: int | None = None
+    geometry: Geometry | None = None
     mass: np.ndarray = field(init=False, repr=False)
     K2: np.ndarray = field(init=False, repr=False)
 
@@ -538,20 +542,18 @@ class KGLattice:
         require(bool(np.all(np.isfinite(eps))), "eps", eps.tolist(), "finite on-site stiffnesses")
         require(isinstance(self.W, (int, float, np.floating)) and np.isfinite(self.W) and self.W > 0, "W", self.W,
                 "a finite disorder strength W > 0")
+        geometry = chain_geometry(eps.size) if self.geometry is None else self.geometry
+        require(geometry.N == eps.size, "geometry", list(geometry.shape), f"a shape of {eps.size} sites (eps)")
+        object.__setattr__(self, "geometry", geometry)
         object.__setattr__(self, "eps", eps)
         object.__setattr__(self, "W", float(self.W))
         object.__setattr__(self, "mass", np.ones(eps.size))
-        object.__setattr__(self, "K2", np.full(eps.size + 1, 1.0 / self.W))
+        object.__setattr__(self, "K2", np.full(geometry.n_bonds, 1.0 / self.W))
 
     @property
     def N(self) -> int:
         """Number of sites."""
         return self.eps.size
-
-    @property
-    def geometry(self) -> Geometry:
-        """The chain of N sites between two walls (``system.geometry``)."""
-        return chain_geometry(self.N)
 
     @property
     def site_stiffness(self) -> np.ndarray:
@@ -606,10 +608,49 @@ def kg_chain(seed: int, W: float, N: int) -> KGLattice:
     >>> lattice.N, bool(0.5 <= lattice.eps.min() and lattice.eps.max() <= 1.5)
     (64, True)
     """
-    require(isinstance(seed, (int, np.integer)) and seed >= 0, "seed", seed, "an integer >= 0")
     require(isinstance(N, (int, np.integer)) and N >= 2, "N", N, "an integer >= 2")
-    eps = np.random.default_rng(int(seed)).uniform(0.5, 1.5, int(N))
-    return KGLattice(eps, W, int(seed))
+    return kg_lattice(seed, W, (int(N),))
+
+
+def kg_lattice(seed: int, W: float, shape, boundary=None) -> KGLattice:
+    """The disordered KG lattice of shape ``shape`` (a chain (N,) or a square lattice (Nx, Ny),
+    ``system.geometry``) and disorder strength W drawn with ``seed``: eps =
+    default_rng(seed).uniform(0.5, 1.5, N) in the geometry's flat order, coupling 1/W on every
+    bond (along the lines and across them, walls included where an edge is fixed), masses 1; a
+    lattice of width 1 with free transverse edges is the chain :func:`kg_chain` draws.
+
+    Parameters
+    ----------
+    seed : int
+        Seed of ``numpy.random.default_rng``.
+    W : float
+        Disorder strength (> 0); the harmonic coupling of every bond is 1/W.
+    shape : int or tuple of int
+        (N,) or (Nx, Ny).
+    boundary : tuple of str, optional
+        Per axis, "fixed" (a wall bond at each end) or "free" (none); default "fixed".
+
+    Returns
+    -------
+    KGLattice
+        The lattice, in the KG Hamiltonian's units.
+
+    Raises
+    ------
+    ParameterError
+        For a negative or non-integer seed, a bad shape or boundary, or W not finite and > 0.
+
+    Examples
+    --------
+    >>> from chainchaos.system.chain import kg_lattice
+    >>> lattice = kg_lattice(seed=1, W=4.0, shape=(6, 5), boundary=("fixed", "free"))
+    >>> lattice.N, lattice.K2.size   # 5 lines of 7 bonds, 6 columns of 4
+    (30, 59)
+    """
+    require(isinstance(seed, (int, np.integer)) and seed >= 0, "seed", seed, "an integer >= 0")
+    geometry = Geometry(shape, boundary)
+    eps = np.random.default_rng(int(seed)).uniform(0.5, 1.5, geometry.N)
+    return KGLattice(eps, W, int(seed), geometry)
 
 
 # ---- the disordered DNLS lattice (models.dnls) ------------------------------------------------

@@ -99,6 +99,15 @@ class Geometry:
         """Whether each of the two axes of :attr:`shape2` has walls (a chain's second axis has none)."""
         return (self.boundary[0] == "fixed", self.dimension == 2 and self.boundary[1] == "fixed")
 
+    @property
+    def n_bonds(self) -> int:
+        """Number of bonds, walls included (the length of :meth:`bonds`)."""
+        nx, ny = self.shape2
+        fixed_x, fixed_y = self.fixed
+        along = ny * (nx + 1 if fixed_x else nx - 1)
+        across = 0 if self.dimension == 1 else nx * (ny + 1 if fixed_y else ny - 1)
+        return along + across
+
     def site(self, i: int, j: int = 0) -> int:
         """The number of site (i, j): j Nx + i."""
         nx, ny = self.shape2

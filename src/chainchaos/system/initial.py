@@ -148,7 +148,8 @@ class Excitation:
 
     def pattern(self, chain) -> np.ndarray:
         """The unscaled pattern s (N,) on the excited variable."""
-        self.check(chain.N)
+        if chain.geometry.dimension == 1:
+            self.check(chain.N)
         if self.kind == "mode":
             from chainchaos.system.linear import (
                 normal_modes,  # the eigensolver: only for mode excitations
@@ -158,6 +159,13 @@ class Excitation:
             shape = shape / np.max(np.abs(shape))
             return chain.mass * shape if self.variable == "momentum" else shape
         s = np.zeros(chain.N)
+        if chain.geometry.dimension == 2:
+            require(self.kind != "mode", "excitation kind", self.kind, "site or block on a square lattice")
+            numbers, signs = self.lattice_sites(chain.geometry)
+            if self.phases == "random":
+                signs = np.where(self._generator().uniform(size=numbers.size) < 0.5, 1.0, -1.0)
+            s[numbers] = signs * (np.sqrt(chain.mass[numbers]) if self.variable == "momentum" else 1.0)
+            return s
         first, last = self.beads()
         signs = np.where(np.arange(last - first + 1) % 2 == 0, 1.0, -1.0)
         if self.phases == "random":

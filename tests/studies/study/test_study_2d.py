@@ -40,7 +40,7 @@ def test_the_chain_keys_stay_the_kept_groups_key():
 
 
 @pytest.mark.parametrize("lattice, excitation, message", [
-    ({"model": "kg", "shape": [8, 8]}, {}, "lattice.shape = [8, 8]: allowed is [N] with the models ['kg']"),
+    ({"model": "hertz", "shape": [8, 8]}, {}, "lattice.shape = [8, 8]: allowed is [N] with the models ['hertz']"),
     ({"model": "dnls", "shape": [8, 8], "N": 64}, {}, "lattice.N = 64: allowed is an integer >= 2, or lattice.shape"),
     ({"model": "dnls", "shape": [8, 8, 8]}, {}, "lattice.shape"),
     ({"model": "dnls", "shape": [8, 8], "boundary": ["fixed", "open"]}, {}, "lattice.boundary"),
@@ -49,7 +49,7 @@ def test_the_chain_keys_stay_the_kept_groups_key():
 ])
 def test_a_bad_shape_block_or_boundary_is_named_before_anything_runs(lattice, excitation, message):
     spec = {**SPEC, "lattice": lattice, "excitation": {"energies": [1.0], **excitation}}
-    if lattice["model"] == "kg":
+    if lattice["model"] == "hertz":
         spec["integration"] = {"dt": 0.05, "t_final": 50.0}
     with pytest.raises(StudyError, match=message.replace("[", r"\[").replace("]", r"\]")):
         load_study(spec)

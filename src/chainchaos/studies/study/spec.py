@@ -33,7 +33,7 @@ from chainchaos.studies.study.orbits import (
     energy_grid,
     select_excitation,
 )
-from chainchaos.system.chain import dnls_lattice, kg_chain, random_chain
+from chainchaos.system.chain import dnls_lattice, kg_lattice, random_chain
 from chainchaos.system.geometry import Geometry
 from chainchaos.system.initial import Excitation
 from chainchaos.system.models import BEAD_MODELS, MODELS
@@ -372,7 +372,7 @@ class Study:
     def kg_lattices(self) -> list:
         """One Klein-Gordon lattice per realization (disorder strength W), in the order of :attr:`seeds`."""
         lattice = self.spec["lattice"]
-        return [kg_chain(seed, float(lattice["W"]), self.N) for seed in self.seeds]
+        return [kg_lattice(seed, float(lattice["W"]), self.geometry.shape, lattice["boundary"]) for seed in self.seeds]
 
     @cached_property
     def dnls_lattices(self) -> list:
@@ -553,10 +553,15 @@ class Study:
                                      "(one of them)")
             if not chain_file:
                 geometry = self.geometry
-                flat = [m for m in self.models if MODELS[m].lattice != "dnls"]
+                flat = [m for m in self.models if MODELS[m].lattice == "beads"]
                 if geometry.dimension == 2 and flat:
                     raise ParameterError("shape", list(geometry.shape),
-                                         f"[N] with the models {flat} (two axes: the DNLS models only, for now)")
+                                         f"[N] with the models {flat} (two axes: the Klein-Gordon and DNLS models)")
+                bonded = [m for m in self.models if not MODELS[m].is_split]
+                if geometry.dimension == 2 and bonded and self.window is not None:
+                    raise ParameterError("window", self.spec["integration"]["window"],
+                                         f"absent with the models {bonded} on a square lattice (the window of a "
+                                         "square lattice is built for the DNLS models)")
                 if geometry.dimension == 2 and self.selected:
                     raise ParameterError("excitation.site", "selected", "centre or [i, j] on a square lattice")
 

@@ -155,6 +155,15 @@ def bond_potentials(model, u, P, V):
         V[b] = bond_potential(model, bond, left, right)
 
 
+@njit(cache=True)
+def lattice_bond_potentials(model, u, P, ends, V):
+    """Fill V[b], the potential energy of every bond b of a lattice given by its bonds ``ends``
+    (B, 2) site numbers, -1 for a wall (``Geometry.bonds``)."""
+    for b in range(ends.shape[0]):
+        a, c = ends[b, 0], ends[b, 1]
+        V[b] = bond_potential(model, (P[0, b], P[1, b], P[2, b]), u[a] if a >= 0 else 0.0, u[c] if c >= 0 else 0.0)
+
+
 def bond_potential_energy(model, chain, u: np.ndarray) -> np.ndarray:
     """Bond potentials V_b for one state u (N,) or many states u (..., N): shape (..., N+1).
 
@@ -175,11 +184,16 @@ def bond_potential_energy(model, chain, u: np.ndarray) -> np.ndarray:
     model = get_model(model)
     u = np.ascontiguousarray(u, dtype=float)
     flat = u.reshape(-1, u.shape[-1])
-    out = np.empty((flat.shape[0], flat.shape[1] + 1))
+    geometry = chain.geometry
+    out = np.empty((flat.shape[0], geometry.n_bonds))
     P = model.bond_parameters(chain)
+    ends = np.ascontiguousarray(geometry.bonds()) if geometry.dimension == 2 else None
     for i in range(flat.shape[0]):
-        bond_potentials(model, flat[i], P, out[i])
-    return out.reshape(u.shape[:-1] + (u.shape[-1] + 1,))
+        if ends is None:
+            bond_potentials(model, flat[i], P, out[i])
+        else:
+            lattice_bond_potentials(model, flat[i], P, ends, out[i])
+    return out.reshape(u.shape[:-1] + (geometry.n_bonds,))
 
 
 @njit(cache=True)
@@ -285,7 +299,13 @@ def energy_density(model, chain, u: np.ndarray, p: np.ndarray) -> np.ndarray:
         h_n, dimensionless, summing to 1 over the last axis.
     """
     V = bond_potential_energy(model, chain, u)
-    H = p**2 / (2.0 * chain.mass) + 0.5 * (V[..., :-1] + V[..., 1:])
+    if chain.geometry.dimension == 1:
+        H = p**2 / (2.0 * chain.mass) + 0.5 * (V[..., :-1] + V[..., 1:])
+    else:  # each bond's half to each of its sites (a wall has none)
+        H = p**2 / (2.0 * chain.mass)
+        for end in (0, 1):
+            sites = chain.geometry.bonds()[:, end]
+            np.add.at(np.moveaxis(H, -1, 0), sites[sites >= 0], np.moveaxis(0.5 * V[..., sites >= 0], -1, 0))
     W = site_potential_energy(model, chain, u)
     if W is not None:
         H = H + W

@@ -217,8 +217,8 @@ class Model:
         return self.opening is not None
 
     def bond_parameters(self, chain) -> np.ndarray:
-        """The engines' bond parameter array (MAX_BOND_PARAMETERS, N+1): the model's rows, then
-        zeros.
+        """The engines' bond parameter array (MAX_BOND_PARAMETERS, bonds): the model's rows, then
+        zeros; a chain's N + 1 bonds, a square lattice's in the order of ``geometry.bonds()``.
 
         Parameters
         ----------
@@ -232,7 +232,7 @@ class Model:
             law reads them; the rows beyond the model's zero.
         """
         rows = self.parameters(chain)
-        out = np.zeros((MAX_BOND_PARAMETERS, chain.N + 1))
+        out = np.zeros((MAX_BOND_PARAMETERS, chain.geometry.n_bonds))
         for i, row in enumerate(rows):
             out[i] = row
         return out
