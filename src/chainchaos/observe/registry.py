@@ -377,7 +377,8 @@ def study_observables() -> list[str]:
     list of str
         Their names, in file order.
     """
-    return [name for name in OBSERVABLES if REGISTRY[name].dims == ("time",) and not REGISTRY[name].needs & {SPECTRUM, GAPS}]
+    return [name for name, o in REGISTRY.items()  # with the observables of one's own registered (observe.own)
+            if o.selectable and o.dims == ("time",) and not o.needs & {SPECTRUM, GAPS}]
 
 
 def model_observables(model: str) -> tuple:

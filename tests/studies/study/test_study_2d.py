@@ -53,3 +53,37 @@ def test_a_bad_shape_block_or_boundary_is_named_before_anything_runs(lattice, ex
         spec["integration"] = {"dt": 0.05, "t_final": 50.0}
     with pytest.raises(StudyError, match=message.replace("[", r"\[").replace("]", r"\]")):
         load_study(spec)
+
+
+def test_an_observable_of_one_s_own_from_one_file_is_kept_per_orbit():
+    """examples/anisotropy.py:ANISOTROPY named in a spec: loaded, checked on a short orbit,
+    registered, and kept per orbit; a square 3 x 3 block starts round (A = 0 to rounding)."""
+    from pathlib import Path
+
+    examples = Path(__file__).resolve().parents[3] / "examples"
+    spec = {**SPEC, "directory": str(examples),
+            "observables": ["participation", "second_moment", "anisotropy.py:ANISOTROPY", "mlce"]}
+    study = load_study(spec)
+    assert "anisotropy" in study.observables
+    ds = run_study(spec)
+    a = ds["anisotropy"].isel(model=0, energy=0, lane=0)
+    assert abs(float(a.isel(time=0, realization=0))) < 1e-12
+    assert np.all(np.abs(a.values) <= 1.0)
+
+
+@pytest.mark.parametrize("reference, message", [
+    ("anisotropy.py:NOPE", "the name of a chainchaos Observable"),
+    ("missing.py:ANISOTROPY", "an existing Python file"),
+    ("bad_observable.py:BAD", "a compute\\(run\\) that runs"),
+])
+def test_an_observable_of_one_s_own_that_does_not_fit_is_named_before_the_run(reference, message, tmp_path):
+    from pathlib import Path
+
+    examples = Path(__file__).resolve().parents[3] / "examples"
+    (tmp_path / "bad_observable.py").write_text(
+        "from chainchaos.observe.registry import Observable\n"
+        "BAD = Observable(name='bad', dims=('time',), label='b', long_name='fails', compute=lambda run: 1 / 0)\n")
+    directory = tmp_path if reference.startswith("bad") else examples
+    spec = {**SPEC, "directory": str(directory), "observables": ["participation", reference]}
+    with pytest.raises(StudyError, match=message):
+        load_study(spec)

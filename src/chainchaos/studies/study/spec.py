@@ -24,7 +24,8 @@ from chainchaos.engine.integrators import SCHEMES
 from chainchaos.engine.model_checks import load_model
 from chainchaos.engine.split_schemes import SPLIT_SCHEMES
 from chainchaos.errors import ParameterError, StudyError
-from chainchaos.observe.registry import study_observables
+from chainchaos.observe.own import OWN, check_observable, is_reference, load_observable
+from chainchaos.observe.registry import REGISTRY, study_observables
 from chainchaos.project import project_root
 from chainchaos.run.orbits import ALIGNMENT_SERIES, Orbit
 from chainchaos.run.window import Window
@@ -193,6 +194,27 @@ def _with_model_names(raw: dict, directory: str) -> dict:
     return {**raw, "lattice": {**raw["lattice"], "model": names[0] if isinstance(model, str) else names}}
 
 
+def _observable_errors(raw: dict, directory: str) -> list[str]:
+    """The study's observables of its own (``file.py:NAME``, ``module:NAME``), loaded, checked
+    and registered (``observe.own.load_observable``): one line per observable that cannot be."""
+    errors = []
+    for name in raw.get("observables") or []:
+        if is_reference(name):
+            try:
+                load_observable(name, directory)
+            except ParameterError as err:
+                errors.append(f"study key observables = {name!r}: allowed is {err.allowed}")
+    return errors
+
+
+def _with_observable_names(raw: dict) -> dict:
+    """``raw`` with its observables of its own named by their registered names, for the schema."""
+    if not any(name in OWN.values() for name in raw.get("observables") or []):
+        return raw
+    names = {reference: name for name, reference in OWN.items()}
+    return {**raw, "observables": [names.get(o, o) for o in raw["observables"]]}
+
+
 def load_study(source, root: Path | None = None, *, read_files: bool = True) -> "Study":
     """The ``Study`` of ``source``, checked against the study schema.
 
@@ -239,10 +261,10 @@ def load_study(source, root: Path | None = None, *, read_files: bool = True) -> 
     name, raw = _read(source, root)
     raw = _merged(raw, root)
     directory = str(_directory(source, root))
-    schema = load_schema(SCHEMA)
-    errors = _model_errors(raw, directory)
-    errors = errors or schema_errors(_with_model_names(raw, directory), schema, "study key") or nonfinite_errors(
-        raw, what="study key")
+    errors = _model_errors(raw, directory) + _observable_errors(raw, directory)
+    schema = load_schema(SCHEMA)  # after one's own models and observables are registered: the schema allows them
+    errors = errors or schema_errors(_with_observable_names(_with_model_names(raw, directory)), schema,
+                                     "study key") or nonfinite_errors(raw, what="study key")
     if errors:
         raise StudyError(errors)
     spec = _defaults(schema, raw)
@@ -332,8 +354,10 @@ class Study:
 
     @property
     def observables(self) -> list[str]:
-        """The per-orbit series the study keeps (``observables``), each once."""
-        return list(dict.fromkeys(self.spec["observables"]))
+        """The per-orbit series the study keeps (``observables``; one of its own by its registered
+        name), each once."""
+        names = {reference: name for name, reference in OWN.items()}
+        return list(dict.fromkeys(names.get(o, o) for o in self.spec["observables"]))
 
     @property
     def alignment(self) -> bool:
@@ -516,6 +540,10 @@ class Study:
             for name in self.observables:
                 if name not in allowed:
                     raise ParameterError("observable", name, f"one of {allowed}")
+            if read_files and known_chain:  # one's own, on a short orbit, before anything is integrated
+                for name in self.observables:
+                    if name in OWN:
+                        check_observable(REGISTRY[name], self.models[0], self.lattices(self.models[0])[0])
 
 
         def figures():

@@ -1,0 +1,121 @@
+"""An observable of one's own: a function of the sampled run, in one file, named in a study file.
+
+A file defines an :class:`~chainchaos.observe.registry.Observable` with dims ``("time",)``, e.g.
+
+    from chainchaos.observe.registry import Observable
+    ANISOTROPY = Observable(name="anisotropy", dims=("time",), long_name="...", label=r"$A$",
+                            compute=lambda run: ...)
+
+and a study names it among its ``observables`` as ``"file.py:ANISOTROPY"`` (a file, relative to the
+study file's folder, else to the working directory) or ``"package.module:ANISOTROPY"``, as it
+names a model of its own. :func:`load_observable` imports it, checks what it is and registers it
+under its name (``observe.registry.REGISTRY``): the study's jobs then keep it per orbit beside the
+package's series. :func:`check_observable` runs it on a short orbit of a model before a study
+integrates anything: a compute that fails, or does not give one float per sample (NaN where it is
+not defined, as Lambda at t = 0), is named then.
+``compute(run)`` gets a :class:`~chainchaos.observe.registry.SampledRun` (its states ``Q``, ``P``
+(S, N), ``density``, ``times``, its lattice ``run.chain`` and ``run.chain.geometry``).
+"""
+
+import importlib
+
+import numpy as np
+
+from chainchaos.errors import ParameterError, require
+from chainchaos.observe.registry import REGISTRY, Observable
+
+#: The observables of one's own registered in this process, by name: the reference each came from.
+OWN: dict[str, str] = {}
+
+
+def is_reference(name: str) -> bool:
+    """Whether an entry of a study's ``observables`` names an observable of one's own
+    (``where:NAME``) rather than one of the registry."""
+    from chainchaos.engine.model_checks import _REFERENCE
+
+    return isinstance(name, str) and name not in REGISTRY and _REFERENCE.match(name) is not None
+
+
+def load_observable(reference: str, relative_to=None) -> Observable:
+    """The observable ``reference`` names (``"file.py:NAME"`` or ``"package.module:NAME"``),
+    checked and registered under its name.
+
+    Parameters
+    ----------
+    reference : str
+        Where it is defined.
+    relative_to : path, optional
+        The folder of the study file that names it.
+
+    Returns
+    -------
+    Observable
+        The registered observable.
+
+    Raises
+    ------
+    ParameterError
+        For a reference that cannot be imported or names no Observable, one that is not a time
+        series, or a name the registry already gives another observable.
+    """
+    from pathlib import Path
+
+    from chainchaos.engine.model_checks import _REFERENCE, _module_of_file
+
+    match = _REFERENCE.match(reference) if isinstance(reference, str) else None
+    require(match is not None, "observable", reference, "a name of the registry, or 'file.py:NAME' or 'module:NAME'")
+    where, name = match["where"], match["name"]
+    try:
+        if where.endswith(".py"):
+            path = Path(where)
+            if relative_to is not None and (Path(relative_to) / path).is_file():
+                path = Path(relative_to) / path
+            require(path.is_file(), "observable", reference, f"an existing Python file before ':' (no file {path})")
+            module = _module_of_file(path)
+        else:
+            module = importlib.import_module(where)
+    except ImportError as err:
+        raise ParameterError("observable", reference, f"an importable module before ':' ({err})") from None
+    found = getattr(module, name, None)
+    require(isinstance(found, Observable), "observable", reference,
+            f"the name of a chainchaos Observable in {where} (found {type(found).__name__})")
+    require(found.dims == ("time",) and not found.needs - {"tangent", "norm"}, "observable", reference,
+            "an Observable with dims ('time',) that needs at most the tangent map (a series of the study's orbits)")
+    known = REGISTRY.get(found.name)
+    require(known is None or OWN.get(found.name) == reference, "observable", reference,
+            f"a name the registry does not give another observable (not {found.name!r})")
+    REGISTRY[found.name] = found
+    OWN[found.name] = reference
+    return found
+
+
+def check_observable(observable: Observable, model, lattice) -> None:
+    """Run ``observable`` on a short orbit of ``model`` on ``lattice`` (a few steps from one
+    displaced site) and require a float per sample, not all NaN.
+
+    Raises
+    ------
+    ParameterError
+        Naming the observable and what it gave.
+    """
+    from chainchaos.engine.problem import Problem
+    from chainchaos.run.driver import sample, sample_steps
+
+    N = lattice.N
+    q, p = np.zeros((N, 1)), np.zeros((N, 1))
+    q[N // 2] = 0.3
+    dq, dp = np.zeros((N, 1)), np.full((N, 1), 1.0 / np.sqrt(N))
+    problem = Problem(model, [lattice], dt=0.01, check_every=10)
+    samples = sample(problem, q, p, dq, dp, sample_steps(0.1, 0.01, 2, 0.05))
+    run = samples.run(0, np.concatenate([dq[:, 0], dp[:, 0]]))
+    try:
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # as the study's jobs compute it
+            values = np.asarray(observable.compute(run), dtype=float)
+    except Exception as err:  # the user's code: whatever it raises is reported as its failure
+        raise ParameterError("observable", observable.name, f"a compute(run) that runs ({type(err).__name__}: {err})")
+    require(values.shape == run.times.shape and bool(np.any(np.isfinite(values))), "observable", observable.name,
+            f"a float per sample (NaN where it is not defined), shape {run.times.shape}, not all NaN "
+            f"(got shape {values.shape})")
+
+
+__all__ = ["OWN", "check_observable", "is_reference", "load_observable"]
