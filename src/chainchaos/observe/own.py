@@ -10,16 +10,14 @@ and a study names it among its ``observables`` as ``"file.py:ANISOTROPY"`` (a fi
 study file's folder, else to the working directory) or ``"package.module:ANISOTROPY"``, as it
 names a model of its own. :func:`load_observable` imports it, checks what it is and registers it
 under its name (``observe.registry.REGISTRY``): the study's jobs then keep it per orbit beside the
-package's series. :func:`check_observable` runs it on a short orbit of a model before a study
-integrates anything: a compute that fails, or does not give one float per sample (NaN where it is
-not defined, as Lambda at t = 0), is named then.
+package's series. A study runs it on a short orbit of its model before it integrates anything
+(``studies.study.spec``): a compute that fails, or does not give one float per sample (NaN where it
+is not defined, as Lambda at t = 0), is named then.
 ``compute(run)`` gets a :class:`~chainchaos.observe.registry.SampledRun` (its states ``Q``, ``P``
 (S, N), ``density``, ``times``, its lattice ``run.chain`` and ``run.chain.geometry``).
 """
 
 import importlib
-
-import numpy as np
 
 from chainchaos.errors import ParameterError, require
 from chainchaos.observe.registry import REGISTRY, Observable
@@ -89,33 +87,4 @@ def load_observable(reference: str, relative_to=None) -> Observable:
     return found
 
 
-def check_observable(observable: Observable, model, lattice) -> None:
-    """Run ``observable`` on a short orbit of ``model`` on ``lattice`` (a few steps from one
-    displaced site) and require a float per sample, not all NaN.
-
-    Raises
-    ------
-    ParameterError
-        Naming the observable and what it gave.
-    """
-    from chainchaos.engine.problem import Problem
-    from chainchaos.run.driver import sample, sample_steps
-
-    N = lattice.N
-    q, p = np.zeros((N, 1)), np.zeros((N, 1))
-    q[N // 2] = 0.3
-    dq, dp = np.zeros((N, 1)), np.full((N, 1), 1.0 / np.sqrt(N))
-    problem = Problem(model, [lattice], dt=0.01, check_every=10)
-    samples = sample(problem, q, p, dq, dp, sample_steps(0.1, 0.01, 2, 0.05))
-    run = samples.run(0, np.concatenate([dq[:, 0], dp[:, 0]]))
-    try:
-        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # as the study's jobs compute it
-            values = np.asarray(observable.compute(run), dtype=float)
-    except Exception as err:  # the user's code: whatever it raises is reported as its failure
-        raise ParameterError("observable", observable.name, f"a compute(run) that runs ({type(err).__name__}: {err})")
-    require(values.shape == run.times.shape and bool(np.any(np.isfinite(values))), "observable", observable.name,
-            f"a float per sample (NaN where it is not defined), shape {run.times.shape}, not all NaN "
-            f"(got shape {values.shape})")
-
-
-__all__ = ["OWN", "check_observable", "is_reference", "load_observable"]
+__all__ = ["OWN", "is_reference", "load_observable"]

@@ -23,8 +23,8 @@ import numpy as np
 from chainchaos.engine.integrators import SCHEMES
 from chainchaos.engine.model_checks import load_model
 from chainchaos.engine.split_schemes import SPLIT_SCHEMES
-from chainchaos.errors import ParameterError, StudyError
-from chainchaos.observe.own import OWN, check_observable, is_reference, load_observable
+from chainchaos.errors import ParameterError, StudyError, require
+from chainchaos.observe.own import OWN, is_reference, load_observable
 from chainchaos.observe.registry import REGISTRY, study_observables
 from chainchaos.project import project_root
 from chainchaos.run.orbits import ALIGNMENT_SERIES, Orbit
@@ -213,6 +213,35 @@ def _with_observable_names(raw: dict) -> dict:
         return raw
     names = {reference: name for name, reference in OWN.items()}
     return {**raw, "observables": [names.get(o, o) for o in raw["observables"]]}
+
+
+def check_observable(observable, model, lattice) -> None:
+    """Run an observable of one's own (``observe.own``) on a short orbit of ``model`` on ``lattice`` (a few steps from one
+    displaced site) and require a float per sample, not all NaN.
+
+    Raises
+    ------
+    ParameterError
+        Naming the observable and what it gave.
+    """
+    from chainchaos.engine.problem import Problem
+    from chainchaos.run.driver import sample, sample_steps
+
+    N = lattice.N
+    q, p = np.zeros((N, 1)), np.zeros((N, 1))
+    q[N // 2] = 0.3
+    dq, dp = np.zeros((N, 1)), np.full((N, 1), 1.0 / np.sqrt(N))
+    problem = Problem(model, [lattice], dt=0.01, check_every=10)
+    samples = sample(problem, q, p, dq, dp, sample_steps(0.1, 0.01, 2, 0.05))
+    run = samples.run(0, np.concatenate([dq[:, 0], dp[:, 0]]))
+    try:
+        with np.errstate(invalid="ignore", divide="ignore", over="ignore"):  # as the study's jobs compute it
+            values = np.asarray(observable.compute(run), dtype=float)
+    except Exception as err:  # the user's code: whatever it raises is reported as its failure
+        raise ParameterError("observable", observable.name, f"a compute(run) that runs ({type(err).__name__}: {err})")
+    require(values.shape == run.times.shape and bool(np.any(np.isfinite(values))), "observable", observable.name,
+            f"a float per sample (NaN where it is not defined), shape {run.times.shape}, not all NaN "
+            f"(got shape {values.shape})")
 
 
 def load_study(source, root: Path | None = None, *, read_files: bool = True) -> "Study":
