@@ -16,6 +16,7 @@ import yaml
 from chainchaos.errors import KeptFileError
 from chainchaos.paper import panels
 from chainchaos.records import kept
+from chainchaos.run.scenes import SceneParameters
 from chainchaos.workflow import plan
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -32,7 +33,7 @@ def config(**overrides):
 def test_scene_run_takes_the_simulation_block_and_the_scene_override():
     overridden = config(scenes={"hertz_H1.8": {"dt": 2.5e-4}})
     for name, scene in panels.scenes().items():
-        run = plan.scene_run(overridden, name)
+        run = SceneParameters(**plan.scene_run(overridden, name))
         assert (run.name, run.model, run.energy) == (name, scene.model, scene.energy)
         assert run.dt == (2.5e-4 if name == "hertz_H1.8" else CONFIG["simulation"]["dt"])
         assert set(panels.scene_observables(name)) <= set(run.observables)

@@ -158,6 +158,8 @@ def test_compute_ensemble_honours_every_key_of_the_ensemble_block(tmp_path):
 
 def test_simulate_scene_writes_the_scene_as_simulate_integrates_it(tmp_path):
     """The job of one scene writes the Dataset of chainchaos.run.scenes.simulate, to the bit."""
+    from dataclasses import asdict
+
     from chainchaos.records.io import chain_dataset, write_netcdf
     from chainchaos.run.scenes import SceneParameters, simulate
     from chainchaos.system.chain import random_chain
@@ -168,7 +170,8 @@ def test_simulate_scene_writes_the_scene_as_simulate_integrates_it(tmp_path):
                             excited_site=6, observables=("participation", "mlce"), name="fput_H1.8")
     output = str(tmp_path / "scenes" / "fput_H1.8.nc")
     run(fake_rule("simulate_scene", tmp_path / "log", input={"chain": str(chain_file), "kernels": []},
-                  output={"scene": output}, params={"scene": scene}, wildcards={"scene": scene.name}), simulate_scene)
+                  output={"scene": output}, params={"scene": asdict(scene)}, wildcards={"scene": scene.name}),
+        simulate_scene)
     written, alone = xr.load_dataset(output), simulate(chain, scene)
     assert set(written.data_vars) == set(alone.data_vars)
     for name in alone.data_vars:

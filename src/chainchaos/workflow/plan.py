@@ -18,10 +18,11 @@ without Snakemake:
 """
 
 import math
+from dataclasses import asdict
 from pathlib import Path
 
 from chainchaos.paper import panels
-from chainchaos.run.scenes import SceneParameters, scene_parameters
+from chainchaos.run.scenes import scene_parameters
 
 #: Kept results a run can make when config ``keep`` names them (a study's name keeps its groups).
 KEPT_PRODUCTS = ("search_full", "search_rejudge", "disorder_full")
@@ -88,10 +89,12 @@ def kept_study_check(name: str, kept_root) -> dict:
 # ---- the paper's scenes and figures --------------------------------------------------------------
 
 
-def scene_run(config: dict, name: str) -> SceneParameters:
-    """Scene ``name`` of the paper as the config runs it: the settings of every scene (config
-    ``simulation``), its own overrides (config ``scenes.<name>``) and the observables its panels
-    use. One job per scene (rule simulate_scene).
+def scene_run(config: dict, name: str) -> dict:
+    """Scene ``name`` of the paper as the config runs it, as its job's params: the settings of
+    every scene (config ``simulation``), its own overrides (config ``scenes.<name>``) and the
+    observables its panels use, validated (``run.scenes.SceneParameters``) and given as the
+    dataclass's fields, built-in types that Snakemake records, so that a changed setting reruns
+    the scene. One job per scene (rule simulate_scene).
 
     Parameters
     ----------
@@ -102,11 +105,12 @@ def scene_run(config: dict, name: str) -> SceneParameters:
 
     Returns
     -------
-    SceneParameters
-        The scene, validated.
+    dict
+        The keywords of its ``SceneParameters``.
     """
-    return scene_parameters(config["simulation"], config.get("scenes", {}).get(name, {}),
-                            panels.scenes()[name], name, panels.scene_observables(name))
+    scene = scene_parameters(config["simulation"], config.get("scenes", {}).get(name, {}),
+                             panels.scenes()[name], name, panels.scene_observables(name))
+    return asdict(scene)
 
 
 def paper_targets(results: str) -> list[str]:

@@ -216,8 +216,17 @@ def _with_observable_names(raw: dict) -> dict:
 
 
 def check_observable(observable, model, lattice) -> None:
-    """Run an observable of one's own (``observe.own``) on a short orbit of ``model`` on ``lattice`` (a few steps from one
-    displaced site) and require a float per sample, not all NaN.
+    """Run an observable of one's own (``observe.own``) on a short orbit of ``model`` on
+    ``lattice`` (a few steps from one displaced site) and require a float per sample, not all NaN.
+
+    Parameters
+    ----------
+    observable : chainchaos.observe.registry.Observable
+        The observable.
+    model : str or Model
+        A model of the study.
+    lattice : Chain, KGLattice or DNLSLattice
+        A lattice of the study (a realization of it).
 
     Raises
     ------

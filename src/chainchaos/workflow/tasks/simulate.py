@@ -5,7 +5,7 @@ import time
 
 from chainchaos.records.io import read_chain, write_netcdf, write_text
 from chainchaos.run.progress import ProgressReporter
-from chainchaos.run.scenes import simulate
+from chainchaos.run.scenes import SceneParameters, simulate
 from chainchaos.run.warmup import warm_up
 
 
@@ -20,6 +20,6 @@ def compile_kernels(inputs, outputs, params, wildcards) -> None:
 
 def simulate_scene(inputs, outputs, params, wildcards) -> None:
     """One scene of the paper (rule simulate_scene), written to its file."""
-    scene = params["scene"]  # SceneParameters, built and checked when the workflow was read
+    scene = SceneParameters(**params["scene"])  # its fields, checked when the workflow was read
     chain = read_chain(inputs["chain"])
     write_netcdf(simulate(chain, scene, ProgressReporter(scene.name, scene.t_final, every=10.0)), outputs["scene"])
