@@ -163,6 +163,11 @@ def _hop_block(shape2, pad, Z, row, y, x, c):
     two of a row's quantities (the pad rows hold zero; row 0 stands for a neighbour beyond the
     end of a line)."""
     nx, ny = shape2
+    if ny == 1:  # a chain: the pad rows are its ends, no branch in the loop
+        for r in range(pad, nx + pad):
+            base = r * row
+            vstore(Z, base + y, vload(Z, base + y) + c * (vload(Z, base - row + x) + vload(Z, base + row + x)))
+        return
     for j in range(ny):
         for i in range(nx):
             base = (j * nx + i + pad) * row
