@@ -65,17 +65,26 @@ def _hop(y, x, c, shape2):
     """y_l += c (sum of x over l's neighbours), x = 0 beyond the edges, on the lattice of
     ``shape2`` = (Nx, Ny): B(t) with (y, x, c) = (p, q, t), C(t) with (q, p, -t)."""
     nx, ny = shape2
-    for j in range(ny):
+    if ny == 1:
         left = 0.0
-        for i in range(nx):
-            n = j * nx + i
-            right = x[n + 1] if i + 1 < nx else 0.0
+        for n in range(nx):
+            right = x[n + 1] if n + 1 < nx else 0.0
             here = x[n]
-            around = left + right
-            if ny > 1:
-                around = around + ((x[n - nx] if j > 0 else 0.0) + (x[n + nx] if j + 1 < ny else 0.0))
-            y[n] = y[n] + c * around
+            y[n] = y[n] + c * (left + right)
             left = here
+        return
+    zero = np.zeros(nx)  # the line beyond an edge
+    for j in range(ny):
+        first = j * nx
+        line, out = x[first:first + nx], y[first:first + nx]
+        below = x[first - nx:first] if j > 0 else zero
+        above = x[first + nx:first + 2 * nx] if j + 1 < ny else zero
+        last = nx - 1  # the line's ends: a zero beyond them
+        out[0] = out[0] + c * ((0.0 + (line[1] if nx > 1 else 0.0)) + (below[0] + above[0]))
+        if last > 0:
+            out[last] = out[last] + c * ((line[last - 1] + 0.0) + (below[last] + above[last]))
+        for i in range(1, last):
+            out[i] = out[i] + c * ((line[i - 1] + line[i + 1]) + (below[i] + above[i]))
 
 
 @njit(cache=True, error_model="numpy")
