@@ -1,6 +1,6 @@
 """The growing window on the square DNLS lattice: the cost of a run follows its packet, not its lattice.
 
-    python benchmarks/window_2d.py [--L 101 201 401] [--steps 2000] [--lanes 8] [--repeats 2]
+    python benchmarks/window_2d.py [--L 101 201 401] [--steps 1000] [--lanes 1] [--repeats 1]
     python benchmarks/record.py window_2d -- [the same options]
 
 A line naming the machine, then one table: the disordered DNLS lattice of L x L sites
@@ -54,9 +54,9 @@ def timed(make, steps: int, repeats: int):
 def parse(argv=None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--L", type=int, nargs="+", default=[101, 201, 401])
-    parser.add_argument("--steps", type=int, default=2000)
-    parser.add_argument("--lanes", type=int, default=8)
-    parser.add_argument("--repeats", type=int, default=2)
+    parser.add_argument("--steps", type=int, default=1000)
+    parser.add_argument("--lanes", type=int, default=1)
+    parser.add_argument("--repeats", type=int, default=1)
     return parser.parse_args(argv)
 
 
