@@ -64,10 +64,11 @@ def test_the_rotation_keeps_every_site_s_norm_and_the_hopping_parts_do_not():
     assert abs(norm(q2, p2) - norm(*packet(16, 1))) > 1e-3
 
 
-def observed_order(scheme, quantity):
-    """log2 of the ratio of the largest errors of H or S over t <= 10 at steps dt and dt/2."""
-    lattice = dnls_chain(5, 4.0, 12, beta=1.0)
-    q0, p0 = packet(12, 5, 0.6)
+def observed_order(scheme, quantity, lattice=None):
+    """log2 of the ratio of the largest errors of H or S over t <= 10 at steps dt and dt/2, on
+    ``lattice`` (default a DNLS chain of 12 sites)."""
+    lattice = dnls_chain(5, 4.0, 12, beta=1.0) if lattice is None else lattice
+    q0, p0 = packet(lattice.N, 5, 0.6)
     reference = {"energy": lambda q, p: split_energy(DNLS, lattice, q, p), "norm": norm}[quantity]
     dt0 = {2: 0.02, 4: 0.05, 6: 0.1, 8: 0.1}[SPLIT_SCHEMES[scheme].order]
     errors = []

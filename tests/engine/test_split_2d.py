@@ -6,35 +6,14 @@ a lattice equal to its transpose, and the batch engine equal to the single one, 
 
 import numpy as np
 import pytest
+from engine.test_split import DNLS, observed_order, packet, run  # the chain's helpers: they read the lattice's shape
 
 from chainchaos.engine.problem import Problem
-from chainchaos.engine.split import advance_split
 from chainchaos.engine.split_schemes import SPLIT_SCHEMES
 from chainchaos.errors import ParameterError
 from chainchaos.system.chain import DNLSLattice, dnls_chain, dnls_lattice
 from chainchaos.system.geometry import Geometry, adjacency
-from chainchaos.system.models import MODELS
 from chainchaos.system.models.split import norm, split_energy
-
-DNLS = MODELS["dnls"]
-
-
-def run(lattice, q, p, scheme, dt, steps, dq=None, dp=None):
-    """(q, p, dq, dp, ln growth) after ``steps`` steps on the single engine."""
-    q, p = np.array(q, dtype=float), np.array(p, dtype=float)
-    tangent = dq is not None
-    dq = np.zeros_like(q) if dq is None else np.array(dq, dtype=float)
-    dp = np.zeros_like(p) if dp is None else np.array(dp, dtype=float)
-    s = SPLIT_SCHEMES[scheme]
-    diagnostics = np.zeros(2)
-    assert advance_split(DNLS, q, p, dq, dp, DNLS.site_parameters(lattice), lattice.geometry.shape2, s.parts,
-                         s.coefficients, dt, steps, tangent, 10**9, diagnostics) == -1
-    return q, p, dq, dp, diagnostics[0]
-
-
-def packet(N, seed, amplitude=1.0):
-    rng = np.random.default_rng(seed)
-    return amplitude * rng.normal(size=N), amplitude * rng.normal(size=N)
 
 
 def linear_matrix(lattice):
@@ -88,27 +67,11 @@ def test_the_energy_kernel_is_the_hamiltonian_of_the_lattice():
         assert abs(split_energy(DNLS, lattice, q, p) - expected) < 1e-12 * abs(expected)
 
 
-def observed_order(scheme, quantity):
-    """log2 of the ratio of the largest errors of H or S over t <= 10 at steps dt and dt/2."""
-    lattice = dnls_lattice(5, 4.0, (4, 3), beta=1.0)
-    q0, p0 = packet(lattice.N, 5, 0.6)
-    reference = {"energy": lambda q, p: split_energy(DNLS, lattice, q, p), "norm": norm}[quantity]
-    dt0 = {2: 0.02, 4: 0.05, 6: 0.1, 8: 0.1}[SPLIT_SCHEMES[scheme].order]
-    errors = []
-    for dt in (dt0, dt0 / 2):
-        q, p, worst = q0, p0, 0.0
-        chunk = int(round(0.5 / dt))
-        for _ in range(20):
-            q, p, *_ = run(lattice, q, p, scheme, dt, chunk)
-            worst = max(worst, abs(reference(q, p) - reference(q0, p0)))
-        errors.append(worst)
-    return np.log2(errors[0] / errors[1])
-
-
 @pytest.mark.parametrize("scheme", ["ABC2", "s9ABC6", "s11ABC6", "s17ABC8"])
 @pytest.mark.parametrize("quantity", ["energy", "norm"])
 def test_every_scheme_has_its_order_on_the_square_lattice(scheme, quantity):
-    assert abs(observed_order(scheme, quantity) - SPLIT_SCHEMES[scheme].order) < 0.5
+    lattice = dnls_lattice(5, 4.0, (4, 3), beta=1.0)
+    assert abs(observed_order(scheme, quantity, lattice) - SPLIT_SCHEMES[scheme].order) < 0.5
 
 
 def test_tangent_map_is_the_derivative_of_the_flow_on_the_square_lattice():

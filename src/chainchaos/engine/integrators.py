@@ -194,6 +194,20 @@ def _renormalise(dq, dp):
     return ln(norm)
 
 
+@njit(cache=True)
+def _check(q, p, dq, dp, tangent, diagnostics):
+    """A check of one trajectory's arrays (every ``check_every`` steps and at the end of a call):
+    the deviation vector renormalised with ``tangent``, ln of its norm added to diagnostics[0];
+    returns whether the state (and the vector's first component) is finite."""
+    s = 0.0
+    for n in range(q.shape[0]):
+        s += q[n] + p[n]
+    if tangent:
+        diagnostics[0] += _renormalise(dq, dp)
+        s += dq[0]
+    return np.isfinite(s)
+
+
 #: The rows of the single engine's work buffer, all indexed alike and padded to whole vectors:
 #: displacements U and deviations DQ with the walls (U[0] = U[N+1] = 0, beads at 1..N), momenta
 #: P, DP and inverse masses IM of the beads at 1..N, bond force F and stiffness K and the bond

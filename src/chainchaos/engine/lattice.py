@@ -23,7 +23,7 @@ import numpy as np
 from numba import njit
 
 from chainchaos.engine.batch import Batch
-from chainchaos.engine.integrators import _renormalise
+from chainchaos.engine.integrators import _check
 from chainchaos.errors import require
 from chainchaos.system.models.base import bond_force, bond_force_stiffness, site_kick, site_kick_deviation
 
@@ -92,16 +92,10 @@ def advance_lattice(model, q, p, dq, dp, inv_mass, bonds, ends, sites, kicks, dr
             if c != 0.0:
                 _forces(model, q, dq, bonds, ends, tangent, F, G)
                 _kick(model, tangent, q, p, dq, dp, sites, F, G, c)
-        if (step + 1) % check_every == 0 or step + 1 == n_steps:
-            s = 0.0
-            for n in range(N):
-                s += q[n] + p[n]
-            if tangent:
-                diagnostics[0] += _renormalise(dq, dp)
-                s += dq[0]
-            if not np.isfinite(s):
-                bad = step + 1
-                break
+        if ((step + 1) % check_every == 0 or step + 1 == n_steps) and not _check(q, p, dq, dp, tangent,
+                                                                                 diagnostics):
+            bad = step + 1
+            break
     return bad
 
 

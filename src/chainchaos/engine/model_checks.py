@@ -378,6 +378,40 @@ def load_model(model, relative_to: Path | str | None = None) -> Model:
     if match is None:
         raise ParameterError("model", model, f"a model of the registry {sorted(MODELS)}, or one of your own as "
                                              "'package.module:NAME' or 'file.py:NAME'")
+    found, where = referenced(match, relative_to, "model", model)
+    if not isinstance(found, Model):
+        raise ParameterError("model", model, f"the name of a chainchaos Model in {where} (found {type(found).__name__})")
+    return add_model(found)
+
+
+def referenced(match, relative_to, key: str, reference: str):
+    """The object a reference ``where:NAME`` names: ``NAME`` of the file ``where`` (``file.py``,
+    relative to ``relative_to`` if given and the file is there, else to the working directory) or
+    of the importable module ``where``. A model or an observable of one's own is looked up so.
+
+    Parameters
+    ----------
+    match : re.Match
+        :data:`_REFERENCE` matched on the reference.
+    relative_to : path or None
+        The folder of the study file that names it.
+    key : str
+        What the reference is for, as an error names it ("model", "observable").
+    reference : str
+        The reference as given.
+
+    Returns
+    -------
+    found : object or None
+        What the module calls ``NAME`` (None where it has no such name).
+    where : str
+        The file or module.
+
+    Raises
+    ------
+    ParameterError
+        Under ``key``, for a file that does not exist or a module that cannot be imported.
+    """
     where, name = match["where"], match["name"]
     try:
         if where.endswith(".py"):
@@ -385,16 +419,13 @@ def load_model(model, relative_to: Path | str | None = None) -> Model:
             if relative_to is not None and (Path(relative_to) / path).is_file():
                 path = Path(relative_to) / path
             if not path.is_file():
-                raise ParameterError("model", model, f"an existing Python file before ':' (no file {path})")
+                raise ParameterError(key, reference, f"an existing Python file before ':' (no file {path})")
             module = _module_of_file(path)
         else:
             module = importlib.import_module(where)
     except ImportError as err:
-        raise ParameterError("model", model, f"an importable module before ':' ({err})") from None
-    found = getattr(module, name, None)
-    if not isinstance(found, Model):
-        raise ParameterError("model", model, f"the name of a chainchaos Model in {where} (found {type(found).__name__})")
-    return add_model(found)
+        raise ParameterError(key, reference, f"an importable module before ':' ({err})") from None
+    return getattr(module, name, None), where
 
 
 __all__ = ["CHECKS", "ModelCheckError", "add_model", "check_model", "load_model"]

@@ -146,7 +146,7 @@ class Problem:
         """Sites that move: the chains' N, or those of ``sites``."""
         return self.geometry.N
 
-    @property
+    @cached_property
     def geometry(self):
         """The lattice of the moving sites (``system.geometry``): the chains', or the window of
         ``sites`` with a wall beyond each of its edges (the sites beyond are at rest)."""

@@ -31,7 +31,7 @@ import numpy as np
 from numba import njit
 
 from chainchaos.engine.batch import Batch
-from chainchaos.engine.integrators import _aligned_zeros, _renormalise
+from chainchaos.engine.integrators import _aligned_zeros, _check, _renormalise
 from chainchaos.kernels.exactmath import gram_schmidt, sincos
 from chainchaos.kernels.simd import LANES, vload, vstore
 from chainchaos.system.models.split import onsite_frequency
@@ -113,16 +113,10 @@ def advance_split(model, q, p, dq, dp, sites, shape2, parts, coefficients, dt, n
                 _hop(q, p, -t, shape2)
                 if tangent:
                     _hop(dq, dp, -t, shape2)
-        if (step + 1) % check_every == 0 or step + 1 == n_steps:
-            s = 0.0
-            for n in range(q.shape[0]):
-                s += q[n] + p[n]
-            if tangent:
-                diagnostics[0] += _renormalise(dq, dp)
-                s += dq[0]
-            if not np.isfinite(s):
-                bad = step + 1
-                break
+        if ((step + 1) % check_every == 0 or step + 1 == n_steps) and not _check(q, p, dq, dp, tangent,
+                                                                                 diagnostics):
+            bad = step + 1
+            break
     return bad
 
 

@@ -17,9 +17,7 @@ is not defined, as Lambda at t = 0), is named then.
 (S, N), ``density``, ``times``, its lattice ``run.chain`` and ``run.chain.geometry``).
 """
 
-import importlib
-
-from chainchaos.errors import ParameterError, require
+from chainchaos.errors import require
 from chainchaos.observe.registry import REGISTRY, Observable
 
 #: The observables of one's own registered in this process, by name: the reference each came from.
@@ -56,25 +54,11 @@ def load_observable(reference: str, relative_to=None) -> Observable:
         For a reference that cannot be imported or names no Observable, one that is not a time
         series, or a name the registry already gives another observable.
     """
-    from pathlib import Path
-
-    from chainchaos.engine.model_checks import _REFERENCE, _module_of_file
+    from chainchaos.engine.model_checks import _REFERENCE, referenced
 
     match = _REFERENCE.match(reference) if isinstance(reference, str) else None
     require(match is not None, "observable", reference, "a name of the registry, or 'file.py:NAME' or 'module:NAME'")
-    where, name = match["where"], match["name"]
-    try:
-        if where.endswith(".py"):
-            path = Path(where)
-            if relative_to is not None and (Path(relative_to) / path).is_file():
-                path = Path(relative_to) / path
-            require(path.is_file(), "observable", reference, f"an existing Python file before ':' (no file {path})")
-            module = _module_of_file(path)
-        else:
-            module = importlib.import_module(where)
-    except ImportError as err:
-        raise ParameterError("observable", reference, f"an importable module before ':' ({err})") from None
-    found = getattr(module, name, None)
+    found, where = referenced(match, relative_to, "observable", reference)
     require(isinstance(found, Observable), "observable", reference,
             f"the name of a chainchaos Observable in {where} (found {type(found).__name__})")
     require(found.dims == ("time",) and not found.needs - {"tangent", "norm"}, "observable", reference,

@@ -204,7 +204,7 @@ class Chain:
         """Number of moving beads."""
         return self.radius.size
 
-    @property
+    @cached_property
     def geometry(self) -> Geometry:
         """The chain of N beads between two walls (``system.geometry``)."""
         return chain_geometry(self.N)

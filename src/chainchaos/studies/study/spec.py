@@ -502,10 +502,9 @@ class Study:
             Its kind, variable, site (1-based), mode and width (``excitation``).
         """
         e = self.spec["excitation"]
-        centre = tuple((n + 1) // 2 for n in self.geometry.shape) if not self.spec["lattice"]["chain_file"] else None
         site = e["site"]
-        if site == "centre":
-            site = centre if centre and len(centre) == 2 else (self.N + 1) // 2
+        if site == "centre":  # the middle site along each axis
+            site = tuple((n + 1) // 2 for n in self.geometry.shape)
         if self.selected:
             site = self.picks[realization]["site"]
         site = tuple(int(v) for v in site) if isinstance(site, (list, tuple)) else int(site)

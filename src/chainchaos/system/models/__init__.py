@@ -303,8 +303,8 @@ def energy_density(model, chain, u: np.ndarray, p: np.ndarray) -> np.ndarray:
         H = p**2 / (2.0 * chain.mass) + 0.5 * (V[..., :-1] + V[..., 1:])
     else:  # each bond's half to each of its sites (a wall has none)
         H = p**2 / (2.0 * chain.mass)
-        for end in (0, 1):
-            sites = chain.geometry.bonds()[:, end]
+        bonds = chain.geometry.bonds()
+        for sites in bonds.T:  # the bonds' first sites, then their second
             np.add.at(np.moveaxis(H, -1, 0), sites[sites >= 0], np.moveaxis(0.5 * V[..., sites >= 0], -1, 0))
     W = site_potential_energy(model, chain, u)
     if W is not None:
