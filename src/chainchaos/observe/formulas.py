@@ -47,14 +47,16 @@ def second_moment(h: np.ndarray, positions: np.ndarray | None = None) -> np.ndar
 EDGE_MARGIN = 5
 
 
-def edge_energy(h: np.ndarray, margin: int = EDGE_MARGIN) -> np.ndarray:
-    """Fraction of the energy within ``margin`` sites of either end, sum_{n <= margin} h_n +
-    sum_{n > N - margin} h_n (each site counted once): a packet that reaches the fixed ends is no
-    longer spreading into an infinite lattice."""
-    N = h.shape[-1]
-    near = np.zeros(N, dtype=bool)
-    near[:min(margin, N)] = True
-    near[max(N - margin, 0):] = True
+def edge_energy(h: np.ndarray, positions: np.ndarray | None = None, margin: int = EDGE_MARGIN) -> np.ndarray:
+    """Fraction of the energy on the sites within ``margin`` sites of an edge of the lattice, each
+    site counted once: on a chain sum_{n <= margin} h_n + sum_{n > N - margin} h_n, on a square
+    lattice the frame of that width along its four edges. ``positions`` (N, d) the sites'
+    positions counted from 1 (:func:`site_positions`; default the chain's). A packet that reaches
+    the edges is no longer spreading into an infinite lattice."""
+    if positions is None:
+        positions = np.arange(1, h.shape[-1] + 1, dtype=np.float64)[:, None]
+    lengths = positions.max(axis=0)
+    near = np.any((positions <= margin) | (positions > lengths - margin), axis=1)
     return exactmath.matmul(h, near.astype(np.float64))
 
 
