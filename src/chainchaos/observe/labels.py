@@ -28,5 +28,6 @@ LABELS = {
     "frequency": r"$\omega_k$ [$\omega_{\max}$]",
     "energy_error": r"$|\Delta H| / H$",
     "norm_density": r"$z_n$",
+    "density": r"$h_n$ or $z_n$",
     "norm_error": r"$|\Delta S| / S$",
 }

@@ -319,6 +319,9 @@ REGISTRY: dict[str, Observable] = _registry(
     Observable(name="norm_density", dims=("time", "site"),
                long_name="normalised norm density z_n = |psi_n|^2 / sum_m |psi_m|^2 (a split model's)",
                label=LABELS["norm_density"], compute=lambda run: run.norm_density, needs=frozenset({NORM})),
+    Observable(name="density", dims=("time", "site"),
+               long_name="the density P, m2 and zeta are measured on: h_n, or a split model's z_n",
+               label=LABELS["density"], compute=lambda run: run.density, by_default=False),
     Observable(name="norm_error", dims=("time",), long_name="relative norm error |S(t) - S(0)| / S(0)",
                label=LABELS["norm_error"], compute=lambda run: run.norm_error, needs=frozenset({NORM})),
 )

@@ -129,6 +129,8 @@ def test_a_study_whose_figure_lacks_an_observable_is_refused_before_it_runs(figu
     """Each figure a study draws needs its series: without one, the study is refused at once,
     naming the figure and the observable (the figure job would fail after all the work)."""
     figures = {"compare_with": ["hertz100"], "figures": []} if figure == "comparison" else {"figures": [figure]}
+    if figure == "maps":  # maps draw the density at map times, not a series
+        figures["integration"] = {**TINY["integration"], "map_times": [float(TINY["integration"]["t_final"])]}
     load_study({**TINY, **figures})  # the default observables draw every figure
     for missing in FIGURE_OBSERVABLES[figure]:
         observables = [o for o in ("participation", "second_moment", "mlce") if o != missing]

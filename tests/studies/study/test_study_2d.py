@@ -87,3 +87,35 @@ def test_an_observable_of_one_s_own_that_does_not_fit_is_named_before_the_run(re
     spec = {**SPEC, "directory": str(directory), "observables": ["participation", reference]}
     with pytest.raises(StudyError, match=message):
         load_study(spec)
+
+
+def test_density_maps_are_the_sampled_densities_at_the_chosen_times():
+    """integration.map_times: each orbit's density at the sample nearest in log t, every one
+    normalised, and the packet's m2 measured on the map is the one kept at that sample (float32)."""
+    from chainchaos.observe.formulas import second_moment, site_positions
+
+    spec = {**SPEC, "integration": {**SPEC["integration"], "map_times": [1.0, 9.0, 50.0]}}
+    study = load_study(spec)
+    assert "maps" in study.spec["figures"]
+    ds = run_study(spec)
+    maps = ds["density_map"]
+    assert maps.dtype == np.float32 and maps.sizes["site"] == 195
+    times = maps["map_time"].values  # samples, each within half a sample spacing (5 a decade) of its time
+    assert set(times) <= set(ds["time"].values) and times[0] == 1.0 and times[-1] == 50.0
+    assert np.all(np.abs(np.log10(times) - np.log10([1.0, 9.0, 50.0])) <= 0.1 + 0.01)
+    np.testing.assert_allclose(maps.sum("site").values, 1.0, rtol=1e-5)
+    positions = site_positions(study.geometry)
+    for k, t in enumerate(maps["map_time"].values):
+        z = maps.isel(model=0, energy=0, lane=0, map_time=k).values.astype(np.float64)
+        kept = ds["second_moment"].isel(model=0, energy=0, lane=0).sel(time=t).values
+        np.testing.assert_allclose(second_moment(z, positions), kept, rtol=1e-5)
+
+
+@pytest.mark.parametrize("integration, figures, message", [
+    ({"map_times": [100.0]}, None, "integration.map_times = \\[100.0\\]: allowed is times <= t_final = 50"),
+    ({}, ["maps"], "figures = 'maps': allowed is a figure of maps with integration.map_times given"),
+])
+def test_maps_after_the_run_or_without_times_are_named(integration, figures, message):
+    spec = {**SPEC, "integration": {**SPEC["integration"], **integration}, **({"figures": figures} if figures else {})}
+    with pytest.raises(StudyError, match=message):
+        load_study(spec)

@@ -7,6 +7,8 @@
   weak-chaos literature's -0.25);
 - ``fractions``: the fractions of realizations chaotic (by Lambda, and by GALI_k where kept) and
   delocalized against H, with Wilson 95% bands;
+- ``maps``: the density of one orbit (realization 0) at the study's map times, as images on a
+  logarithmic colour scale (a square lattice), or as profiles on a logarithmic axis (a chain);
 - the comparison of several studies: <log10 m2>, <log10 P> and <log10 Lambda> of each (study,
   model, energy) on common axes.
 One column of panels per model.
@@ -15,10 +17,13 @@ One column of panels per model.
 import textwrap
 
 import numpy as np
+from matplotlib.colors import LogNorm
 from matplotlib.figure import Figure
 from matplotlib.ticker import FixedLocator, NullLocator
 
 from chainchaos.output.plotting.style import (
+    MAP_CMAP,
+    MAP_FLOOR,
     PAGE_WIDTH,
     amount_symbol,
     context,
@@ -221,6 +226,72 @@ def comparison_figure(named_stats: dict, title: str = ""):
     return fig
 
 
+def _map_extent(maps: np.ndarray, shape: tuple) -> tuple[slice, slice]:
+    """The smallest square about the lattice's centre holding every site of ``maps`` (flat, over
+    the last axis) at or above MAP_FLOOR, and 2 sites more: the packet, not the empty lattice."""
+    nx, ny = shape
+    above = np.nanmax(maps.reshape(-1, ny, nx), axis=0) >= MAP_FLOOR
+    j, i = np.nonzero(above)
+    if i.size == 0:
+        return slice(0, nx), slice(0, ny)
+    ci, cj = (nx - 1) / 2, (ny - 1) / 2
+    r = int(np.ceil(max(np.abs(i - ci).max(), np.abs(j - cj).max()))) + 2
+    return (slice(max(int(ci) - r, 0), min(int(np.ceil(ci)) + r + 1, nx)),
+            slice(max(int(cj) - r, 0), min(int(np.ceil(cj)) + r + 1, ny)))
+
+
+def maps_figure(stats, title: str = ""):
+    """The density of realization 0 at each map time: a row per (model, energy), a column per
+    time; on a square lattice an image of sites (i, j) on a log colour scale from MAP_FLOOR to 1
+    (one colour bar), on a chain the profile on a logarithmic axis."""
+    maps = stats["density_map"]
+    maps = maps.isel({d: 0 for d in ("realization", "lane") if d in maps.dims}, drop=True)  # a study's every orbit
+    shape = tuple(int(n) for n in np.ravel(stats.attrs.get("lattice_shape", [maps.sizes["site"]])))
+    rows = [(str(m), k, float(e)) for m in stats.model.values for k, e in enumerate(stats.energy.values)]
+    times = maps["map_time"].values
+    with context():
+        if len(shape) == 1:
+            fig = Figure(figsize=(PAGE_WIDTH, 1.0 + 2.0 * len(rows)), layout="constrained")
+            axes = np.atleast_1d(fig.subplots(len(rows), 1, squeeze=False)[:, 0])
+            n = np.arange(1, shape[0] + 1)
+            for ax, (model, k, energy) in zip(axes, rows):
+                for t, profile in zip(times, maps.sel(model=model).isel(energy=k).values):
+                    ax.semilogy(n, np.clip(profile, MAP_FLOOR, None), lw=0.8, label=f"$t = {t:.3g}$")
+                ax.set_ylim(MAP_FLOOR, 1.0)
+                ax.set_xlabel("site $n$")
+                ax.set_ylabel(LABELS_DENSITY[get_model(model).is_split])
+                ax.set_title(scene_label(model, energy), fontsize="small")
+            axes[0].legend(fontsize="x-small")
+        else:
+            fig = Figure(figsize=(PAGE_WIDTH, 0.6 + 1.9 * len(rows)), layout="constrained")
+            axes = fig.subplots(len(rows), times.size, squeeze=False)
+            norm = LogNorm(MAP_FLOOR, 1.0)
+            xs, ys = _map_extent(maps.values, shape)
+            image = None
+            for r, (model, k, energy) in enumerate(rows):
+                for c, t in enumerate(times):
+                    z = maps.sel(model=model).isel(energy=k, map_time=c).values.reshape(shape[1], shape[0])
+                    ax = axes[r, c]
+                    # i to the right, j up, sites counted from 1 as m2 counts them
+                    image = ax.imshow(np.clip(z[ys, xs], MAP_FLOOR, None), norm=norm, cmap=MAP_CMAP, origin="lower",
+                                      interpolation="nearest", extent=(xs.start + 0.5, xs.stop + 0.5,
+                                                                       ys.start + 0.5, ys.stop + 0.5))
+                    ax.set_title(f"$t = {t:.3g}$" + (f"\n{scene_label(model, energy)}" if c == 0 else ""),
+                                 fontsize="small")
+                    ax.set_xlabel("$i$")
+                    if c == 0:
+                        ax.set_ylabel("$j$")
+            bar = fig.colorbar(image, ax=axes, shrink=0.9, aspect=30)
+            bar.set_label(LABELS_DENSITY[get_model(rows[0][0]).is_split])
+        _title(fig, title, 2)
+    return fig
+
+
+#: The colour bar's label: a bond model's energy density, a split model's norm density.
+LABELS_DENSITY = {False: r"energy density $h_n$", True: r"norm density $z_n$"}
+
+
 def study_figure(kind: str, stats, title: str = ""):
     """The study figure ``kind`` (one of :data:`FIGURES`)."""
-    return {"spreading": spreading_figure, "chaos": chaos_figure, "fractions": fractions_figure}[kind](stats, title)
+    return {"spreading": spreading_figure, "chaos": chaos_figure, "fractions": fractions_figure,
+            "maps": maps_figure}[kind](stats, title)

@@ -58,7 +58,8 @@ _PRESENTATION = ("title", "extends", "figures", "compare_with", "laws")
 #: default is left out of the numbers' key, so that a file kept before the key existed (whose
 #: numbers are those of the default) stays usable.
 ADDED_DEFAULTS = {("lattice", "beta"): 1.0, ("excitation", "phases"): "alternating", ("lattice", "shape"): None,
-                  ("lattice", "boundary"): None}
+                  ("lattice", "boundary"): None,
+                  ("integration", "map_times"): None}
 
 
 def numbers_spec(study) -> dict:
@@ -90,6 +91,18 @@ def kept_series(study) -> list[str]:
                                *(["norm_error"] if split else [])]))
 
 
+#: The attributes of a density map and of its times.
+DENSITY_MAP = {"units": "1", "long_name": "the density P and m2 are measured on (h_n, or a split model's z_n), "
+               "at the map's time; site n = j Nx + i on a square lattice (float32)"}
+MAP_TIME = {"units": "1", "long_name": "time of a density map: the sample nearest in log t to one of integration.map_times"}
+
+
+def map_samples(times: np.ndarray, wanted: list[float]) -> np.ndarray:
+    """Indices of the samples nearest in log t to each of the ``wanted`` times (t = 0 excluded)."""
+    log_t = np.log10(np.where(times > 0, times, np.nan))
+    return np.array([int(np.nanargmin(np.abs(log_t - np.log10(t)))) for t in wanted], dtype=np.int64)
+
+
 def run_group(study, group: int, progress=None) -> xr.Dataset:
     """Integrate one job's orbits of ``study`` (``Study.group_items``) and keep their series and
     verdicts, on the dimension ``orbit`` (with its model, energy index, realization and lane)."""
@@ -118,7 +131,13 @@ def run_group(study, group: int, progress=None) -> xr.Dataset:
         for key, (pick, dtype) in EXCITATION_PICKS.items():
             data[key] = ("orbit", np.array([study.picks[r][pick] for r in index["realization"]], dtype=dtype),
                          EXCITATION[key])
-    ds = xr.Dataset(data, coords={"time": ("time", times, {"units": "1", "long_name": "time", "comment": time_comment(study)})})
+    coords = {"time": ("time", times, {"units": "1", "long_name": "time", "comment": time_comment(study)})}
+    if study.map_times:
+        at = map_samples(times, study.map_times)
+        data["density_map"] = (("orbit", "map_time", "site"), np.stack([run["density"][at] for run in runs]).astype(np.float32),
+                               DENSITY_MAP)
+        coords["map_time"] = ("map_time", times[at], MAP_TIME)
+    ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(study_attrs(study), group=int(group), title=f"{study.title}: one job's orbits",
                     **kept.kept_attrs(group_settings(study, group), STUDY_RESULT_VERSION))
     return ds
@@ -185,6 +204,10 @@ def merge_groups(study, groups: list[xr.Dataset]) -> xr.Dataset:
     for name in kept_series(study):
         data[name] = (("model", "energy", "realization", "lane", "time"), np.full(shape + (times.size,), np.nan),
                       {"units": "1", "long_name": REGISTRY[name].long_name})
+    maps = "density_map" in groups[0]
+    if maps:
+        data["density_map"] = (("model", "energy", "realization", "lane", "map_time", "site"),
+                               np.full(shape + groups[0]["density_map"].shape[1:], np.nan, dtype=np.float32), DENSITY_MAP)
     mi = {m: i for i, m in enumerate(models)}
     for g in groups:
         at = (np.array([mi[str(m)] for m in g["model"].values]), g["energy_index"].values, g["realization"].values,
@@ -198,6 +221,7 @@ def merge_groups(study, groups: list[xr.Dataset]) -> xr.Dataset:
         "lane": ("lane", np.arange(L), {"units": "1", "long_name": "lane j: the initial state times 1 + perturbation xi_j"
                                                                     " (lane 0 unperturbed)"}),
         "time": ("time", times, {"units": "1", "long_name": "time", "comment": time_comment(study)}),
+        **({"map_time": ("map_time", groups[0]["map_time"].values, MAP_TIME)} if maps else {}),
     }
     ds = xr.Dataset(data, coords=coords)
     ds["seed"] = ("realization", np.array(study.seeds, dtype=np.int64),

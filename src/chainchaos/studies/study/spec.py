@@ -25,7 +25,7 @@ from chainchaos.engine.model_checks import load_model
 from chainchaos.engine.split_schemes import SPLIT_SCHEMES
 from chainchaos.errors import ParameterError, StudyError, require
 from chainchaos.observe.own import OWN, is_reference, load_observable
-from chainchaos.observe.registry import REGISTRY, study_observables
+from chainchaos.observe.registry import NORM, REGISTRY, study_observables
 from chainchaos.project import project_root
 from chainchaos.run.orbits import ALIGNMENT_SERIES, Orbit
 from chainchaos.run.window import Window
@@ -92,11 +92,11 @@ def studies_dir() -> Path:
 
 
 #: A study's standard figures (``output.plotting.study``), by name.
-FIGURES = ("spreading", "chaos", "fractions")
+FIGURES = ("spreading", "chaos", "fractions", "maps")
 #: Series every orbit keeps whatever the study asks: P judges delocalization, ln|v| chaos by Lambda.
 JUDGED = ("participation", "log_growth")
 #: The observables each figure draws beyond :data:`JUDGED` (``comparison``: beside other studies).
-FIGURE_OBSERVABLES = {"spreading": ("second_moment",), "chaos": ("mlce",), "fractions": (),
+FIGURE_OBSERVABLES = {"spreading": ("second_moment",), "chaos": ("mlce",), "fractions": (), "maps": (),
                       "comparison": ("second_moment", "mlce")}
 
 
@@ -308,7 +308,8 @@ def load_study(source, root: Path | None = None, *, read_files: bool = True) -> 
     spec = _defaults(schema, raw)
     if "figures" not in raw:  # by default, the standard figures whose series the study computes
         spec["figures"] = [figure for figure in FIGURES
-                           if all(name in spec["observables"] for name in FIGURE_OBSERVABLES[figure])]
+                           if all(name in spec["observables"] for name in FIGURE_OBSERVABLES[figure])
+                           and (figure != "maps" or spec["integration"].get("map_times"))]
     study = Study(name, spec, directory)
     study.check(read_files)
     return study
@@ -396,6 +397,12 @@ class Study:
         name), each once."""
         names = {reference: name for name, reference in OWN.items()}
         return list(dict.fromkeys(names.get(o, o) for o in self.spec["observables"]))
+
+    @property
+    def map_times(self) -> list[float]:
+        """The times at which every orbit's density is kept as a map (``integration.map_times``;
+        empty: none)."""
+        return [float(t) for t in self.spec["integration"].get("map_times") or []]
 
     @property
     def alignment(self) -> bool:
@@ -516,8 +523,9 @@ class Study:
         """The per-orbit series (name -> value where the state is not measured, as
         ``orbits.SERIES``): the ones asked for and the ones the verdicts read."""
         fills = {"log_growth": None, "mlce": None, "log_gali": None, "sali": None, "energy_error": np.inf}
-        return {name: fills.get(name, np.nan) for name in dict.fromkeys([*JUDGED, *self.observables])
-                if name not in ALIGNMENT_SERIES}
+        series = {name: fills.get(name, np.nan) for name in dict.fromkeys([*JUDGED, *self.observables])
+                  if name not in ALIGNMENT_SERIES}
+        return {**series, "density": None} if self.map_times else series
 
     # ---- checks between keys ----------------------------------------------------------------
 
@@ -577,6 +585,11 @@ class Study:
             for name in self.observables:
                 if name not in allowed:
                     raise ParameterError("observable", name, f"one of {allowed}")
+            normed = [name for name in self.observables if NORM in REGISTRY[name].needs]
+            unsplit = [m for m in self.models if not MODELS[m].is_split]
+            if normed and unsplit:  # a norm is a split model's second conserved quantity
+                raise ParameterError("observable", normed[0], f"an observable of the split models (DNLS), not of "
+                                     f"{unsplit}")
             if read_files and known_chain:  # one's own, on a short orbit, before anything is integrated
                 for name in self.observables:
                     if name in OWN:
@@ -585,6 +598,8 @@ class Study:
 
         def figures():
             drawn = [*self.spec["figures"], *(["comparison"] if self.spec["compare_with"] else [])]
+            if "maps" in drawn and not self.map_times:
+                raise ParameterError("figures", "maps", "a figure of maps with integration.map_times given")
             for figure in drawn:
                 missing = [name for name in FIGURE_OBSERVABLES[figure] if name not in self.observables]
                 if missing:
@@ -602,6 +617,11 @@ class Study:
             bound = self.spec["laws"]["walls"]["edge_energy"]
             if bound is not None and "edge_energy" not in self.observables:
                 raise ParameterError("edge_energy", bound, "a bound only with edge_energy among the observables")
+
+        def maps():
+            late = [t for t in self.map_times if t > float(self.spec["integration"]["t_final"])]
+            if late:
+                raise ParameterError("map_times", late, f"times <= t_final = {self.spec['integration']['t_final']:g}")
 
         def window():
             if self.window is not None and self.alignment:
@@ -638,6 +658,7 @@ class Study:
         check("lattice", lattice)
         check("integration", lambda: self.settings)
         check("integration.window", window)
+        check("integration.map_times", maps)
         kind = self.spec["excitation"]["kind"]
         # a site picked by the excitation rule is a bead of the chain (no need to pick it here)
         if not errors and known_chain and not (self.selected and kind == "site"):

@@ -124,6 +124,8 @@ def statistics(merged: xr.Dataset, window_decades: float) -> xr.Dataset:
             "units": "1", "long_name": "realizations whose valid lanes agree"})
         data[f"count_undecided_{flag}"] = (("model", "energy"), (verdict == -1).sum(axis=-1).astype(np.int32), {
             "units": "1", "long_name": "realizations whose valid lanes split"})
+    if "density_map" in merged:  # the maps of one orbit, realization 0's lane 0, for the figure maps
+        data["density_map"] = merged["density_map"].isel(realization=0, lane=0, drop=True)
     out = xr.Dataset(data, coords={k: merged[k] for k in ("model", "energy", "realization", "time")})
     out = out.assign_coords(quantile=("quantile", QUANTILES, {"units": "1", "long_name": "probability of the quantile"}))
     out.attrs.update(slope_window_decades=float(window_decades), confidence_interval="Wilson score interval, 95%",
