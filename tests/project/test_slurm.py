@@ -261,16 +261,28 @@ def test_small_full_search_runs_through_slurm(slurm, tmp_path):
         assert ds.attrs["cost_study_group_jobs"] == 2 * (1 + SURVIVORS)
 
 
+#: A study of square lattices with density maps, through SLURM as a chain's study goes (issue 61).
+SQUARE = """\
+title: a small square Klein-Gordon study of the tests
+lattice: {model: [kg, kg_linear], shape: [11, 9], W: 10.0, realizations: 3}
+excitation: {kind: site, variable: momentum, energies: [0.4]}
+integration: {integrator: ABA864, dt: 0.2, t_final: 100.0, map_times: [10.0, 100.0]}
+observables: [participation, second_moment, mlce]
+jobs: {orbits_per_job: 2}
+"""
+
+
 def test_a_study_runs_through_slurm(slurm, tmp_path):
     """`snakemake --profile profiles/slurm study`: a study's orbit jobs go through SLURM, its
-    merge, statistics and figures run on the submitting host."""
-    from studies.study.test_study_workflow import SMALL
-
-    study, results = tmp_path / "small.yaml", tmp_path / "results"
-    study.write_text(SMALL)
+    merge, statistics and figures run on the submitting host; a study of square lattices with its
+    density maps (the chain's studies go through the same rules)."""
+    study, results = tmp_path / "square.yaml", tmp_path / "results"
+    study.write_text(SQUARE)
     _snakemake_on_slurm(slurm, "--config", f"study={study}", f"results={results}", "--", "study")
-    with xr.open_dataset(results / "studies" / "small" / "statistics.nc") as ds:
-        assert ds.sizes["realization"] == 3 and set(ds.model.values) == {"hertz", "fput"}
+    with xr.open_dataset(results / "studies" / "square" / "statistics.nc") as ds:
+        assert ds.sizes["realization"] == 3 and set(ds.model.values) == {"kg", "kg_linear"}
+        assert list(ds.attrs["lattice_shape"]) == [11, 9] and ds["density_map"].sizes["site"] == 99
+    assert (results / "studies" / "square" / "figures" / "maps.png").stat().st_size > 1000
     comments = subprocess.run(["squeue", "-h", "--states=all", "-o", "%k %T"], env=slurm, capture_output=True,
                               text=True, timeout=30).stdout  # the plugin's comment: rule_<name>_wildcards_...
     assert "rule_study_group" in comments, comments
