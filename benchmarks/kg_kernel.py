@@ -2,8 +2,9 @@
 
     python benchmarks/kg_kernel.py [--N 64 256 1024 4096] [--integrator ABA864] [--sites-steps 4e7]
                                    [--repeats 3] [--check-steps 1000] [--memory-N 4096] [--spreading-t 1e4]
+                                   [--square 32 64 128] [--parts per_site memory spreading square]
 
-Three tables, after a line naming the machine:
+Four tables, after a line naming the machine:
 
 1. **Per site and step.** The KG lattice (W = 4, seed 0) from a random state of amplitude 0.1 on
    every site, integrated by ``--integrator`` at dt = 0.4: the single-trajectory engine
@@ -21,6 +22,10 @@ Three tables, after a line naming the machine:
    realizations (one AVX-512 block), to t = ``--spreading-t``: CPU seconds for N = 512 .. 4096 on
    the whole chain and on the growing window (``chainchaos.run.window``), with the window's final
    width: the windowed cost follows the packet's width, the whole chain's N.
+4. **The square lattice.** The L x L lattice ``kg_lattice(0, W, (L, L))`` (``engine.lattice``:
+   single loop and SIMD blocks) beside the chain of L^2 sites (``integrators`` and ``batch``), from
+   the same random state, with the tangent map: ns per site and step per trajectory, and per bond
+   (a square lattice has about two bonds per site, a chain one).
 """
 
 import argparse
@@ -38,7 +43,7 @@ from chainchaos.engine.integrators import get_scheme
 from chainchaos.engine.problem import Problem
 from chainchaos.kernels.simd import LANES
 from chainchaos.records.provenance import machine_line
-from chainchaos.system.chain import kg_chain
+from chainchaos.system.chain import kg_chain, kg_lattice
 
 SOURCE = HERE / "c_reference" / "kg_chain.c"
 DT, W, CHECK_EVERY = 0.4, 4.0, 1000
@@ -76,7 +81,7 @@ MEMORY_RUN = """
 import resource, sys, numpy as np
 from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
 from chainchaos.run.window import Window
-from chainchaos.system.chain import kg_chain
+from chainchaos.system.chain import kg_chain, kg_lattice
 from chainchaos.system.initial import Excitation
 N, windowed = int(sys.argv[1]), sys.argv[2] == "1"
 orbits = [Orbit(model="kg", energy=0.4, chain=kg_chain(s, 4.0, N), site=N // 2,
@@ -138,7 +143,32 @@ def spreading(args, exe=None) -> list[dict]:
     return rows
 
 
-PARTS = {"per_site": per_site_part, "memory": memory, "spreading": spreading}
+def square(args, exe=None) -> list[dict]:
+    rows = []
+    print(f"\nThe square lattice beside the chain of as many sites ({args.integrator}, dt = {DT}, tangent map): "
+          "ns per site and step per trajectory (per bond in brackets)\n")
+    print("| L | sites | lattice single | lattice batch | chain single | chain batch | lattice / chain, batch |")
+    print("|---:|---:|---:|---:|---:|---:|---:|")
+    for L in args.square:
+        N = L * L
+        steps = max(20, int(args.sites_steps / N))
+        ns = {}
+        for shape, lattice in (("lattice", lambda n: kg_lattice(0, W, (L, L))), ("chain", lambda n: kg_chain(0, W, n))):
+            run = engine_runner("kg", lattice, start, args.integrator, DT, CHECK_EVERY, args.repeats, LANES)
+            for kind in ("single", "batch"):
+                ns[shape, kind] = run(N, kind, steps if kind == "single" else max(4, steps // LANES), True)[0]
+        bonds = {"lattice": kg_lattice(0, W, (L, L)).geometry.n_bonds, "chain": N + 1}
+        row = {"L": L, "sites": N, **{f"{shape}_{kind}_ns": round(v, 2) for (shape, kind), v in ns.items()},
+               **{f"{shape}_{kind}_ns_per_bond": round(v * N / bonds[shape], 2) for (shape, kind), v in ns.items()},
+               "ratio_batch": round(ns["lattice", "batch"] / ns["chain", "batch"], 2)}
+        rows.append(row)
+        cell = {k: f"{v:.1f} ({v * N / bonds[k[0]]:.1f})" for k, v in ns.items()}
+        print(f"| {L} | {N} | {cell['lattice', 'single']} | {cell['lattice', 'batch']} | {cell['chain', 'single']} | "
+              f"{cell['chain', 'batch']} | {row['ratio_batch']:.2f} |", flush=True)
+    return rows
+
+
+PARTS = {"per_site": per_site_part, "memory": memory, "spreading": spreading, "square": square}
 
 
 def main(argv=None) -> dict:
@@ -151,6 +181,7 @@ def main(argv=None) -> dict:
                         help="steps of the runs whose final states are compared (default 1000)")
     parser.add_argument("--memory-N", type=int, default=4096)
     parser.add_argument("--spreading-t", type=float, default=1e4)
+    parser.add_argument("--square", type=int, nargs="+", default=[32, 64, 128], help="L of the L x L lattices")
     parser.add_argument("--parts", nargs="+", choices=PARTS, default=list(PARTS))
     args = parser.parse_args(argv)
     exe = compile_c(SOURCE)

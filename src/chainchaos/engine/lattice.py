@@ -14,9 +14,12 @@ stiffness k: G_n the sum of g = k (dq_a - dq_b) alike, dp_n += d dt (G_n - w''(u
 for finiteness and the deviation vector renormalised, ln of its norm added to the growth, as the
 chain's engines do.
 
-A plain loop over the bonds and the sites, one trajectory at a time: :class:`LatticeBatch` runs
-a problem's lanes one after the other on it (the chain's engines, ``integrators`` and ``batch``,
-are the fast ones; a square lattice's SIMD engine is still to come).
+:func:`advance_lattice` is a plain loop over the bonds and the sites, one trajectory at a time;
+:func:`advance_lattice_block` makes the same operations on the ``LANES`` trajectories of a SIMD
+block (``chainchaos.kernels.simd``), each lane's doubles side by side, a wall one more row of
+zeros, so that every lane gets the single loop's numbers to the bit. :class:`LatticeBatch` runs a
+problem's lanes in blocks, and those beyond the last whole block on the single loop, as the
+chain's ``batch.Batch`` does.
 """
 
 import numpy as np
@@ -25,6 +28,7 @@ from numba import njit
 from chainchaos.engine.batch import Batch
 from chainchaos.engine.integrators import _check
 from chainchaos.errors import require
+from chainchaos.kernels.simd import LANES, vload, vstore
 from chainchaos.system.models.base import bond_force, bond_force_stiffness, site_kick, site_kick_deviation
 
 
@@ -99,17 +103,74 @@ def advance_lattice(model, q, p, dq, dp, inv_mass, bonds, ends, sites, kicks, dr
     return bad
 
 
+@njit(cache=True, error_model="numpy")
+def _block_forces(model, U, DQ, BP, ends, nb, tangent, F, G):
+    """:func:`_forces` on a block: rows of LANES doubles, row N of U, DQ the walls' zeros (and of
+    F, G a sink that is never read)."""
+    F[:] = 0.0
+    if tangent:
+        G[:] = 0.0
+    for b in range(nb):
+        a, c = ends[b, 0] * LANES, ends[b, 1] * LANES
+        u_a, u_c = vload(U, a), vload(U, c)
+        parameters = (vload(BP, b * LANES), vload(BP, (nb + b) * LANES), vload(BP, (2 * nb + b) * LANES))
+        if tangent:
+            f, k = bond_force_stiffness(model, parameters, u_a, u_c)
+            g = k * (vload(DQ, a) - vload(DQ, c))
+            vstore(G, c, vload(G, c) + g)
+            vstore(G, a, vload(G, a) - g)
+        else:
+            f = bond_force(model, parameters, u_a, u_c)
+        vstore(F, c, vload(F, c) + f)
+        vstore(F, a, vload(F, a) - f)
+
+
+@njit(cache=True, error_model="numpy")
+def advance_lattice_block(model, U, P, DQ, DP, IM, BP, S, ends, kicks, drifts, dt, n_steps, tangent, F, G):
+    """Advance the LANES trajectories of a block by n_steps steps of the scheme (no check).
+
+    U, DQ ((N + 1) LANES,): displacements and deviations, site n's lanes at n LANES, row N zeros
+    (the walls, ``ends`` -1 read as N); P, DP, IM (N LANES,); BP (MAX_BOND_PARAMETERS B LANES,),
+    row r of bond b at (r B + b) LANES; S (MAX_SITE_PARAMETERS N LANES,), row r of site n at
+    (r N + n) LANES; F, G ((N + 1) LANES,) work rows.
+    """
+    N = P.shape[0] // LANES
+    nb = ends.shape[0]
+    for step in range(n_steps):
+        for i in range(kicks.shape[0]):
+            if i > 0:
+                a = drifts[i - 1] * dt
+                for n in range(0, N * LANES, LANES):
+                    im = vload(IM, n)
+                    vstore(U, n, vload(U, n) + a * im * vload(P, n))
+                    if tangent:
+                        vstore(DQ, n, vload(DQ, n) + a * im * vload(DP, n))
+            c = kicks[i] * dt
+            if c != 0.0:
+                _block_forces(model, U, DQ, BP, ends, nb, tangent, F, G)
+                for n in range(N):
+                    at = n * LANES
+                    site = (vload(S, at), vload(S, (N + n) * LANES))
+                    u = vload(U, at)
+                    vstore(P, at, vload(P, at) + c * site_kick(model, site, u, vload(F, at)))
+                    if tangent:
+                        vstore(DP, at, vload(DP, at) + c * site_kick_deviation(model, site, u, vload(DQ, at),
+                                                                                vload(G, at)))
+
+
 class LatticeBatch(Batch):
-    """The lanes of a bond model's :class:`~chainchaos.engine.problem.Problem` on a square lattice,
-    each advanced by :func:`advance_lattice` in turn (every kind of engine gives these numbers); read
-    as ``batch.Batch`` is (no bond opens: ``gap_steps`` and ``max_gaps`` stay zero)."""
+    """The lanes of a bond model's :class:`~chainchaos.engine.problem.Problem` on a square lattice:
+    blocks of LANES lanes on :func:`advance_lattice_block`, the last ``serial_lanes`` on
+    :func:`advance_lattice`, the same numbers either way; read as ``batch.Batch`` is (no bond opens:
+    ``gap_steps`` and ``max_gaps`` stay zero). A block stops at every ``check_every`` steps and at
+    the end of a call for each lane's check (``integrators._check``), as the single loop does."""
 
     def __init__(self, problem, q, p, dq=None, dp=None, serial_lanes: int = 0, xq=None, xp=None):
         require(problem.extra_vectors == 0, "deviation vectors", problem.extra_vectors + 1,
                 "the mLCE vector alone on a square lattice (no spectrum or GALI vectors yet)")
         require(problem.model.has_site_law and not problem.track_gaps, "model", problem.model.name,
                 "a model with a site law and no gap counting on a square lattice (the Klein-Gordon models)")
-        super().__init__(problem, q, p, dq, dp, problem.lanes, xq, xp)
+        super().__init__(problem, q, p, dq, dp, serial_lanes, xq, xp)
 
     def _take_parameters(self, problem) -> None:
         self.inv_mass, self.bonds = problem.lane_parameters
@@ -130,5 +191,46 @@ class LatticeBatch(Batch):
         self.log_growth[j] = diagnostics[0]
         return bad
 
+    def _advance_blocks(self, n_steps: int, bad: np.ndarray) -> None:
+        pr = self.problem
+        N = pr.N
+        ends = np.where(self._ends < 0, N, self._ends)  # a wall: the row of zeros after the sites
+        sites = pr.site_parameters
+        for first in range(0, self.block_lanes, LANES):
+            lanes = np.minimum(np.arange(first, first + LANES), self.block_lanes - 1)  # padding repeats the last
 
-__all__ = ["LatticeBatch", "advance_lattice"]
+            def rows(a, extra=0):  # (N, B) -> the block's rows, ``extra`` rows of zeros after them
+                out = np.zeros((a.shape[0] + extra, LANES))
+                out[: a.shape[0]] = a[:, lanes]
+                return out.ravel()
+
+            U, DQ = rows(self.q, 1), rows(self.dq, 1)
+            P, DP, IM = rows(self.p), rows(self.dp), rows(self.inv_mass)
+            BP = np.ascontiguousarray(self.bonds[:, :, lanes]).ravel()
+            S = np.ascontiguousarray(sites[:, :, lanes]).ravel()
+            F, G = np.empty((N + 1) * LANES), np.empty((N + 1) * LANES)
+            done, block_bad = 0, np.full(LANES, -1, dtype=np.int64)
+            while done < n_steps:
+                steps = min(pr.check_every - (done % pr.check_every), n_steps - done)
+                advance_lattice_block(self.model, U, P, DQ, DP, IM, BP, S, ends, self.scheme.kicks,
+                                      self.scheme.drifts, pr.dt, steps, pr.tangent, F, G)
+                done += steps
+                for lane in range(min(LANES, self.block_lanes - first)):
+                    if block_bad[lane] >= 0:
+                        continue
+                    j = first + lane
+                    q, p = U[lane:N * LANES:LANES].copy(), P[lane::LANES].copy()
+                    dq, dp = DQ[lane:N * LANES:LANES].copy(), DP[lane::LANES].copy()
+                    diagnostics = np.array([self.log_growth[j], 0.0])
+                    if not _check(q, p, dq, dp, pr.tangent, diagnostics):
+                        block_bad[lane] = done
+                    self.log_growth[j] = diagnostics[0]
+                    DQ[lane:N * LANES:LANES], DP[lane::LANES] = dq, dp  # renormalised
+            for lane in range(min(LANES, self.block_lanes - first)):
+                j = first + lane
+                self.q[:, j], self.p[:, j] = U[lane:N * LANES:LANES], P[lane::LANES]
+                self.dq[:, j], self.dp[:, j] = DQ[lane:N * LANES:LANES], DP[lane::LANES]
+                bad[j] = block_bad[lane]
+
+
+__all__ = ["LatticeBatch", "advance_lattice", "advance_lattice_block"]
