@@ -149,15 +149,17 @@ def test_lanes_of_one_problem_share_their_lattice_shape():
         Problem("kg", [kg_lattice(0, 4.0, (4, 3)), kg_lattice(1, 4.0, (3, 4))])
 
 
-@pytest.mark.parametrize("model", ["kg", "kg_linear"])
-def test_the_simd_blocks_give_the_single_loop_s_numbers_to_the_bit(model):
-    """11 lanes of different lattices on a 7 x 5 lattice with fixed and free edges: every lane in
-    SIMD blocks (the last padded), every lane on the single loop, and blocks with the rest on the
-    loop give the same bits, checks (renormalisations) inside and at the end of each call."""
+@pytest.mark.parametrize("model, boundary", [("kg", ("fixed", "fixed")), ("kg", ("fixed", "free")),
+                                             ("kg", ("free", "fixed")), ("kg", ("free", "free")),
+                                             ("kg_linear", ("fixed", "free"))])
+def test_the_simd_blocks_give_the_single_loop_s_numbers_to_the_bit(model, boundary):
+    """LANES + 3 lanes of different lattices of 7 x 5 sites, each boundary: every lane in SIMD
+    blocks (the last padded), every lane on the single loop, and blocks with the rest on the loop
+    give the same bits, checks (renormalisations) inside and at the end of each call."""
     from chainchaos.kernels.simd import LANES
 
     lanes = LANES + 3
-    lattices = [kg_lattice(seed, 6.0, (7, 5), ("fixed", "free")) for seed in range(lanes)]
+    lattices = [kg_lattice(seed, 6.0, (7, 5), boundary) for seed in range(lanes)]
     rng = np.random.default_rng(3)
     q, p, dq, dp = (0.3 * rng.normal(size=(35, lanes)) for _ in range(4))
     engines = {kind: Problem(model, lattices, integrator="ABA864", dt=0.1, check_every=7).engine(q, p, dq, dp, kind)

@@ -16,8 +16,9 @@ chain's engines do.
 
 :func:`advance_lattice` is a plain loop over the bonds and the sites, one trajectory at a time;
 :func:`advance_lattice_block` makes the same operations on the ``LANES`` trajectories of a SIMD
-block (``chainchaos.kernels.simd``), each lane's doubles side by side, a wall one more row of
-zeros, so that every lane gets the single loop's numbers to the bit. :class:`LatticeBatch` runs a
+block (``chainchaos.kernels.simd``), each lane's doubles side by side, sweeping the lattice line
+after line so that each bond's force is computed once and no site is gathered by index, in the
+order of the loop's sums, so that every lane gets the single loop's numbers to the bit. :class:`LatticeBatch` runs a
 problem's lanes in blocks, and those beyond the last whole block on the single loop, as the
 chain's ``batch.Batch`` does.
 """
@@ -104,38 +105,75 @@ def advance_lattice(model, q, p, dq, dp, inv_mass, bonds, ends, sites, kicks, dr
 
 
 @njit(cache=True, error_model="numpy")
-def _block_forces(model, U, DQ, BP, ends, nb, tangent, F, G):
-    """:func:`_forces` on a block: rows of LANES doubles, row N of U, DQ the walls' zeros (and of
-    F, G a sink that is never read)."""
-    F[:] = 0.0
+def _bond(model, PX, at, stride, tangent, u_a, u_c, dq_a, dq_c):
+    """f and, with ``tangent``, g = k (dq_a - dq_c) of the bond whose parameters start at ``at``
+    of PX (rows ``stride`` apart); without, the second value is not read."""
+    parameters = (vload(PX, at), vload(PX, at + stride), vload(PX, at + 2 * stride))
     if tangent:
-        G[:] = 0.0
-    for b in range(nb):
-        a, c = ends[b, 0] * LANES, ends[b, 1] * LANES
-        u_a, u_c = vload(U, a), vload(U, c)
-        parameters = (vload(BP, b * LANES), vload(BP, (nb + b) * LANES), vload(BP, (2 * nb + b) * LANES))
-        if tangent:
-            f, k = bond_force_stiffness(model, parameters, u_a, u_c)
-            g = k * (vload(DQ, a) - vload(DQ, c))
-            vstore(G, c, vload(G, c) + g)
-            vstore(G, a, vload(G, a) - g)
-        else:
-            f = bond_force(model, parameters, u_a, u_c)
-        vstore(F, c, vload(F, c) + f)
-        vstore(F, a, vload(F, a) - f)
+        f, k = bond_force_stiffness(model, parameters, u_a, u_c)
+        return f, k * (dq_a - dq_c)
+    return bond_force(model, parameters, u_a, u_c), u_a
 
 
 @njit(cache=True, error_model="numpy")
-def advance_lattice_block(model, U, P, DQ, DP, IM, BP, S, ends, kicks, drifts, dt, n_steps, tangent, F, G):
-    """Advance the LANES trajectories of a block by n_steps steps of the scheme (no check).
+def _square_kick(model, U, P, DQ, DP, S, PX, PY, nx, ny, fixed_x, fixed_y, tangent, c, FY, GY, zero):
+    """kick(c) of a block on the square lattice, line after line: each site's force the sum, in
+    the order of ``Geometry.bonds`` (its left bond, its right bond, the bond below, the bond
+    above), of its bonds' forces, each bond's computed once (a line's bonds carried along it, the
+    bonds above a line kept for the next, FY and GY), so each lane gets :func:`_forces` and
+    :func:`_kick`'s numbers to the bit."""
+    N = nx * ny
+    sx, sy = ny * (nx + 1) * LANES, (ny + 1) * nx * LANES  # the parameter rows' strides
+    z = vload(zero, 0)
+    if fixed_y:  # the bonds below the first line: to the wall
+        for i in range(nx):
+            at = i * LANES
+            f, g = _bond(model, PY, at, sy, tangent, z, vload(U, at), z, vload(DQ, at))
+            vstore(FY, at, f)
+            vstore(GY, at, g)
+    for j in range(ny):
+        row = j * nx * LANES
+        f_left, g_left = z, z
+        if fixed_x:  # the wall's bond to the line's first site
+            f_left, g_left = _bond(model, PX, j * (nx + 1) * LANES, sx, tangent, z, vload(U, row), z, vload(DQ, row))
+        for i in range(nx):
+            at = row + i * LANES
+            u, dq = vload(U, at), vload(DQ, at)
+            F, G = z, z
+            if fixed_x or i > 0:
+                F, G = F + f_left, G + g_left
+            if fixed_x or i < nx - 1:
+                u_r, dq_r = (vload(U, at + LANES), vload(DQ, at + LANES)) if i < nx - 1 else (z, z)
+                f_left, g_left = _bond(model, PX, (j * (nx + 1) + i + 1) * LANES, sx, tangent, u, u_r, dq, dq_r)
+                F, G = F - f_left, G - g_left
+            if fixed_y or j > 0:
+                F, G = F + vload(FY, i * LANES), G + vload(GY, i * LANES)
+            if fixed_y or j < ny - 1:
+                u_up, dq_up = (vload(U, at + nx * LANES), vload(DQ, at + nx * LANES)) if j < ny - 1 else (z, z)
+                f, g = _bond(model, PY, ((j + 1) * nx + i) * LANES, sy, tangent, u, u_up, dq, dq_up)
+                F, G = F - f, G - g
+                vstore(FY, i * LANES, f)
+                vstore(GY, i * LANES, g)
+            site = (vload(S, at), vload(S, N * LANES + at))
+            vstore(P, at, vload(P, at) + c * site_kick(model, site, u, F))
+            if tangent:
+                vstore(DP, at, vload(DP, at) + c * site_kick_deviation(model, site, u, dq, G))
 
-    U, DQ ((N + 1) LANES,): displacements and deviations, site n's lanes at n LANES, row N zeros
-    (the walls, ``ends`` -1 read as N); P, DP, IM (N LANES,); BP (MAX_BOND_PARAMETERS B LANES,),
-    row r of bond b at (r B + b) LANES; S (MAX_SITE_PARAMETERS N LANES,), row r of site n at
-    (r N + n) LANES; F, G ((N + 1) LANES,) work rows.
+
+@njit(cache=True, error_model="numpy")
+def advance_lattice_block(model, U, P, DQ, DP, IM, PX, PY, S, nx, ny, fixed_x, fixed_y, kicks, drifts, dt, n_steps,
+                          tangent):
+    """Advance the LANES trajectories of a block on the nx x ny lattice by n_steps steps of the
+    scheme (no check).
+
+    U, P, DQ, DP, IM (N LANES,): site n's lanes at n LANES; PX (MAX_BOND_PARAMETERS ny (nx + 1)
+    LANES,): row r of the bond left of site (i, j) at ((r ny + j) (nx + 1) + i) LANES (i = nx: right
+    of the last site); PY (MAX_BOND_PARAMETERS (ny + 1) nx LANES,): row r of the bond below (i, j)
+    at ((r (ny + 1) + j) nx + i) LANES; S (MAX_SITE_PARAMETERS N LANES,), row r of site n at
+    (r N + n) LANES. A bond that the boundary does not have is never read.
     """
-    N = P.shape[0] // LANES
-    nb = ends.shape[0]
+    N = nx * ny
+    FY, GY, zero = np.zeros(nx * LANES), np.zeros(nx * LANES), np.zeros(LANES)
     for step in range(n_steps):
         for i in range(kicks.shape[0]):
             if i > 0:
@@ -147,15 +185,26 @@ def advance_lattice_block(model, U, P, DQ, DP, IM, BP, S, ends, kicks, drifts, d
                         vstore(DQ, n, vload(DQ, n) + a * im * vload(DP, n))
             c = kicks[i] * dt
             if c != 0.0:
-                _block_forces(model, U, DQ, BP, ends, nb, tangent, F, G)
-                for n in range(N):
-                    at = n * LANES
-                    site = (vload(S, at), vload(S, (N + n) * LANES))
-                    u = vload(U, at)
-                    vstore(P, at, vload(P, at) + c * site_kick(model, site, u, vload(F, at)))
-                    if tangent:
-                        vstore(DP, at, vload(DP, at) + c * site_kick_deviation(model, site, u, vload(DQ, at),
-                                                                                vload(G, at)))
+                _square_kick(model, U, P, DQ, DP, S, PX, PY, nx, ny, fixed_x, fixed_y, tangent, c, FY, GY, zero)
+
+
+def line_bonds(geometry, bonds: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The bond parameters (R, n_bonds, ...) of ``geometry.bonds()``'s order on the lines: (R, ny,
+    nx + 1, ...) the bond left of each site (i = nx: right of a line's last) and (R, ny + 1, nx, ...)
+    the bond below each site (j = ny: above the last line), zeros where the boundary has none."""
+    nx, ny = geometry.shape2
+    fixed_x, fixed_y = geometry.fixed
+    px = np.zeros((bonds.shape[0], ny, nx + 1, *bonds.shape[2:]))
+    py = np.zeros((bonds.shape[0], ny + 1, nx, *bonds.shape[2:]))
+    per_line = nx + 1 if fixed_x else nx - 1
+    per_column = ny + 1 if fixed_y else ny - 1
+    first_x, first_y = (0 if fixed_x else 1), (0 if fixed_y else 1)
+    for j in range(ny):
+        px[:, j, first_x:first_x + per_line] = bonds[:, j * per_line:(j + 1) * per_line]
+    base = ny * per_line
+    for i in range(nx):
+        py[:, first_y:first_y + per_column, i] = bonds[:, base + i * per_column:base + (i + 1) * per_column]
+    return px, py
 
 
 class LatticeBatch(Batch):
@@ -194,42 +243,33 @@ class LatticeBatch(Batch):
     def _advance_blocks(self, n_steps: int, bad: np.ndarray) -> None:
         pr = self.problem
         N = pr.N
-        ends = np.where(self._ends < 0, N, self._ends)  # a wall: the row of zeros after the sites
+        (nx, ny), (fixed_x, fixed_y) = pr.geometry.shape2, pr.geometry.fixed
         sites = pr.site_parameters
         for first in range(0, self.block_lanes, LANES):
             lanes = np.minimum(np.arange(first, first + LANES), self.block_lanes - 1)  # padding repeats the last
-
-            def rows(a, extra=0):  # (N, B) -> the block's rows, ``extra`` rows of zeros after them
-                out = np.zeros((a.shape[0] + extra, LANES))
-                out[: a.shape[0]] = a[:, lanes]
-                return out.ravel()
-
-            U, DQ = rows(self.q, 1), rows(self.dq, 1)
-            P, DP, IM = rows(self.p), rows(self.dp), rows(self.inv_mass)
-            BP = np.ascontiguousarray(self.bonds[:, :, lanes]).ravel()
+            U, P, DQ, DP, IM = (np.ascontiguousarray(a[:, lanes]).ravel()
+                                for a in (self.q, self.p, self.dq, self.dp, self.inv_mass))
+            PX, PY = (np.ascontiguousarray(a).ravel() for a in line_bonds(pr.geometry, self.bonds[:, :, lanes]))
             S = np.ascontiguousarray(sites[:, :, lanes]).ravel()
-            F, G = np.empty((N + 1) * LANES), np.empty((N + 1) * LANES)
             done, block_bad = 0, np.full(LANES, -1, dtype=np.int64)
             while done < n_steps:
                 steps = min(pr.check_every - (done % pr.check_every), n_steps - done)
-                advance_lattice_block(self.model, U, P, DQ, DP, IM, BP, S, ends, self.scheme.kicks,
-                                      self.scheme.drifts, pr.dt, steps, pr.tangent, F, G)
+                advance_lattice_block(self.model, U, P, DQ, DP, IM, PX, PY, S, nx, ny, fixed_x, fixed_y,
+                                      self.scheme.kicks, self.scheme.drifts, pr.dt, steps, pr.tangent)
                 done += steps
                 for lane in range(min(LANES, self.block_lanes - first)):
                     if block_bad[lane] >= 0:
                         continue
                     j = first + lane
-                    q, p = U[lane:N * LANES:LANES].copy(), P[lane::LANES].copy()
-                    dq, dp = DQ[lane:N * LANES:LANES].copy(), DP[lane::LANES].copy()
+                    q, p, dq, dp = (a[lane::LANES].copy() for a in (U, P, DQ, DP))
                     diagnostics = np.array([self.log_growth[j], 0.0])
                     if not _check(q, p, dq, dp, pr.tangent, diagnostics):
                         block_bad[lane] = done
                     self.log_growth[j] = diagnostics[0]
-                    DQ[lane:N * LANES:LANES], DP[lane::LANES] = dq, dp  # renormalised
+                    DQ[lane::LANES], DP[lane::LANES] = dq, dp  # renormalised
             for lane in range(min(LANES, self.block_lanes - first)):
                 j = first + lane
-                self.q[:, j], self.p[:, j] = U[lane:N * LANES:LANES], P[lane::LANES]
-                self.dq[:, j], self.dp[:, j] = DQ[lane:N * LANES:LANES], DP[lane::LANES]
+                self.q[:, j], self.p[:, j], self.dq[:, j], self.dp[:, j] = (a[lane::LANES] for a in (U, P, DQ, DP))
                 bad[j] = block_bad[lane]
 
 
