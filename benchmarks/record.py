@@ -207,7 +207,8 @@ def kg_kernel(argv: list[str]) -> dict:
     (part, rows), = measured.items()
     titles = {"per_site": "Klein-Gordon kernels: ns per site and step against a C loop",
               "memory": "Klein-Gordon: peak memory of 64 realizations",
-              "spreading": "Klein-Gordon spreading run: cost against N, whole chain and growing window"}
+              "spreading": "Klein-Gordon spreading run: cost against N, whole chain and growing window",
+              "square": "Klein-Gordon: the square lattice's engines beside the chain's at as many sites"}
     return {"label": part, "title": titles[part], "parameters": {"argv": argv},
             "columns": [{"key": k, "label": k} for k in rows[0]], "rows": rows}
 
@@ -253,8 +254,17 @@ def window_2d(argv: list[str]) -> dict:
     return bench.main(argv)
 
 
+def work_precision_2d(argv: list[str]) -> dict:
+    """benchmarks/work_precision_2d.py: error against CPU time and extreme cases on square lattices."""
+    sys.path.insert(0, str(HERE))
+    import work_precision_2d as bench
+
+    return bench.main(argv)
+
+
 BENCHMARKS = {"batch_throughput": batch_throughput, "pipeline": pipeline, "kept_study": kept_study,
-              "kg_kernel": kg_kernel, "dnls_norm_error": dnls_norm_error, "window_2d": window_2d}
+              "kg_kernel": kg_kernel, "dnls_norm_error": dnls_norm_error, "window_2d": window_2d,
+              "work_precision_2d": work_precision_2d}
 
 
 def record(name: str, argv: list[str], note: str = "") -> Path:
