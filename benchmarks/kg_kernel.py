@@ -81,7 +81,7 @@ MEMORY_RUN = """
 import resource, sys, numpy as np
 from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
 from chainchaos.run.window import Window
-from chainchaos.system.chain import kg_chain, kg_lattice
+from chainchaos.system.chain import kg_chain
 from chainchaos.system.initial import Excitation
 N, windowed = int(sys.argv[1]), sys.argv[2] == "1"
 orbits = [Orbit(model="kg", energy=0.4, chain=kg_chain(s, 4.0, N), site=N // 2,

@@ -92,7 +92,8 @@ def test_default_observables_follow_the_model(model):
     params = SceneParameters(model=model, energy=1.0, t_final=10.0, dt=0.01)
     assert params.observables == model_observables(model)
     indicators = needing(SPECTRUM) | needing(ALIGNMENT)  # costly: computed when asked for by name
-    spreading = {"second_moment", "compactness", "edge_energy", "largest_share"}  # the studies' measures: asked for by name
+    spreading = {"second_moment", "compactness", "edge_energy", "largest_share",
+                 "density"}  # the studies' measures (density: their maps): asked for by name
     assert (set(OBSERVABLES) - set(params.observables)) == \
         indicators | spreading | needing(NORM) | (set() if model == "hertz" else needing(GAPS))
 

@@ -107,7 +107,8 @@ def advance_lattice(model, q, p, dq, dp, inv_mass, bonds, ends, sites, kicks, dr
 @njit(cache=True, error_model="numpy")
 def _bond(model, PX, at, stride, tangent, u_a, u_c, dq_a, dq_c):
     """f and, with ``tangent``, g = k (dq_a - dq_c) of the bond whose parameters start at ``at``
-    of PX (rows ``stride`` apart); without, the second value is not read."""
+    of PX (rows ``stride`` apart); without, the second value is u_a, summed into a tangent force
+    that no kick reads (one type for both cases)."""
     parameters = (vload(PX, at), vload(PX, at + stride), vload(PX, at + 2 * stride))
     if tangent:
         f, k = bond_force_stiffness(model, parameters, u_a, u_c)
@@ -210,7 +211,8 @@ def line_bonds(geometry, bonds: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 class LatticeBatch(Batch):
     """The lanes of a bond model's :class:`~chainchaos.engine.problem.Problem` on a square lattice:
     blocks of LANES lanes on :func:`advance_lattice_block`, the last ``serial_lanes`` on
-    :func:`advance_lattice`, the same numbers either way; read as ``batch.Batch`` is (no bond opens:
+    :func:`advance_lattice`, the same numbers either way (but for a lane that turned non-finite:
+    the loop stops it, a block carries it on; ``bad`` is the same); read as ``batch.Batch`` is (no bond opens:
     ``gap_steps`` and ``max_gaps`` stay zero). A block stops at every ``check_every`` steps and at
     the end of a call for each lane's check (``integrators._check``), as the single loop does."""
 

@@ -197,7 +197,7 @@ FIGURE_TEXT = {
     "comparison": ("the ensemble means of the study beside those of the studies it compares with; a Klein--Gordon "
                    "or DNLS chain's times are in the units of its Hamiltonian, the bead chains' in $1/\\omega_{\\max}$"),
     "fractions": "fractions chaotic and delocalized against the energy, Wilson 95\\,\\% bands",
-    "maps": ("the density of one orbit, its first realization, at the study's map times: on a square lattice "
-             "the sites $(i, j)$ on a logarithmic colour scale from $10^{-8}$ to 1, cropped to the sites above "
-             "$10^{-8}$"),
+    "maps": ("the density of one orbit, its first valid realization, at the study's map times: on a square "
+             "lattice the sites $(i, j)$ on a logarithmic colour scale from $10^{-8}$ to 1, cropped to the sites "
+             "above $10^{-8}$; on a chain its profiles on a logarithmic axis"),
 }

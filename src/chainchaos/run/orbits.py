@@ -100,6 +100,13 @@ class OrbitSettings(RunSettings):
         return cls(**{k: v for k, v in block.items() if k in names})
 
 
+def map_samples(times: np.ndarray, wanted) -> np.ndarray:
+    """Indices of the samples (at ``times``) nearest in log t to each of the ``wanted`` times
+    (t = 0 excluded): where a study keeps its density maps (``integration.map_times``)."""
+    log_t = np.log10(np.where(times > 0, times, np.nan))
+    return np.array([int(np.nanargmin(np.abs(log_t - np.log10(t)))) for t in wanted], dtype=np.int64)
+
+
 def sample_schedule(settings: OrbitSettings) -> np.ndarray:
     """Step indices of the samples: the log-spaced ones of :meth:`RunSettings.sample_steps` and
     ``final_samples`` evenly spaced ones over the last decade."""

@@ -99,6 +99,7 @@ def test_density_maps_are_the_sampled_densities_at_the_chosen_times():
     assert "maps" in study.spec["figures"]
     ds = run_study(spec)
     maps = ds["density_map"]
+    assert int(ds["shown_realization"].isel(model=0, energy=0)) == 0 and "shown_density_map" in ds
     assert maps.dtype == np.float32 and maps.sizes["site"] == 195
     times = maps["map_time"].values  # samples, each within half a sample spacing (5 a decade) of its time
     assert set(times) <= set(ds["time"].values) and times[0] == 1.0 and times[-1] == 50.0
@@ -119,3 +120,13 @@ def test_maps_after_the_run_or_without_times_are_named(integration, figures, mes
     spec = {**SPEC, "integration": {**SPEC["integration"], **integration}, **({"figures": figures} if figures else {})}
     with pytest.raises(StudyError, match=message):
         load_study(spec)
+
+
+def test_map_times_on_one_sample_and_a_norm_asked_of_a_bond_model_are_named():
+    spec = {**SPEC, "integration": {**SPEC["integration"], "map_times": [2.6, 2.7]}}
+    with pytest.raises(StudyError, match="integration.map_times = \\[2.6, 2.7\\]: allowed is times whose nearest "
+                                         "samples differ"):
+        load_study(spec)
+    kg = {**SPEC, "lattice": {"model": "kg", "shape": [9, 9], "W": 10.0}, "integration": {"dt": 0.1, "t_final": 10.0}}
+    with pytest.raises(StudyError, match="observables = 'norm_error': allowed is an observable of the split models"):
+        load_study(kg)

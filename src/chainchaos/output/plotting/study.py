@@ -7,7 +7,7 @@
   weak-chaos literature's -0.25);
 - ``fractions``: the fractions of realizations chaotic (by Lambda, and by GALI_k where kept) and
   delocalized against H, with Wilson 95% bands;
-- ``maps``: the density of one orbit (realization 0) at the study's map times, as images on a
+- ``maps``: the density of one orbit (the first valid realization) at the study's map times, as images on a
   logarithmic colour scale (a square lattice), or as profiles on a logarithmic axis (a chain);
 - the comparison of several studies: <log10 m2>, <log10 P> and <log10 Lambda> of each (study,
   model, energy) on common axes.
@@ -241,11 +241,11 @@ def _map_extent(maps: np.ndarray, shape: tuple) -> tuple[slice, slice]:
 
 
 def maps_figure(stats, title: str = ""):
-    """The density of realization 0 at each map time: a row per (model, energy), a column per
+    """The density of one orbit (``shown_density_map``: the first valid realization's) at each map
+    time: a row per (model, energy), a column per
     time; on a square lattice an image of sites (i, j) on a log colour scale from MAP_FLOOR to 1
     (one colour bar), on a chain the profile on a logarithmic axis."""
-    maps = stats["density_map"]
-    maps = maps.isel({d: 0 for d in ("realization", "lane") if d in maps.dims}, drop=True)  # a study's every orbit
+    maps = stats["shown_density_map"]
     shape = tuple(int(n) for n in np.ravel(stats.attrs.get("lattice_shape", [maps.sizes["site"]])))
     rows = [(str(m), k, float(e)) for m in stats.model.values for k, e in enumerate(stats.energy.values)]
     times = maps["map_time"].values

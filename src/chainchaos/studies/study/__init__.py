@@ -47,7 +47,7 @@ def with_statistics(study, merged: xr.Dataset) -> xr.Dataset:
     from chainchaos.studies.study.statistics import statistics
 
     stats = statistics(merged, float(study.spec["criteria"]["slope_window_decades"]))
-    out = xr.merge([merged, stats.drop_vars("density_map", errors="ignore")], combine_attrs="override")  # every orbit's maps kept
+    out = xr.merge([merged, stats], combine_attrs="override")
     out.attrs.update(stats.attrs)
     return out
 

@@ -17,7 +17,7 @@ import xarray as xr
 from chainchaos.observe.registry import REGISTRY
 from chainchaos.records import kept
 from chainchaos.records.provenance import provenance_attrs
-from chainchaos.run.orbits import integrate
+from chainchaos.run.orbits import integrate, map_samples
 from chainchaos.studies.study.orbits import (
     EXCITATION,
     EXCITATION_PICKS,
@@ -95,12 +95,6 @@ def kept_series(study) -> list[str]:
 DENSITY_MAP = {"units": "1", "long_name": "the density P and m2 are measured on (h_n, or a split model's z_n), "
                "at the map's time; site n = j Nx + i on a square lattice (float32)"}
 MAP_TIME = {"units": "1", "long_name": "time of a density map: the sample nearest in log t to one of integration.map_times"}
-
-
-def map_samples(times: np.ndarray, wanted: list[float]) -> np.ndarray:
-    """Indices of the samples nearest in log t to each of the ``wanted`` times (t = 0 excluded)."""
-    log_t = np.log10(np.where(times > 0, times, np.nan))
-    return np.array([int(np.nanargmin(np.abs(log_t - np.log10(t)))) for t in wanted], dtype=np.int64)
 
 
 def run_group(study, group: int, progress=None) -> xr.Dataset:

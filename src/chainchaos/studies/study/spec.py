@@ -27,7 +27,7 @@ from chainchaos.errors import ParameterError, StudyError, require
 from chainchaos.observe.own import OWN, is_reference, load_observable
 from chainchaos.observe.registry import NORM, REGISTRY, study_observables
 from chainchaos.project import project_root
-from chainchaos.run.orbits import ALIGNMENT_SERIES, Orbit
+from chainchaos.run.orbits import ALIGNMENT_SERIES, Orbit, map_samples, sample_schedule
 from chainchaos.run.window import Window
 from chainchaos.studies.study.orbits import (
     StudySettings,
@@ -622,6 +622,12 @@ class Study:
             late = [t for t in self.map_times if t > float(self.spec["integration"]["t_final"])]
             if late:
                 raise ParameterError("map_times", late, f"times <= t_final = {self.spec['integration']['t_final']:g}")
+            times = sample_schedule(self.settings) * self.settings.dt
+            at = map_samples(times, self.map_times)
+            if len(set(at)) < len(at):
+                raise ParameterError("map_times", self.map_times, "times whose nearest samples differ (samples_per_decade "
+                                     f"{self.spec['integration']['samples_per_decade']}: the samples are "
+                                     f"{', '.join(f'{t:g}' for t in times[at])})")
 
         def window():
             if self.window is not None and self.alignment:

@@ -124,9 +124,16 @@ def statistics(merged: xr.Dataset, window_decades: float) -> xr.Dataset:
             "units": "1", "long_name": "realizations whose valid lanes agree"})
         data[f"count_undecided_{flag}"] = (("model", "energy"), (verdict == -1).sum(axis=-1).astype(np.int32), {
             "units": "1", "long_name": "realizations whose valid lanes split"})
-    if "density_map" in merged:  # the maps of one orbit, realization 0's lane 0, for the figure maps
-        data["density_map"] = merged["density_map"].isel(realization=0, lane=0, drop=True)
-    out = xr.Dataset(data, coords={k: merged[k] for k in ("model", "energy", "realization", "time")})
+    if "density_map" in merged:  # the maps of one orbit for the figure maps: the first valid realization's lane 0
+        first = np.argmax(valid0.values, axis=-1)  # (model, energy); 0 where none is valid
+        maps = merged["density_map"].isel(lane=0).values
+        shown = np.stack([[maps[m, e, first[m, e]] for e in range(first.shape[1])] for m in range(first.shape[0])])
+        data["shown_density_map"] = (("model", "energy", "map_time", "site"), shown, {
+            **merged["density_map"].attrs, "comment": "the orbit of realization shown_realization, lane 0"})
+        data["shown_realization"] = (("model", "energy"), first.astype(np.int32), {
+            "units": "1", "long_name": "the realization whose maps shown_density_map holds: the first valid one"})
+    out = xr.Dataset(data, coords={k: merged[k] for k in ("model", "energy", "realization", "time", "map_time")
+                                   if k in merged.coords})
     out = out.assign_coords(quantile=("quantile", QUANTILES, {"units": "1", "long_name": "probability of the quantile"}))
     out.attrs.update(slope_window_decades=float(window_decades), confidence_interval="Wilson score interval, 95%",
                      statistics_rule=("over the valid realizations, lane 0; running slopes by least squares over "
