@@ -240,6 +240,12 @@ def _map_extent(maps: np.ndarray, shape: tuple) -> tuple[slice, slice]:
             slice(max(int(cj) - r, 0), min(int(np.ceil(cj)) + r + 1, ny)))
 
 
+def _time_text(t: float) -> str:
+    """A map's time: $t = 10^{k}$ at a power of ten, else three digits."""
+    k = np.log10(t) if t > 0 else np.nan
+    return f"$t = 10^{{{int(round(k))}}}$" if np.isfinite(k) and abs(k - round(k)) < 1e-9 else f"$t = {t:.3g}$"
+
+
 def maps_figure(stats, title: str = ""):
     """The density of one orbit (``shown_density_map``: the first valid realization's) at each map
     time: a row per (model, energy), a column per
@@ -256,14 +262,14 @@ def maps_figure(stats, title: str = ""):
             n = np.arange(1, shape[0] + 1)
             for ax, (model, k, energy) in zip(axes, rows):
                 for t, profile in zip(times, maps.sel(model=model).isel(energy=k).values):
-                    ax.semilogy(n, np.clip(profile, MAP_FLOOR, None), lw=0.8, label=f"$t = {t:.3g}$")
+                    ax.semilogy(n, np.clip(profile, MAP_FLOOR, None), lw=0.8, label=_time_text(t))
                 ax.set_ylim(MAP_FLOOR, 1.0)
                 ax.set_xlabel("site $n$")
                 ax.set_ylabel(LABELS_DENSITY[get_model(model).is_split])
                 ax.set_title(scene_label(model, energy), fontsize="small")
             axes[0].legend(fontsize="x-small")
         else:
-            fig = Figure(figsize=(PAGE_WIDTH, 0.6 + 1.9 * len(rows)), layout="constrained")
+            fig = Figure(figsize=(PAGE_WIDTH, 1.0 + 1.9 * len(rows)), layout="constrained")
             axes = fig.subplots(len(rows), times.size, squeeze=False)
             norm = LogNorm(MAP_FLOOR, 1.0)
             xs, ys = _map_extent(maps.values, shape)
@@ -276,7 +282,7 @@ def maps_figure(stats, title: str = ""):
                     image = ax.imshow(np.clip(z[ys, xs], MAP_FLOOR, None), norm=norm, cmap=MAP_CMAP, origin="lower",
                                       interpolation="nearest", extent=(xs.start + 0.5, xs.stop + 0.5,
                                                                        ys.start + 0.5, ys.stop + 0.5))
-                    ax.set_title(f"$t = {t:.3g}$" + (f"\n{scene_label(model, energy)}" if c == 0 else ""),
+                    ax.set_title(_time_text(t) + (f"\n{scene_label(model, energy)}" if c == 0 else ""),
                                  fontsize="small")
                     ax.set_xlabel("$i$")
                     if c == 0:
