@@ -28,6 +28,7 @@ from chainchaos.errors import ParameterError, require
 from chainchaos.observe.registry import REGISTRY
 from chainchaos.run import driver
 from chainchaos.run.settings import RunSettings
+from chainchaos.run.window import Window, restricted_deviation
 from chainchaos.system.initial import Excitation, initial_deviation
 from chainchaos.system.models import MODELS, get_model
 
@@ -65,7 +66,11 @@ class OrbitSettings(RunSettings):
     Samples: those of :meth:`RunSettings.sample_steps` plus ``final_samples`` evenly spaced over
     the last decade, so that time averages over it see the fast oscillations of a packet evenly.
     ``alignment``: evolve GALI_``gali_order``'s vectors too and record ln GALI_k; ``spectrum``:
-    the Lyapunov spectrum's ``exponents`` vectors (0: all 2N)."""
+    the Lyapunov spectrum's ``exponents`` vectors (0: all 2N). ``deviation_start``: the mLCE
+    vector random on every site ("all") or that vector restricted to the excited sites and
+    scaled back to its norm ("excited", as a growing window starts it: on a large lattice a vector
+    spread over every site is mostly on sites at rest, whose regular part Lambda takes long to
+    outgrow)."""
 
     samples_per_decade: int = 10
     t_first_sample: float = 1.0
@@ -76,9 +81,12 @@ class OrbitSettings(RunSettings):
     engine: str = "batch"
     alignment: bool = False
     spectrum: bool = False
+    deviation_start: str = "all"
 
     def __post_init__(self):
         super().__post_init__()
+        require(self.deviation_start in ("all", "excited"), "deviation_start", self.deviation_start,
+                "'all' or 'excited'")
         for key in ("alignment", "spectrum"):
             value = getattr(self, key)
             require(isinstance(value, bool) and not (value and self.engine == "single"), key, value,
@@ -195,6 +203,8 @@ def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, ga
             pass
         DQ0[:, j], DP0[:, j] = initial_deviation(N, settings.deviation_seed + o.lane)
         XQ0[:, :, j], XP0[:, :, j] = settings.extra_deviations(problem, o.lane)
+    if settings.deviation_start == "excited" and window is None and ok0.any():  # (a window starts it so itself)
+        DQ0, DP0 = restricted_deviation(DQ0, DP0, *Window.excited(Q0, P0, problem.geometry), geometry=problem.geometry)
     samples = driver.sample(problem, Q0, P0, DQ0, DP0, sample_schedule(settings), monitors, kind=settings.engine,
                             xq0=XQ0 if K else None, xp0=XP0 if K else None,
                             gali_stop=gali_stop if settings.alignment else None, window=window)

@@ -59,7 +59,7 @@ _PRESENTATION = ("title", "extends", "figures", "compare_with", "laws")
 #: numbers are those of the default) stays usable.
 ADDED_DEFAULTS = {("lattice", "beta"): 1.0, ("excitation", "phases"): "alternating", ("lattice", "shape"): None,
                   ("lattice", "boundary"): None,
-                  ("integration", "map_times"): None}
+                  ("integration", "map_times"): None, ("integration", "deviation_start"): "all"}
 
 
 def numbers_spec(study) -> dict:
