@@ -130,3 +130,27 @@ def test_map_times_on_one_sample_and_a_norm_asked_of_a_bond_model_are_named():
     kg = {**SPEC, "lattice": {"model": "kg", "shape": [9, 9], "W": 10.0}, "integration": {"dt": 0.1, "t_final": 10.0}}
     with pytest.raises(StudyError, match="observables = 'norm_error': allowed is an observable of the split models"):
         load_study(kg)
+
+
+def test_the_deviation_vector_starts_on_the_excited_sites_when_asked():
+    """integration.deviation_start: excited puts the run's own random vector on the excited
+    sites only, at its norm (the window's start), so that on a lattice integrated whole Lambda
+    measures the packet at once: positive from t = 10 on, where the vector spread over every site
+    of a 21 x 21 KG lattice gives a Lambda still negative there (its part at rest shrinks first)."""
+    from chainchaos.run.orbits import Orbit, OrbitSettings, integrate
+    from chainchaos.system.chain import kg_lattice
+    from chainchaos.system.initial import Excitation
+
+    lattices = [kg_lattice(seed, 10.0, (21, 21)) for seed in range(2)]
+    orbits = [Orbit(model="kg", energy=0.4, chain=c, site=0, lane=0, excitation=Excitation(site=(11, 11),
+                    variable="momentum")) for c in lattices]
+    runs = {}
+    for start in ("all", "excited"):
+        settings = OrbitSettings(t_final=100.0, dt=0.4, integrator="ABA864", samples_per_decade=5,
+                                 deviation_start=start)
+        times, runs[start] = integrate(orbits, settings, series={"mlce": None, "log_growth": None})
+    late = times >= 10.0
+    assert all(np.all(r["mlce"][late] > 0) for r in runs["excited"])
+    assert all(np.any(r["mlce"][late] < 0) for r in runs["all"])
+    with pytest.raises(Exception, match="deviation_start"):
+        OrbitSettings(t_final=1.0, dt=0.1, deviation_start="some")
