@@ -66,11 +66,7 @@ class OrbitSettings(RunSettings):
     Samples: those of :meth:`RunSettings.sample_steps` plus ``final_samples`` evenly spaced over
     the last decade, so that time averages over it see the fast oscillations of a packet evenly.
     ``alignment``: evolve GALI_``gali_order``'s vectors too and record ln GALI_k; ``spectrum``:
-    the Lyapunov spectrum's ``exponents`` vectors (0: all 2N). ``deviation_start``: the mLCE
-    vector random on every site ("all") or that vector restricted to the excited sites and
-    scaled back to its norm ("excited", as a growing window starts it: on a large lattice a vector
-    spread over every site is mostly on sites at rest, whose regular part Lambda takes long to
-    outgrow)."""
+    the Lyapunov spectrum's ``exponents`` vectors (0: all 2N)."""
 
     samples_per_decade: int = 10
     t_first_sample: float = 1.0
@@ -81,12 +77,9 @@ class OrbitSettings(RunSettings):
     engine: str = "batch"
     alignment: bool = False
     spectrum: bool = False
-    deviation_start: str = "all"
 
     def __post_init__(self):
         super().__post_init__()
-        require(self.deviation_start in ("all", "excited"), "deviation_start", self.deviation_start,
-                "'all' or 'excited'")
         for key in ("alignment", "spectrum"):
             value = getattr(self, key)
             require(isinstance(value, bool) and not (value and self.engine == "single"), key, value,
@@ -135,7 +128,7 @@ def lane_factor(lane: int, settings: OrbitSettings) -> float:
 
 
 def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None, gali_stop: float | None = None,
-              series: dict | None = None, window=None) -> tuple[np.ndarray, list[dict]]:
+              series: dict | None = None, window=None, deviation_start: str = "all") -> tuple[np.ndarray, list[dict]]:
     """Integrate every orbit with its tangent map (and gap counting where bonds open) and sample it.
 
     Returns the sample times and, per orbit in input order, a dict with the :data:`SERIES` arrays
@@ -148,7 +141,12 @@ def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None, gali_
     steps made (so it may be fractional). ``series``: the per-orbit series to record instead of
     :data:`SERIES` (name -> fill, as
     there; ``energy_error`` is always recorded, since validity reads it). ``window``: integrate
-    only where the packets are (``run.window.Window``; None: the whole chain)."""
+    only where the packets are (``run.window.Window``; None: the whole chain). ``deviation_start``:
+    the mLCE vector random on every site ("all") or that vector on the excited sites only, scaled
+    back to its norm ("excited", as a window starts it: on a large lattice integrated whole, a
+    vector spread over every site is mostly on sites at rest, whose regular part Lambda takes long
+    to outgrow)."""
+    require(deviation_start in ("all", "excited"), "deviation_start", deviation_start, "'all' or 'excited'")
     require(window is None or not (settings.alignment or settings.spectrum), "window", window,
             "None with GALI or Lyapunov spectrum vectors (only the mLCE vector runs on a window)")
     wanted = SERIES if series is None else {**series, "energy_error": SERIES["energy_error"]}
@@ -161,7 +159,7 @@ def integrate(orbits: list[Orbit], settings: OrbitSettings, progress=None, gali_
             monitors = () if progress is None else (
                 _decades(progress, sum(r is not None for r in results), len(chunk), len(orbits)),)
             for i, r in zip(chunk, _integrate_model(name, [orbits[i] for i in chunk], settings, gali_stop, wanted,
-                                                        window, monitors)):
+                                                        window, monitors, deviation_start)):
                 results[i] = r
     unknown = sorted({o.model for o, r in zip(orbits, results) if r is None})
     require(not unknown, "model", unknown, f"one of {sorted(MODELS)}")
@@ -183,7 +181,7 @@ def _decades(progress, before: int, batch: int, total: int):
 
 
 def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, gali_stop, wanted,
-                     window, monitors=()) -> list[dict]:
+                     window, monitors=(), deviation_start: str = "all") -> list[dict]:
     model = get_model(name)
     if model.is_split:  # its second conserved quantity, recorded and judged as the energy
         wanted = {**wanted, "norm_error": np.inf}
@@ -203,7 +201,7 @@ def _integrate_model(name: str, orbits: list[Orbit], settings: OrbitSettings, ga
             pass
         DQ0[:, j], DP0[:, j] = initial_deviation(N, settings.deviation_seed + o.lane)
         XQ0[:, :, j], XP0[:, :, j] = settings.extra_deviations(problem, o.lane)
-    if settings.deviation_start == "excited" and window is None and ok0.any():  # (a window starts it so itself)
+    if deviation_start == "excited" and window is None and ok0.any():  # (a window starts it so itself)
         DQ0, DP0 = restricted_deviation(DQ0, DP0, *Window.excited(Q0, P0, problem.geometry), geometry=problem.geometry)
     samples = driver.sample(problem, Q0, P0, DQ0, DP0, sample_schedule(settings), monitors, kind=settings.engine,
                             xq0=XQ0 if K else None, xp0=XP0 if K else None,

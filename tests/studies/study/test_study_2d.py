@@ -146,11 +146,11 @@ def test_the_deviation_vector_starts_on_the_excited_sites_when_asked():
                     variable="momentum")) for c in lattices]
     runs = {}
     for start in ("all", "excited"):
-        settings = OrbitSettings(t_final=100.0, dt=0.4, integrator="ABA864", samples_per_decade=5,
-                                 deviation_start=start)
-        times, runs[start] = integrate(orbits, settings, series={"mlce": None, "log_growth": None})
+        settings = OrbitSettings(t_final=100.0, dt=0.4, integrator="ABA864", samples_per_decade=5)
+        times, runs[start] = integrate(orbits, settings, series={"mlce": None, "log_growth": None},
+                                       deviation_start=start)
     late = times >= 10.0
     assert all(np.all(r["mlce"][late] > 0) for r in runs["excited"])
     assert all(np.any(r["mlce"][late] < 0) for r in runs["all"])
-    with pytest.raises(Exception, match="deviation_start"):
-        OrbitSettings(t_final=1.0, dt=0.1, deviation_start="some")
+    with pytest.raises(Exception, match="deviation_start = 'some'"):
+        integrate(orbits, settings, deviation_start="some")

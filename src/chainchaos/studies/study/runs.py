@@ -104,7 +104,8 @@ def run_group(study, group: int, progress=None) -> xr.Dataset:
     orbits = study.orbits(items)
     settings = study.settings
     gali_stop = math.log(settings.gali_threshold) if settings.alignment else None
-    times, runs = integrate(orbits, settings, progress, gali_stop=gali_stop, series=study.series, window=study.window)
+    times, runs = integrate(orbits, settings, progress, gali_stop=gali_stop, series=study.series, window=study.window,
+                            deviation_start=study.spec["integration"]["deviation_start"])
     index = {"model": [o.model for o in orbits],
              "energy_index": [e for _, e, _ in items for _ in range(study.lanes)],
              "realization": [r for _, _, r in items for _ in range(study.lanes)],
