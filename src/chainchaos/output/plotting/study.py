@@ -30,6 +30,7 @@ from chainchaos.output.plotting.style import (
     model_colour,
     model_label,
     scene_label,
+    time_text,
 )
 from chainchaos.system.models import get_model
 
@@ -240,12 +241,6 @@ def _map_extent(maps: np.ndarray, shape: tuple) -> tuple[slice, slice]:
             slice(max(int(cj) - r, 0), min(int(np.ceil(cj)) + r + 1, ny)))
 
 
-def _time_text(t: float) -> str:
-    """A map's time: $t = 10^{k}$ at a power of ten, else three digits."""
-    k = np.log10(t) if t > 0 else np.nan
-    return f"$t = 10^{{{int(round(k))}}}$" if np.isfinite(k) and abs(k - round(k)) < 1e-9 else f"$t = {t:.3g}$"
-
-
 def maps_figure(stats, title: str = ""):
     """The density of one orbit (``shown_density_map``: the first valid realization's) at each map
     time: a row per (model, energy), a column per
@@ -262,7 +257,7 @@ def maps_figure(stats, title: str = ""):
             n = np.arange(1, shape[0] + 1)
             for ax, (model, k, energy) in zip(axes, rows):
                 for t, profile in zip(times, maps.sel(model=model).isel(energy=k).values):
-                    ax.semilogy(n, np.clip(profile, MAP_FLOOR, None), lw=0.8, label=_time_text(t))
+                    ax.semilogy(n, np.clip(profile, MAP_FLOOR, None), lw=0.8, label=f"$t = {time_text(t)}$")
                 ax.set_ylim(MAP_FLOOR, 1.0)
                 ax.set_xlabel("site $n$")
                 ax.set_ylabel(LABELS_DENSITY[get_model(model).is_split])
@@ -282,7 +277,7 @@ def maps_figure(stats, title: str = ""):
                     image = ax.imshow(np.clip(z[ys, xs], MAP_FLOOR, None), norm=norm, cmap=MAP_CMAP, origin="lower",
                                       interpolation="nearest", extent=(xs.start + 0.5, xs.stop + 0.5,
                                                                        ys.start + 0.5, ys.stop + 0.5))
-                    ax.set_title(_time_text(t) + (f"\n{scene_label(model, energy)}" if c == 0 else ""),
+                    ax.set_title(f"$t = {time_text(t)}$" + (f"\n{scene_label(model, energy)}" if c == 0 else ""),
                                  fontsize="small")
                     ax.set_xlabel("$i$")
                     if c == 0:
