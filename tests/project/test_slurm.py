@@ -281,7 +281,7 @@ def test_a_study_runs_through_slurm(slurm, tmp_path):
     _snakemake_on_slurm(slurm, "--config", f"study={study}", f"results={results}", "--", "study")
     with xr.open_dataset(results / "studies" / "square" / "statistics.nc") as ds:
         assert ds.sizes["realization"] == 3 and set(ds.model.values) == {"kg", "kg_linear"}
-        assert list(ds.attrs["lattice_shape"]) == [11, 9] and ds["density_map"].sizes["site"] == 99
+        assert list(ds.attrs["lattice_shape"]) == [11, 9] and ds["shown_density_map"].sizes["site"] == 99
     assert (results / "studies" / "square" / "figures" / "maps.png").stat().st_size > 1000
     comments = subprocess.run(["squeue", "-h", "--states=all", "-o", "%k %T"], env=slurm, capture_output=True,
                               text=True, timeout=30).stdout  # the plugin's comment: rule_<name>_wildcards_...
