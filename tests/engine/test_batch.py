@@ -125,7 +125,7 @@ def test_a_diverging_lane_is_reported_and_leaves_the_others_alone():
 def test_lane_parameters_are_trajectory_innermost():
     chains = [random_chain(s, 5.0) for s in range(3)]
     inv_mass, bonds = Problem("hertz", chains).lane_parameters
-    assert bonds.shape == (3, N + 1, 3) and inv_mass.shape == (N, 3)
+    assert bonds.shape == (2, N + 1, 3) and inv_mass.shape == (N, 3)
     assert inv_mass.flags.c_contiguous and bonds.flags.c_contiguous
     np.testing.assert_array_equal(bonds[1, :, 2], chains[2].delta)  # Hertz: (A, delta)
     np.testing.assert_array_equal(inv_mass[:, 1], 1.0 / chains[1].mass)

@@ -45,14 +45,16 @@ from chainchaos.engine.integrators import (
 from chainchaos.errors import require
 from chainchaos.kernels.exactmath import gram_schmidt
 from chainchaos.kernels.simd import LANES, vbelow, vload, vstore
-from chainchaos.system.models import MAX_BOND_PARAMETERS, MAX_SITE_PARAMETERS
 from chainchaos.system.models.base import (
     bond_force,
     bond_force_stiffness,
     bond_opening,
+    bond_vectors,
     check_sites,
+    parameter_counts,
     site_kick,
     site_kick_deviation,
+    site_vectors,
 )
 
 #: Up to this many lanes beyond whole blocks cost no more on the single-trajectory engine than in
@@ -61,27 +63,40 @@ from chainchaos.system.models.base import (
 SERIAL_REMAINDER = LANES // 2
 
 #: The per-row contents of a block's buffer, LANES doubles each. Row r of U and DQ is bead r-1
-#: (the walls are rows 0 and N+1); row n of P, DP, IM and of the site parameters S0, S1 (a model
-#: with a site law; zero and never read otherwise) is bead n; row b of the bond parameters B0, B1,
-#: B2 (the model's, ``models.base``) and of the bond force F and stiffness K is bond b, which joins
-#: beads b-1 and b.
-QUANTITIES = ("U", "DQ", "P", "DP", "IM", "B0", "B1", "B2", "F", "K", "S0", "S1")
-_U, _DQ, _P, _DP, _IM, _B0, _B1, _B2, _F, _K, _S0, _S1 = (i * LANES for i in range(len(QUANTITIES)))
-assert len(QUANTITIES) == 7 + MAX_BOND_PARAMETERS + MAX_SITE_PARAMETERS and MAX_SITE_PARAMETERS == 2
-#: Doubles per row of a block's buffer.
-ROW = len(QUANTITIES) * LANES
+#: (the walls are rows 0 and N+1); row n of P, DP and IM is bead n; row b of the bond force F and
+#: stiffness K is bond b, which joins beads b-1 and b. Then, in the same row, the model's
+#: parameters (``models.base``), as many as it has: bond b's (B), then bead b's site law's (S,
+#: none without one). All a sweep touches of a bond is in one row, read in order.
+QUANTITIES = ("U", "DQ", "P", "DP", "IM", "F", "K", "B", "S")
+_U, _DQ, _P, _DP, _IM, _F, _K, _B = (i * LANES for i in range(len(QUANTITIES) - 1))
 
 
 @njit(cache=True)
-def _bond_parameters(Z, bond):
-    """The bond parameters (B0, B1, B2) of the bond whose row starts at ``bond``, as vectors."""
-    return vload(Z, bond + _B0), vload(Z, bond + _B1), vload(Z, bond + _B2)
+def _row(model):
+    """Doubles per row of a block's buffer: seven quantities and the model's parameters."""
+    n_bond, n_site = parameter_counts(model)
+    return (7 + n_bond + n_site) * LANES
 
 
 @njit(cache=True)
-def _site_parameters(Z, row):
-    """The site parameters (S0, S1) of the bead whose momenta are in row ``row``, as vectors."""
-    return vload(Z, row + _S0), vload(Z, row + _S1)
+def _site_offset(model):
+    """Where a row's site parameters start (``QUANTITIES``): after its bond parameters."""
+    n_bond, _ = parameter_counts(model)
+    return _B + n_bond * LANES
+
+
+@njit(cache=True)
+def _bond_parameters(model, Z, bond):
+    """The parameters of the bond whose row starts at ``bond``, as vectors (a tuple, one per
+    bond parameter of the model)."""
+    return bond_vectors(model, Z, bond + _B, LANES)
+
+
+@njit(cache=True)
+def _site_parameters(model, Z, row):
+    """The site parameters of the bead whose momenta are in row ``row``, as vectors (the empty
+    tuple without a site law)."""
+    return site_vectors(model, Z, row + _site_offset(model), LANES)
 
 
 @njit(cache=True, error_model="numpy")
@@ -101,18 +116,19 @@ def _sweep(model, tangent, drift, kick, keep_forces, N, Z, a, c):
     literally(drift)
     literally(kick)
     literally(keep_forces)
+    row_size = _row(model)
     u_left = vload(Z, _U)  # the wall
     dq_left = vload(Z, _DQ)  # deviation of bead b-1
-    u_right, dq_right = _drift_bead(drift, tangent, Z, 0, a)
+    u_right, dq_right = _drift_bead(drift, tangent, Z, row_size, 0, a)
     f1 = f2 = g1 = g2 = u_left  # f, g of bonds b-1 and b-2
     for b in range(N + 1):
-        bond = b * ROW
+        bond = b * row_size
         if b < N:
-            u_next, dq_next = _drift_bead(drift, tangent, Z, bond + ROW, a)
+            u_next, dq_next = _drift_bead(drift, tangent, Z, row_size, bond + row_size, a)
         else:
             u_next, dq_next = u_right, dq_right
         if kick:
-            parameters = _bond_parameters(Z, bond)
+            parameters = _bond_parameters(model, Z, bond)
             if tangent:
                 f, k = bond_force_stiffness(model, parameters, u_left, u_right)
             else:
@@ -124,19 +140,19 @@ def _sweep(model, tangent, drift, kick, keep_forces, N, Z, a, c):
                     vstore(Z, bond + _K, k)
             g = k * (dq_left - dq_right) if tangent else f
             if b >= 2:
-                _kick_bead(model, tangent, Z, bond - 2 * ROW, c, f2, f1, g2, g1)
+                _kick_bead(model, tangent, Z, bond - 2 * row_size, c, f2, f1, g2, g1)
             f2, g2, f1, g1 = f1, g1, f, g
         u_left, dq_left = u_right, dq_right
         u_right, dq_right = u_next, dq_next
     if kick:
-        _kick_bead(model, tangent, Z, (N - 1) * ROW, c, f2, f1, g2, g1)
+        _kick_bead(model, tangent, Z, (N - 1) * row_size, c, f2, f1, g2, g1)
 
 
 @njit(cache=True)
-def _drift_bead(drift, tangent, Z, bond, a):
-    """(u, dq) of the bead whose momenta are in row ``bond`` (its displacement in row bond + ROW),
-    drifted by a if ``drift``: u += a M^-1 p, dq += a M^-1 dp (``integrators._drift_vector``)."""
-    bead = bond + ROW
+def _drift_bead(drift, tangent, Z, row_size, bond, a):
+    """(u, dq) of the bead whose momenta are in row ``bond`` (its displacement in the next row, rows
+    ``row_size`` doubles apart), drifted by a if ``drift``: u += a M^-1 p, dq += a M^-1 dp (``integrators._drift_vector``)."""
+    bead = bond + row_size
     return _drift_vector(drift, tangent, Z, bead + _U, bead + _DQ, bond + _P, bond + _DP, bond + _IM, 0, a)
 
 
@@ -147,11 +163,12 @@ def _kick_bead(model, tangent, Z, row, c, f_left, f_right, g_left, g_right):
     p += c ((f_left - f_right) - w'(u)), dp += c ((g_left - g_right) - w''(u) dq) at the bead's
     (drifted) u and dq, read back from the buffer (``models.base.site_kick``: nothing of it is
     compiled for a model without one)."""
-    site = _site_parameters(Z, row)
-    u = vload(Z, row + ROW + _U)
+    row_size = _row(model)
+    site = _site_parameters(model, Z, row)
+    u = vload(Z, row + row_size + _U)
     vstore(Z, row + _P, vload(Z, row + _P) + c * site_kick(model, site, u, f_left - f_right))
     if tangent:
-        dq = vload(Z, row + ROW + _DQ)
+        dq = vload(Z, row + row_size + _DQ)
         vstore(Z, row + _DP, vload(Z, row + _DP) + c * site_kick_deviation(model, site, u, dq, g_left - g_right))
 
 
@@ -161,18 +178,19 @@ def _kick_only(model, tangent, N, Z, c):
     g_b = k_b (dq_{b-1} - dq_b), carried from one bead to the next); a site law's w'(u) and w''(u)
     are computed again at the unchanged displacements (the same bits)."""
     literally(tangent)
+    row_size = _row(model)
     f_left = vload(Z, _F)
-    g_left = vload(Z, _K) * (vload(Z, _DQ) - vload(Z, ROW + _DQ)) if tangent else f_left
+    g_left = vload(Z, _K) * (vload(Z, _DQ) - vload(Z, row_size + _DQ)) if tangent else f_left
     for n in range(N):
-        row = n * ROW
-        site = _site_parameters(Z, row)
-        u = vload(Z, row + ROW + _U)
-        f = vload(Z, row + ROW + _F)
+        row = n * row_size
+        site = _site_parameters(model, Z, row)
+        u = vload(Z, row + row_size + _U)
+        f = vload(Z, row + row_size + _F)
         vstore(Z, row + _P, vload(Z, row + _P) + c * site_kick(model, site, u, f_left - f))
         f_left = f
         if tangent:
-            dq = vload(Z, row + ROW + _DQ)
-            g = vload(Z, row + ROW + _K) * (dq - vload(Z, row + 2 * ROW + _DQ))
+            dq = vload(Z, row + row_size + _DQ)
+            g = vload(Z, row + row_size + _K) * (dq - vload(Z, row + 2 * row_size + _DQ))
             vstore(Z, row + _DP, vload(Z, row + _DP) + c * site_kick_deviation(model, site, u, dq, g_left - g))
             g_left = g
 
@@ -233,16 +251,17 @@ def _drift_kick_vectors(model, N, Z, V, extra, drift, kick, a, c):
     orbit's drifted u, as the block's own vector has it)."""
     literally(drift)
     literally(kick)
+    row_size = _row(model)
     wall = vload(V, _VQ)  # row 0 of vector 0: a wall, zero
     grouped = extra - extra % VECTOR_GROUP
     for j in range(0, grouped, VECTOR_GROUP):
         v0, v1, v2 = _vector_base(N, j), _vector_base(N, j + 1), _vector_base(N, j + 2)
         q0 = g0 = p0 = q1 = g1 = p1 = q2 = g2 = p2 = wall
         for b in range(N + 1):
-            a_im = a * vload(Z, b * ROW + _IM)  # row N: zero
-            k = vload(Z, b * ROW + _K) if kick else wall
-            site = _site_parameters(Z, max(b - 1, 0) * ROW)  # bead b-1's (used from b = 1)
-            u = vload(Z, b * ROW + _U)
+            a_im = a * vload(Z, b * row_size + _IM)  # row N: zero
+            k = vload(Z, b * row_size + _K) if kick else wall
+            site = _site_parameters(model, Z, max(b - 1, 0) * row_size)  # bead b-1's (used from b = 1)
+            u = vload(Z, b * row_size + _U)
             q0, g0, p0 = _vector_bond(model, V, v0, b, N, drift, kick, a_im, k, site, u, c, wall, q0, g0, p0)
             q1, g1, p1 = _vector_bond(model, V, v1, b, N, drift, kick, a_im, k, site, u, c, wall, q1, g1, p1)
             q2, g2, p2 = _vector_bond(model, V, v2, b, N, drift, kick, a_im, k, site, u, c, wall, q2, g2, p2)
@@ -250,22 +269,22 @@ def _drift_kick_vectors(model, N, Z, V, extra, drift, kick, a, c):
         v0 = _vector_base(N, j)
         q0 = g0 = p0 = wall
         for b in range(N + 1):
-            a_im = a * vload(Z, b * ROW + _IM)  # row N: zero
-            k = vload(Z, b * ROW + _K) if kick else wall
-            site = _site_parameters(Z, max(b - 1, 0) * ROW)
-            u = vload(Z, b * ROW + _U)
+            a_im = a * vload(Z, b * row_size + _IM)  # row N: zero
+            k = vload(Z, b * row_size + _K) if kick else wall
+            site = _site_parameters(model, Z, max(b - 1, 0) * row_size)
+            u = vload(Z, b * row_size + _U)
             q0, g0, p0 = _vector_bond(model, V, v0, b, N, drift, kick, a_im, k, site, u, c, wall, q0, g0, p0)
 
 
 @njit(cache=True, error_model="numpy")
-def _normalise_vectors(N, Z, V, lane, extra, orthogonal, growth, W, lane_growth):
+def _normalise_vectors(N, Z, row_size, V, lane, extra, orthogonal, growth, W, lane_growth):
     """The extra deviation vectors of one lane at a check, gathered with the block's own vector
     (already normalised) into the rows of W (extra + 1, 2N), the first ``orthogonal`` of them
     orthonormalised against it and each other and the others normalised
     (``kernels.exactmath.gram_schmidt``), ln of their norms added to growth[:, lane]."""
     for n in range(N):
-        W[0, n] = Z[(n + 1) * ROW + _DQ + lane]
-        W[0, N + n] = Z[n * ROW + _DP + lane]
+        W[0, n] = Z[(n + 1) * row_size + _DQ + lane]
+        W[0, N + n] = Z[n * row_size + _DP + lane]
         for j in range(extra):
             W[j + 1, n] = V[_vector_base(N, j) + (n + 1) * VROW + _VQ + lane]
             W[j + 1, N + n] = V[_vector_base(N, j) + n * VROW + _VP + lane]
@@ -283,11 +302,12 @@ def _count_gaps(model, N, Z, gap_steps, max_gaps):
     """Open bonds of every lane (the model's opening < 0): one step added to
     gap_steps[b] (a row of LANES counts per bond, as doubles) and max_gaps (LANES) raised to the
     number open now where that is larger."""
+    row_size = _row(model)
     n_open = vload(max_gaps, 0) * 0.0
     for b in range(N + 1):
-        bond = b * ROW
-        parameters = _bond_parameters(Z, bond)
-        is_open = vbelow(bond_opening(model, parameters, vload(Z, bond + _U), vload(Z, bond + ROW + _U)), 0.0)
+        bond = b * row_size
+        parameters = _bond_parameters(model, Z, bond)
+        is_open = vbelow(bond_opening(model, parameters, vload(Z, bond + _U), vload(Z, bond + row_size + _U)), 0.0)
         vstore(gap_steps, b * LANES, vload(gap_steps, b * LANES) + is_open)
         n_open = n_open + is_open
     vstore(max_gaps, 0, max(n_open, vload(max_gaps, 0)))
@@ -303,6 +323,7 @@ def _advance_block(model, tangent, N, Z, kicks, drifts, dt, n_steps, check_every
     orthonormalised against it and each other, the rest normalised, and ln of their norms added
     to vector_growth (extra, LANES)."""
     literally(tangent)
+    row_size = _row(model)
     n_stages = drifts.shape[0]
     force_valid = False
     W = np.empty((extra + 1, 2 * N))  # a lane's vectors at a check, and their ln norms
@@ -338,13 +359,13 @@ def _advance_block(model, tangent, N, Z, kicks, drifts, dt, n_steps, check_every
             for j in range(LANES):
                 s = 0.0
                 for n in range(N):
-                    s += Z[(n + 1) * ROW + _U + j] + Z[n * ROW + _P + j]
-                if tangent:  # lane j's deviation vector: every ROW-th element of the buffer
-                    log_growth[j] += _renormalise(Z[ROW + _DQ + j:(N + 1) * ROW + _DQ + j:ROW],
-                                                  Z[_DP + j:N * ROW + _DP + j:ROW])
-                    s += Z[ROW + _DQ + j]
+                    s += Z[(n + 1) * row_size + _U + j] + Z[n * row_size + _P + j]
+                if tangent:  # lane j's deviation vector: every row_size-th element of the buffer
+                    log_growth[j] += _renormalise(Z[row_size + _DQ + j:(N + 1) * row_size + _DQ + j:row_size],
+                                                  Z[_DP + j:N * row_size + _DP + j:row_size])
+                    s += Z[row_size + _DQ + j]
                     if extra:
-                        _normalise_vectors(N, Z, V, j, extra, orthogonal, vector_growth, W, lane_growth)
+                        _normalise_vectors(N, Z, row_size, V, j, extra, orthogonal, vector_growth, W, lane_growth)
                 if bad[j] < 0 and not np.isfinite(s):
                     bad[j] = step + 1
 
@@ -356,8 +377,8 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
     Model), shape (N, B), and, if ``tangent``, their deviation vectors (dq, dp) by n_steps steps of
     the scheme (kicks, drifts), in blocks of LANES (the last padded by repeating its last lane).
 
-    inv_mass (N, B); bonds (MAX_BOND_PARAMETERS, N+1, B), the model's bond parameters, bond b
-    joining beads b-1 and b (walls at b = 0 and b = N); sites (MAX_SITE_PARAMETERS, N, B), the
+    inv_mass (N, B); bonds (parameters, N+1, B), the model's bond parameters, bond b
+    joining beads b-1 and b (walls at b = 0 and b = N); sites (parameters, N, B), the
     site parameters of a model with a site law (required for one, ignored otherwise). Every ``check_every`` steps and at the
     end: each lane's state is checked for finiteness (``bad[j]`` set to the step count of the
     first failed check if it is still < 0) and, with ``tangent``, its deviation vector
@@ -375,7 +396,9 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
     N = q.shape[0]
     B = lanes
     extra = xq.shape[0] if tangent else 0
-    Z = _aligned_zeros((N + 2) * ROW)
+    n_bond, n_site = parameter_counts(model)
+    row_size, site_offset = _row(model), _site_offset(model)
+    Z = _aligned_zeros((N + 2) * row_size)
     V = _aligned_zeros(max(extra, 1) * (N + 2) * VROW)
     block_gaps = _aligned_zeros((N + 1) * LANES)  # counts as doubles, exact below 2**53
     block_growth = np.zeros(LANES)
@@ -388,20 +411,20 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
         for lane in range(LANES):
             j = min(first + lane, B - 1)  # padding lanes repeat the last trajectory
             for n in range(N):
-                Z[(n + 1) * ROW + _U + lane] = q[n, j]
-                Z[(n + 1) * ROW + _DQ + lane] = dq[n, j]
-                Z[n * ROW + _P + lane] = p[n, j]
-                Z[n * ROW + _DP + lane] = dp[n, j]
-                Z[n * ROW + _IM + lane] = inv_mass[n, j]
+                Z[(n + 1) * row_size + _U + lane] = q[n, j]
+                Z[(n + 1) * row_size + _DQ + lane] = dq[n, j]
+                Z[n * row_size + _P + lane] = p[n, j]
+                Z[n * row_size + _DP + lane] = dp[n, j]
+                Z[n * row_size + _IM + lane] = inv_mass[n, j]
                 if sites is not None:
-                    Z[n * ROW + _S0 + lane] = sites[0, n, j]
-                    Z[n * ROW + _S1 + lane] = sites[1, n, j]
+                    for r in range(n_site):
+                        Z[n * row_size + site_offset + r * LANES + lane] = sites[r, n, j]
                 for k in range(extra):
                     V[_vector_base(N, k) + (n + 1) * VROW + _VQ + lane] = xq[k, n, j]
                     V[_vector_base(N, k) + n * VROW + _VP + lane] = xp[k, n, j]
             for b in range(N + 1):
-                for r in range(MAX_BOND_PARAMETERS):
-                    Z[b * ROW + _B0 + r * LANES + lane] = bonds[r, b, j]
+                for r in range(n_bond):
+                    Z[b * row_size + _B + r * LANES + lane] = bonds[r, b, j]
                 block_gaps[b * LANES + lane] = gap_steps[b, j]
             block_growth[lane] = log_growth[j]
             block_max_gaps[lane] = max_gaps[j]
@@ -423,10 +446,10 @@ def advance_batch(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_ste
         for lane in range(min(LANES, B - first)):
             j = first + lane
             for n in range(N):
-                q[n, j] = Z[(n + 1) * ROW + _U + lane]
-                dq[n, j] = Z[(n + 1) * ROW + _DQ + lane]
-                p[n, j] = Z[n * ROW + _P + lane]
-                dp[n, j] = Z[n * ROW + _DP + lane]
+                q[n, j] = Z[(n + 1) * row_size + _U + lane]
+                dq[n, j] = Z[(n + 1) * row_size + _DQ + lane]
+                p[n, j] = Z[n * row_size + _P + lane]
+                dp[n, j] = Z[n * row_size + _DP + lane]
                 for k in range(extra):
                     xq[k, n, j] = V[_vector_base(N, k) + (n + 1) * VROW + _VQ + lane]
                     xp[k, n, j] = V[_vector_base(N, k) + n * VROW + _VP + lane]

@@ -24,14 +24,16 @@ from chainchaos.errors import require
 from chainchaos.kernels.exactmath import ln
 from chainchaos.kernels.simd import LANES, vload, vnext, vprev, vstore
 from chainchaos.system.models.base import (
-    MAX_BOND_PARAMETERS,
-    MAX_SITE_PARAMETERS,
     bond_force,
     bond_force_stiffness,
     bond_opening,
+    bond_values,
+    bond_vectors,
     check_sites,
+    parameter_counts,
     site_kick,
     site_kick_deviation,
+    site_vectors,
 )
 
 
@@ -210,33 +212,21 @@ def _check(q, p, dq, dp, tangent, diagnostics):
 
 #: The rows of the single engine's work buffer, all indexed alike and padded to whole vectors:
 #: displacements U and deviations DQ with the walls (U[0] = U[N+1] = 0, beads at 1..N), momenta
-#: P, DP and inverse masses IM of the beads at 1..N, bond force F and stiffness K and the bond
-#: parameters B0, B1, B2 (the model's, ``models.base``) of bond b = 0..N, which joins U[b] and
-#: U[b+1], and the site parameters S0, S1 of the beads at 1..N (a model with a site law; zero and
-#: never read otherwise).
-ROWS = ("U", "DQ", "P", "DP", "IM", "F", "K", "B0", "B1", "B2", "S0", "S1")
-assert len(ROWS) == 7 + MAX_BOND_PARAMETERS + MAX_SITE_PARAMETERS and MAX_SITE_PARAMETERS == 2
+#: P, DP and inverse masses IM of the beads at 1..N, bond force F and stiffness K of bond
+#: b = 0..N, which joins U[b] and U[b+1]; then one row per bond parameter of the model (B, as
+#: many as ``Model.bond_parameter_count``) and one per site parameter of the beads at 1..N (S,
+#: none without a site law).
+ROWS = ("U", "DQ", "P", "DP", "IM", "F", "K", "B", "S")
 
 
 @inner()
-def _row_offsets(L):
-    """Where each of ``ROWS`` starts in the work buffer: rows of L + LANES doubles, so that every
-    row starts on a vector boundary and a sweep may read one vector past L."""
+def _row_offsets(model, L):
+    """Where each of ``ROWS`` starts in the work buffer (B and S: the first of the model's rows),
+    and the length R of a row: rows of L + LANES doubles, so that every row starts on a vector
+    boundary and a sweep may read one vector past L."""
     R = L + LANES
-    return 0, R, 2 * R, 3 * R, 4 * R, 5 * R, 6 * R, 7 * R, 8 * R, 9 * R
-
-
-@inner()
-def _site_rows(L):
-    """Where the site parameter rows S0 and S1 of ``ROWS`` start in the work buffer."""
-    R = L + LANES
-    return 10 * R, 11 * R
-
-
-@inner()
-def _site_vector(Z, S0, S1, n):
-    """The site parameters (S0, S1) of the beads of vector n, as vectors."""
-    return vload(Z, S0 + n), vload(Z, S1 + n)
+    n_bond, _ = parameter_counts(model)
+    return 0, R, 2 * R, 3 * R, 4 * R, 5 * R, 6 * R, 7 * R, (7 + n_bond) * R, R
 
 
 @njit(cache=True)  # with its entry points: the batch engine's code is compiled as it was measured
@@ -287,8 +277,7 @@ def _stage(model, tangent, drift, kick, keep_forces, L, Z, a, c):
     literally(drift)
     literally(kick)
     literally(keep_forces)
-    U, DQ, P, DP, IM, F, K, B0, B1, B2 = _row_offsets(L)
-    S0, S1 = _site_rows(L)
+    U, DQ, P, DP, IM, F, K, B, S, R = _row_offsets(model, L)
     u, dq = _drift_vector(drift, tangent, Z, U, DQ, P, DP, IM, np.int64(0), a)  # not Literal[int](0): one compile
     f_before = g_before = vload(Z, U + L)  # U[L:L+LANES], always zero
     for b in range(0, L, LANES):
@@ -297,7 +286,7 @@ def _stage(model, tangent, drift, kick, keep_forces, L, Z, a, c):
         else:  # the vector past L: zero, never drifted
             u_after, dq_after = vload(Z, U + L), vload(Z, DQ + L)
         if kick:
-            bond = (vload(Z, B0 + b), vload(Z, B1 + b), vload(Z, B2 + b))
+            bond = bond_vectors(model, Z, B + b, R)
             if tangent:
                 f, k = bond_force_stiffness(model, bond, u, vnext(u, u_after))
             else:
@@ -306,8 +295,8 @@ def _stage(model, tangent, drift, kick, keep_forces, L, Z, a, c):
                 vstore(Z, F + b, f)
                 if tangent:
                     vstore(Z, K + b, k)
-            f_before, g_before = _kick_vector(model, tangent, Z, P, DP, _site_vector(Z, S0, S1, b), b, c, f_before,
-                                              f, g_before, k, u, dq, dq_after)
+            f_before, g_before = _kick_vector(model, tangent, Z, P, DP, site_vectors(model, Z, S + b, R), b, c,
+                                              f_before, f, g_before, k, u, dq, dq_after)
         u, dq = u_after, dq_after
 
 
@@ -317,19 +306,18 @@ def _kick(model, tangent, L, Z, c):
     p_i += c (F_{i-1} - F_i);  dp_i += c (G_{i-1} - G_i), G_b = K_b (dq_b - dq_{b+1}); a site law's
     w'(u_i) and w''(u_i) are computed again at the unchanged displacements (the same bits)."""
     literally(tangent)
-    U, DQ, P, DP, _, F, K, _, _, _ = _row_offsets(L)
-    S0, S1 = _site_rows(L)
+    U, DQ, P, DP, _, F, K, _, S, R = _row_offsets(model, L)
     f_before = g_before = vload(Z, U + L)  # zero
     dq = vload(Z, DQ)
     for n in range(0, L, LANES):
         dq_after = vload(Z, DQ + n + LANES)
-        f_before, g_before = _kick_vector(model, tangent, Z, P, DP, _site_vector(Z, S0, S1, n), n, c, f_before,
-                                          vload(Z, F + n), g_before, vload(Z, K + n), vload(Z, U + n), dq, dq_after)
+        f_before, g_before = _kick_vector(model, tangent, Z, P, DP, site_vectors(model, Z, S + n, R), n, c,
+                                          f_before, vload(Z, F + n), g_before, vload(Z, K + n), vload(Z, U + n), dq, dq_after)
         dq = dq_after
 
 
 @inner(error_model="numpy")
-def _step_loop(model, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps, gap_steps,
+def _step_loop(model, tangent, N, L, Z, bonds, kicks, drifts, dt, n_steps, check_every, track_gaps, gap_steps,
                diagnostics):
     """The steps of ``advance`` on its work buffer Z (``ROWS``, ``_row_offsets``).
 
@@ -343,7 +331,7 @@ def _step_loop(model, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every,
     operations are those of the scalar expressions, in the same order.
     """
     literally(tangent)
-    U, DQ, P, DP, _, _, _, B0, B1, B2 = _row_offsets(L)
+    U, DQ, P, DP, _, _, _, _, _, _ = _row_offsets(model, L)
     n_stages = drifts.shape[0]
     last_kick = -1  # the last stage whose drift a kick follows
     for i in range(n_stages):
@@ -370,7 +358,7 @@ def _step_loop(model, tangent, N, L, Z, kicks, drifts, dt, n_steps, check_every,
         if track_gaps:  # open bonds
             n_open = 0
             for b in range(N + 1):
-                is_open = bond_opening(model, (Z[B0 + b], Z[B1 + b], Z[B2 + b]), Z[U + b], Z[U + b + 1]) < 0.0
+                is_open = bond_opening(model, bond_values(model, bonds, b), Z[U + b], Z[U + b + 1]) < 0.0
                 gap_steps[b] += is_open
                 n_open += is_open
             if n_open > diagnostics[1]:
@@ -418,8 +406,8 @@ def advance(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, ta
     """Advance the state (q, p) of ``model`` (a ``chainchaos.system.models`` Model) and, if ``tangent``,
     the deviation vector (dq, dp) by n_steps.
 
-    inv_mass (N,); bonds (MAX_BOND_PARAMETERS, N+1), the model's bond parameters
-    (``Model.bond_parameters``); sites (MAX_SITE_PARAMETERS, N), the site parameters of a model
+    inv_mass (N,); bonds (parameters, N+1), the model's bond parameters
+    (``Model.bond_parameters``); sites (parameters, N), the site parameters of a model
     with a site law (``Model.site_parameters``; required for one, ignored otherwise). Every
     ``check_every`` steps and at the end the state is checked for finiteness and the deviation
     vector is renormalised, its log growth added to diagnostics[0]. With ``track_gaps`` (a model
@@ -436,25 +424,25 @@ def advance(model, q, p, dq, dp, inv_mass, bonds, kicks, drifts, dt, n_steps, ta
     check_sites(model, sites)
     N = q.shape[0]
     L = (N + 1 + LANES) // LANES * LANES
-    Z = _aligned_zeros(len(ROWS) * (L + LANES))
-    U, DQ, P, DP, IM, F, K, B0, B1, B2 = _row_offsets(L)
+    n_bond, n_site = parameter_counts(model)
+    U, DQ, P, DP, IM, F, K, B, S, R = _row_offsets(model, L)
+    Z = _aligned_zeros((7 + n_bond + n_site) * R)
     _put(Z, U + 1, q)
     _put(Z, DQ + 1, dq)
     _put(Z, P + 1, p)
     _put(Z, DP + 1, dp)
     _put(Z, IM + 1, inv_mass)
-    for r, start in enumerate((B0, B1, B2)):
-        _put(Z, start, bonds[r])
+    for r in range(n_bond):
+        _put(Z, B + r * R, bonds[r])
     if sites is not None:
-        S0, S1 = _site_rows(L)
-        _put(Z, S0 + 1, sites[0])
-        _put(Z, S1 + 1, sites[1])
+        for r in range(n_site):
+            _put(Z, S + r * R + 1, sites[r])
     # the tangent flag literal: each case compiles to its own code without these branches
     if tangent:
-        bad = _step_loop(model, True, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+        bad = _step_loop(model, True, N, L, Z, bonds, kicks, drifts, dt, n_steps, check_every, track_gaps,
                          gap_steps, diagnostics)
     else:
-        bad = _step_loop(model, False, N, L, Z, kicks, drifts, dt, n_steps, check_every, track_gaps,
+        bad = _step_loop(model, False, N, L, Z, bonds, kicks, drifts, dt, n_steps, check_every, track_gaps,
                          gap_steps, diagnostics)
     _take(Z, U + 1, q, N)
     _take(Z, DQ + 1, dq, N)

@@ -30,7 +30,16 @@ from chainchaos.engine.batch import Batch
 from chainchaos.engine.integrators import _check
 from chainchaos.errors import require
 from chainchaos.kernels.simd import LANES, vload, vstore
-from chainchaos.system.models.base import bond_force, bond_force_stiffness, site_kick, site_kick_deviation
+from chainchaos.system.models.base import (
+    bond_force,
+    bond_force_stiffness,
+    bond_values,
+    bond_vectors,
+    site_kick,
+    site_kick_deviation,
+    site_values,
+    site_vectors,
+)
 
 
 @njit(cache=True, error_model="numpy")
@@ -43,7 +52,7 @@ def _forces(model, u, dq, bonds, ends, tangent, F, G):
         a, c = ends[b, 0], ends[b, 1]
         u_a = u[a] if a >= 0 else 0.0
         u_c = u[c] if c >= 0 else 0.0
-        parameters = (bonds[0, b], bonds[1, b], bonds[2, b])
+        parameters = bond_values(model, bonds, b)
         if tangent:
             f, k = bond_force_stiffness(model, parameters, u_a, u_c)
             g = k * ((dq[a] if a >= 0 else 0.0) - (dq[c] if c >= 0 else 0.0))
@@ -62,7 +71,7 @@ def _forces(model, u, dq, bonds, ends, tangent, F, G):
 @njit(cache=True, error_model="numpy")
 def _kick(model, tangent, q, p, dq, dp, sites, F, G, c):
     for n in range(q.shape[0]):
-        site = (sites[0, n], sites[1, n])
+        site = site_values(model, sites, n)
         p[n] = p[n] + c * site_kick(model, site, q[n], F[n])
         if tangent:
             dp[n] = dp[n] + c * site_kick_deviation(model, site, q[n], dq[n], G[n])
@@ -75,8 +84,8 @@ def advance_lattice(model, q, p, dq, dp, inv_mass, bonds, ends, sites, kicks, dr
     ``ends`` (B, 2) and, with ``tangent``, its deviation vector (dq, dp), each (N,), by n_steps
     steps of the scheme (kicks, drifts).
 
-    inv_mass (N,); bonds (MAX_BOND_PARAMETERS, B), the model's parameters of each bond
-    (``Model.bond_parameters``); sites (MAX_SITE_PARAMETERS, N). Every ``check_every`` steps and
+    inv_mass (N,); bonds (parameters, B), the model's parameters of each bond
+    (``Model.bond_parameters``); sites (parameters, N). Every ``check_every`` steps and
     at the end the state is checked for finiteness and the deviation vector renormalised, ln of
     its norm added to diagnostics[0]. Returns -1, or the number of steps done when a non-finite
     state stopped the run.
@@ -109,7 +118,7 @@ def _bond(model, PX, at, stride, tangent, u_a, u_c, dq_a, dq_c):
     """f and, with ``tangent``, g = k (dq_a - dq_c) of the bond whose parameters start at ``at``
     of PX (rows ``stride`` apart); without, the second value is u_a, summed into a tangent force
     that no kick reads (one type for both cases)."""
-    parameters = (vload(PX, at), vload(PX, at + stride), vload(PX, at + 2 * stride))
+    parameters = bond_vectors(model, PX, at, stride)
     if tangent:
         f, k = bond_force_stiffness(model, parameters, u_a, u_c)
         return f, k * (dq_a - dq_c)
@@ -155,7 +164,7 @@ def _square_kick(model, U, P, DQ, DP, S, PX, PY, nx, ny, fixed_x, fixed_y, tange
                 F, G = F - f, G - g
                 vstore(FY, i * LANES, f)
                 vstore(GY, i * LANES, g)
-            site = (vload(S, at), vload(S, N * LANES + at))
+            site = site_vectors(model, S, at, N * LANES)
             vstore(P, at, vload(P, at) + c * site_kick(model, site, u, F))
             if tangent:
                 vstore(DP, at, vload(DP, at) + c * site_kick_deviation(model, site, u, dq, G))
@@ -167,10 +176,10 @@ def advance_lattice_block(model, U, P, DQ, DP, IM, PX, PY, S, nx, ny, fixed_x, f
     """Advance the LANES trajectories of a block on the nx x ny lattice by n_steps steps of the
     scheme (no check).
 
-    U, P, DQ, DP, IM (N LANES,): site n's lanes at n LANES; PX (MAX_BOND_PARAMETERS ny (nx + 1)
-    LANES,): row r of the bond left of site (i, j) at ((r ny + j) (nx + 1) + i) LANES (i = nx: right
-    of the last site); PY (MAX_BOND_PARAMETERS (ny + 1) nx LANES,): row r of the bond below (i, j)
-    at ((r (ny + 1) + j) nx + i) LANES; S (MAX_SITE_PARAMETERS N LANES,), row r of site n at
+    U, P, DQ, DP, IM (N LANES,): site n's lanes at n LANES; PX (R ny (nx + 1) LANES,), R the
+    model's parameters per bond,: row r of the bond left of site (i, j) at ((r ny + j) (nx + 1) + i) LANES (i = nx: right
+    of the last site); PY (R (ny + 1) nx LANES,): row r of the bond below (i, j)
+    at ((r (ny + 1) + j) nx + i) LANES; S (R_site N LANES,), row r of site n at
     (r N + n) LANES. A bond that the boundary does not have is never read.
     """
     N = nx * ny

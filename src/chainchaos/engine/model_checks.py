@@ -31,9 +31,13 @@ from chainchaos.system.models.base import (
     bond_force_stiffness,
     bond_opening,
     bond_potential,
+    bond_values,
+    bond_vectors,
     site_kick,
     site_kick_deviation,
     site_potential,
+    site_values,
+    site_vectors,
 )
 
 
@@ -93,7 +97,7 @@ def _sample_lattice(model: Model):
 def _scalar_laws(model, P, left, right, out):
     """Row 0..4: V, f, k, the force alone, the opening of every bond b at (left[b], right[b])."""
     for b in range(left.size):
-        bond = (P[0, b], P[1, b], P[2, b])
+        bond = bond_values(model, P, b)
         out[0, b] = bond_potential(model, bond, left[b], right[b])
         out[1, b], out[2, b] = bond_force_stiffness(model, bond, left[b], right[b])
         out[3, b] = bond_force(model, bond, left[b], right[b])
@@ -104,7 +108,7 @@ def _scalar_laws(model, P, left, right, out):
 def _vector_laws(model, P, left, right, out):
     """Rows 1..4 of :func:`_scalar_laws` on the batch engine's vectors (the potential is scalar only)."""
     for i in range(0, left.size, LANES):
-        bond = (vload(P[0], i), vload(P[1], i), vload(P[2], i))
+        bond = bond_vectors(model, P.reshape(P.size), i, P.shape[1])
         u, v = vload(left, i), vload(right, i)
         f, k = bond_force_stiffness(model, bond, u, v)
         vstore(out[1], i, f)
@@ -117,7 +121,7 @@ def _vector_laws(model, P, left, right, out):
 def _scalar_sites(model, S, u, out):
     """Rows 0..2: w, w', w'' of every site at u (through the engines' site dispatchers)."""
     for n in range(u.size):
-        site = (S[0, n], S[1, n])
+        site = site_values(model, S, n)
         out[0, n] = site_potential(model, site, u[n])
         out[1, n] = 0.0 - site_kick(model, site, u[n], 0.0)
         out[2, n] = 0.0 - site_kick_deviation(model, site, u[n], 1.0, 0.0)
@@ -127,7 +131,7 @@ def _scalar_sites(model, S, u, out):
 def _vector_sites(model, S, u, out):
     """Rows 1..2 of :func:`_scalar_sites` on vectors."""
     for i in range(0, u.size, LANES):
-        site = (vload(S[0], i), vload(S[1], i))
+        site = site_vectors(model, S.reshape(S.size), i, S.shape[1])
         x = vload(u, i)
         zero = x * 0.0
         vstore(out[1], i, zero - site_kick(model, site, x, zero))

@@ -214,7 +214,7 @@ class Problem:
 
     @cached_property
     def lane_parameters(self) -> tuple[np.ndarray, np.ndarray]:
-        """inv_mass (N, B) and the model's bond parameters (MAX_BOND_PARAMETERS, N+1, B), C-contiguous
+        """inv_mass (N, B) and the model's bond parameters (parameters, N+1, B), C-contiguous
         (a bond model's: a split model has neither)."""
         require(not self.model.is_split, "model", self.model.name, "a bond model (a split model has no masses and "
                 "bonds: its site_parameters are all its engines read)")
@@ -231,7 +231,7 @@ class Problem:
 
     @cached_property
     def site_parameters(self) -> np.ndarray | None:
-        """The model's site parameters (MAX_SITE_PARAMETERS, N, B), C-contiguous, next to
+        """The model's site parameters (parameters, N, B), C-contiguous, next to
         ``lane_parameters``; None for a model without a site law."""
         if not (self.model.has_site_law or self.model.is_split):
             return None
@@ -239,7 +239,7 @@ class Problem:
                                              axis=2))
 
     def lane_sites(self, j: int) -> np.ndarray | None:
-        """Lane j's site parameters (MAX_SITE_PARAMETERS, N), contiguous (None without a site law):
+        """Lane j's site parameters (parameters, N), contiguous (None without a site law):
         the single-trajectory engine's ``sites``.
 
         Parameters
@@ -257,7 +257,7 @@ class Problem:
         return None if sites is None else np.ascontiguousarray(sites[:, :, j])
 
     def lane(self, j: int) -> tuple[np.ndarray, np.ndarray]:
-        """Lane j's inverse masses (N,) and bond parameters (MAX_BOND_PARAMETERS, N+1), contiguous:
+        """Lane j's inverse masses (N,) and bond parameters (parameters, N+1), contiguous:
         the arguments of the single-trajectory engine.
 
         Parameters
@@ -269,7 +269,7 @@ class Problem:
         -------
         inv_mass : numpy.ndarray of shape (N,)
             1 / m of the moving beads (units of 1 / the reference bead's mass).
-        bonds : numpy.ndarray of shape (MAX_BOND_PARAMETERS, N + 1)
+        bonds : numpy.ndarray of shape (parameters, N + 1)
             The model's bond parameters (``Model.bond_parameters``) of their bonds.
         """
         inv_mass, bonds = self.lane_parameters

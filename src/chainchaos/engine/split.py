@@ -34,6 +34,7 @@ from chainchaos.engine.batch import Batch
 from chainchaos.engine.integrators import _aligned_zeros, _check, _renormalise
 from chainchaos.kernels.exactmath import gram_schmidt, sincos
 from chainchaos.kernels.simd import LANES, vload, vstore
+from chainchaos.system.models.base import parameter_counts, site_values, site_vectors
 from chainchaos.system.models.split import onsite_frequency
 
 #: Which stage is which part (``split_schemes.PARTS``).
@@ -48,7 +49,7 @@ def _rotate(model, tangent, q, p, dq, dp, sites, t):
     """A(t) of every site, and of the deviation vector with ``tangent``."""
     for n in range(q.shape[0]):
         qn, pn = q[n], p[n]
-        w, g = onsite_frequency(model, (sites[0, n], sites[1, n]), qn * qn + pn * pn)
+        w, g = onsite_frequency(model, site_values(model, sites, n), qn * qn + pn * pn)
         s, c = sincos(w * t)
         q1 = c * qn + s * pn
         p1 = c * pn - s * qn
@@ -93,7 +94,7 @@ def advance_split(model, q, p, dq, dp, sites, shape2, parts, coefficients, dt, n
     """Advance one trajectory (q, p) of a split ``model`` and, with ``tangent``, its deviation
     vector (dq, dp), each (N,), by n_steps steps of the scheme (parts, coefficients).
 
-    sites (MAX_SITE_PARAMETERS, N): the model's site parameters (``SplitModel.site_parameters``);
+    sites (parameters, N): the model's site parameters (``SplitModel.site_parameters``);
     shape2 (Nx, Ny): the lattice (``Geometry.shape2``), N = Nx Ny.
     Every ``check_every`` steps and at the end the state is checked for finiteness and the
     deviation vector renormalised, ln of its norm added to diagnostics[0]. Returns -1, or the
@@ -123,9 +124,9 @@ def advance_split(model, q, p, dq, dp, sites, shape2, parts, coefficients, dt, n
 # ---- blocks of LANES trajectories ------------------------------------------------------------
 
 #: A block's buffer, row r = site r - pad (``_pad``: rows before the first site and after the last,
-#: zero, where the neighbours beyond the edges are read): the LANES lanes of q, p and the two site
-#: parameters, then dq and dp of each deviation vector in turn.
-_Q, _P, _S0, _S1, _V = 0, LANES, 2 * LANES, 3 * LANES, 4 * LANES
+#: zero, where the neighbours beyond the edges are read): the LANES lanes of q and p, dq and dp of
+#: each deviation vector in turn, then the site's parameters (as many as the model has).
+_Q, _P, _V = 0, LANES, 2 * LANES
 
 
 @njit(cache=True)
@@ -135,9 +136,17 @@ def _pad(shape2):
 
 
 @njit(cache=True)
-def _row(vectors):
+def _row(model, vectors):
     """Doubles per row of a block with ``vectors`` deviation vectors."""
-    return (4 + 2 * vectors) * LANES
+    _, n_site = parameter_counts(model)
+    return (2 + 2 * vectors + n_site) * LANES
+
+
+@njit(cache=True)
+def _sites(model, row):
+    """Where a row's site parameters start: its last n_site vectors."""
+    _, n_site = parameter_counts(model)
+    return row - n_site * LANES
 
 
 @njit(cache=True, error_model="numpy")
@@ -146,7 +155,7 @@ def _rotate_block(model, N, pad, Z, row, vectors, t):
     for r in range(pad, N + pad):
         base = r * row
         q, p = vload(Z, base + _Q), vload(Z, base + _P)
-        w, g = onsite_frequency(model, (vload(Z, base + _S0), vload(Z, base + _S1)), q * q + p * p)
+        w, g = onsite_frequency(model, site_vectors(model, Z, base + _sites(model, row), LANES), q * q + p * p)
         s, c = sincos(w * t)
         q1 = c * q + s * p
         p1 = c * p - s * q
@@ -246,7 +255,7 @@ def advance_split_batch(model, q, p, dq, dp, sites, shape2, parts, coefficients,
     and, with ``tangent``, their deviation vectors (dq, dp) and the K more (xq, xp) (K, N, B), by
     n_steps steps of the scheme (parts, coefficients), in blocks of LANES.
 
-    sites (MAX_SITE_PARAMETERS, N, B): the model's site parameters of every trajectory; shape2
+    sites (parameters, N, B): the model's site parameters of every trajectory; shape2
     (Nx, Ny): their lattice (``Geometry.shape2``). Every
     ``check_every`` steps and at the end: each lane's state checked for finiteness (``bad[j]``
     set to the step count of the first failed check if it is still < 0) and, with ``tangent``,
@@ -259,7 +268,7 @@ def advance_split_batch(model, q, p, dq, dp, sites, shape2, parts, coefficients,
     N = q.shape[0]
     extra = xq.shape[0] if tangent else 0
     vectors_max = 1 + extra if tangent else 0
-    row = _row(vectors_max)
+    row = _row(model, vectors_max)
     pad = _pad(shape2)
     Z = _aligned_zeros((N + 2 * pad) * row)
     block_growth = np.zeros(LANES)
@@ -273,8 +282,8 @@ def advance_split_batch(model, q, p, dq, dp, sites, shape2, parts, coefficients,
                 base = (n + pad) * row
                 Z[base + _Q + lane] = q[n, j]
                 Z[base + _P + lane] = p[n, j]
-                Z[base + _S0 + lane] = sites[0, n, j]
-                Z[base + _S1 + lane] = sites[1, n, j]
+                for r in range(sites.shape[0]):
+                    Z[base + _sites(model, row) + r * LANES + lane] = sites[r, n, j]
                 if tangent:
                     Z[base + _V + lane] = dq[n, j]
                     Z[base + _V + LANES + lane] = dp[n, j]

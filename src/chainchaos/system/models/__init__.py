@@ -12,9 +12,8 @@ from numba import njit
 
 from chainchaos.errors import require
 from chainchaos.system.models import dnls, fput, harmonic, hertz, klein_gordon, toda
-from chainchaos.system.models.base import (MAX_BOND_PARAMETERS, MAX_SITE_PARAMETERS, Model, SiteLaw, add_site_energy,
-                                           bond_force, bond_force_stiffness, bond_potential, check_sites,
-                                           site_potential)
+from chainchaos.system.models.base import (Model, SiteLaw, add_site_energy, bond_force, bond_force_stiffness,
+                                           bond_potential, bond_values, check_sites, site_potential, site_values)
 from chainchaos.system.models.split import SplitModel, split_energy
 
 #: Every model, by name: the bond models (``base.Model``) and the split ones (``split.SplitModel``).
@@ -128,19 +127,19 @@ def model_label(name: str) -> str:
 
 
 @njit(cache=True)
-def _bond(u, P, b):
+def _bond(model, u, P, b):
     """(parameters, u_{b-1}, u_b) of bond b, the walls at zero displacement."""
     N = u.shape[0]
-    return (P[0, b], P[1, b], P[2, b]), u[b - 1] if b > 0 else 0.0, u[b] if b < N else 0.0
+    return bond_values(model, P, b), u[b - 1] if b > 0 else 0.0, u[b] if b < N else 0.0
 
 
 @njit(cache=True)
 def bond_forces(model, u, P, f, k, with_stiffness):
     """Fill f[b] (and k[b] if ``with_stiffness``) for every bond b = 0..N at displacements u (N,),
-    P the bond parameters (MAX_BOND_PARAMETERS, N+1). The engines run the same kernels in their
+    P the bond parameters (parameters, N+1). The engines run the same kernels in their
     own vector loops; this is the plain version for everything else."""
     for b in range(u.shape[0] + 1):
-        bond, left, right = _bond(u, P, b)
+        bond, left, right = _bond(model, u, P, b)
         if with_stiffness:
             f[b], k[b] = bond_force_stiffness(model, bond, left, right)
         else:
@@ -151,7 +150,7 @@ def bond_forces(model, u, P, f, k, with_stiffness):
 def bond_potentials(model, u, P, V):
     """Fill V[b], the potential energy of every bond b = 0..N (zero at rest)."""
     for b in range(u.shape[0] + 1):
-        bond, left, right = _bond(u, P, b)
+        bond, left, right = _bond(model, u, P, b)
         V[b] = bond_potential(model, bond, left, right)
 
 
@@ -161,7 +160,7 @@ def lattice_bond_potentials(model, u, P, ends, V):
     (B, 2) site numbers, -1 for a wall (``Geometry.bonds``)."""
     for b in range(ends.shape[0]):
         a, c = ends[b, 0], ends[b, 1]
-        V[b] = bond_potential(model, (P[0, b], P[1, b], P[2, b]), u[a] if a >= 0 else 0.0, u[c] if c >= 0 else 0.0)
+        V[b] = bond_potential(model, bond_values(model, P, b), u[a] if a >= 0 else 0.0, u[c] if c >= 0 else 0.0)
 
 
 def bond_potential_energy(model, chain, u: np.ndarray) -> np.ndarray:
@@ -199,9 +198,9 @@ def bond_potential_energy(model, chain, u: np.ndarray) -> np.ndarray:
 @njit(cache=True)
 def site_potentials(model, u, S, W):
     """Fill W[n], the on-site potential of every bead n = 0..N-1 (a model with a site law; S its
-    site parameters (MAX_SITE_PARAMETERS, N))."""
+    site parameters (parameters, N))."""
     for n in range(u.shape[0]):
-        W[n] = site_potential(model, (S[0, n], S[1, n]), u[n])
+        W[n] = site_potential(model, site_values(model, S, n), u[n])
 
 
 def site_potential_energy(model, chain, u: np.ndarray) -> np.ndarray | None:
@@ -340,9 +339,7 @@ def open_bonds(model, chain, u: np.ndarray) -> np.ndarray:
     return model.opening(P, np.ascontiguousarray(padded[..., :-1]), np.ascontiguousarray(padded[..., 1:])) < 0
 
 
-assert MAX_SITE_PARAMETERS == 2  # the site tuples of site_potentials and base.add_site_energy
-
-__all__ = ["BEAD_MODELS", "BOND_MODELS", "MAX_BOND_PARAMETERS", "MAX_SITE_PARAMETERS", "MODELS", "PACKAGE_MODELS", "Model", "SiteLaw",
+__all__ = ["BEAD_MODELS", "BOND_MODELS", "MODELS", "PACKAGE_MODELS", "Model", "SiteLaw",
            "add_to_registry", "bond_forces", "require_free_name",
            "bond_potential_energy", "bond_potentials", "energy_density", "energy_kernel", "get_model", "model_label",
            "open_bonds", "site_potential_energy", "site_potentials", "total_energy"]

@@ -4,7 +4,7 @@ A model is one :class:`Model` (a module of ``chainchaos.system.models`` each, li
 Bond b (0-based, b = 0..N) joins beads b-1 and b, with u_{-1} = u_N = 0 the walls; its
 compression is D_b = u_{b-1} - u_b and bead n obeys m_n u_n'' = f_n - f_{n+1}, with f the bond
 force (positive in compression) of the model's law. A model gives, per bond, its parameters as
-rows of one array (at most :data:`MAX_BOND_PARAMETERS`, computed from the chain), and Numba
+rows of one array (as many as its law needs, computed from the chain), and Numba
 kernels of the bond law ``force(P, left, right)``, ``force_stiffness(P, left, right)`` (f and
 k = df/dD), ``potential(P, left, right)`` (V, zero at rest) and, for a model whose bonds can
 open, ``opening(P, left, right)`` (negative where the bond is open). P is the tuple of the bond's
@@ -14,7 +14,7 @@ batch engine (``chainchaos.kernels.simd``), for which force and stiffness must u
 exactly the scalar result).
 
 A model may also have a site law (:class:`SiteLaw`): an on-site potential w(u) of each bead, with
-its own parameters per site (rows of one array, at most :data:`MAX_SITE_PARAMETERS`, computed from
+its own parameters per site (rows of one array, as many as the law needs, computed from
 the chain) and kernels ``force(S, u)`` (w'(u), which enters m_n u_n'' = f_n - f_{n+1} - w'(u_n)),
 ``force_stiffness(S, u)`` (w', w'') and ``potential(S, u)`` (w, zero at rest), under the same
 rules for vectors as the bond law's. S is the tuple of the site's parameters, u the bead's
@@ -28,6 +28,7 @@ time (``bond_force`` and the other dispatchers below), so one engine source serv
 and each model gets its own machine code, without a branch on the model in the inner loop.
 """
 
+import functools
 import hashlib
 import sys
 from collections.abc import Callable
@@ -48,34 +49,29 @@ from numba.extending import (
 )
 
 from chainchaos.errors import require
-
-#: Rows of bond parameters the engines carry: a model may use up to this many.
-MAX_BOND_PARAMETERS = 3
-
-#: Rows of site parameters the engines carry: a site law may use up to this many.
-MAX_SITE_PARAMETERS = 2
+from chainchaos.kernels.simd import vload
 
 #: Every Model created, by identity (:attr:`Model.identity`): what its Numba type compiles in
 #: (``_kernels``).
 _BY_IDENTITY: dict[str, "Model"] = {}
 
 
-def site_parameter_array(rows, N: int) -> np.ndarray:
-    """The engines' site parameter array: ``rows``, then rows of zeros.
+def parameter_array(rows, n: int) -> np.ndarray:
+    """The engines' parameter array of a model's bonds or sites: one row per parameter.
 
     Parameters
     ----------
-    rows : sequence of numpy.ndarray
-        At most ``MAX_SITE_PARAMETERS`` rows of N values each (a model's site parameters).
-    N : int
-        The number of sites.
+    rows : sequence of numpy.ndarray or float
+        The model's parameters, one row of n values (or one value for all) each.
+    n : int
+        The number of bonds or sites.
 
     Returns
     -------
-    numpy.ndarray of shape (MAX_SITE_PARAMETERS, N)
-        Row i is ``rows[i]``, the rows beyond them zero.
+    numpy.ndarray of shape (len(rows), n)
+        Row i is ``rows[i]``, as float64, C-contiguous.
     """
-    out = np.zeros((MAX_SITE_PARAMETERS, N))
+    out = np.zeros((len(rows), n))
     for i, row in enumerate(rows):
         out[i] = row
     return out
@@ -101,7 +97,7 @@ class SiteLaw:
     Parameters
     ----------
     parameter_names : tuple of str
-        Names of the site parameters (at most :data:`MAX_SITE_PARAMETERS`), e.g. ``("eps",)``.
+        Names of the site parameters (one or more), e.g. ``("eps",)``.
     parameters : callable
         ``parameters(lattice)``: one array of length N per name.
     force : callable
@@ -122,8 +118,8 @@ class SiteLaw:
     description: str = ""  # the site law, one line, for documentation
 
     def __post_init__(self):
-        require(0 < len(self.parameter_names) <= MAX_SITE_PARAMETERS, "site parameter_names",
-                self.parameter_names, f"1 to {MAX_SITE_PARAMETERS} site parameters")
+        require(len(self.parameter_names) > 0, "site parameter_names", self.parameter_names,
+                "one or more site parameters")
 
 
 @dataclass(frozen=True, eq=False, kw_only=True)
@@ -140,7 +136,8 @@ class Model:
     colour : str
         The colour of its curves (a matplotlib colour).
     parameter_names : tuple of str
-        Names of the bond parameters (at most :data:`MAX_BOND_PARAMETERS`).
+        Names of the bond parameters (one or more: as many as the kernels read, derived
+        constants included, so that the kernels need no division).
     parameters : callable
         ``parameters(lattice)``: one array of length N + 1 (one value per bond) per name.
     force : callable
@@ -192,8 +189,8 @@ class Model:
     is_split: ClassVar[bool] = False
 
     def __post_init__(self):
-        require(0 < len(self.parameter_names) <= MAX_BOND_PARAMETERS, "parameter_names",
-                self.parameter_names, f"1 to {MAX_BOND_PARAMETERS} bond parameters")
+        require(len(self.parameter_names) > 0, "parameter_names", self.parameter_names,
+                "one or more bond parameters")
         require(self.lattice in LATTICES, "lattice", self.lattice, f"one of {list(LATTICES)}")
         kernels = [self.force, self.force_stiffness, self.potential, *filter(None, [self.opening])]
         if self.site is not None:
@@ -216,9 +213,20 @@ class Model:
         """Whether a bond of this model can open (lose contact) and carry no force."""
         return self.opening is not None
 
+    @property
+    def bond_parameter_count(self) -> int:
+        """The rows of :meth:`bond_parameters`: the length of every bond's tuple P."""
+        return len(self.parameter_names)
+
+    @property
+    def site_parameter_count(self) -> int:
+        """The rows of :meth:`site_parameters` (0 without a site law): the length of every
+        site's tuple S."""
+        return 0 if self.site is None else len(self.site.parameter_names)
+
     def bond_parameters(self, chain) -> np.ndarray:
-        """The engines' bond parameter array (MAX_BOND_PARAMETERS, bonds): the model's rows, then
-        zeros; a chain's N + 1 bonds, a square lattice's in the order of ``geometry.bonds()``.
+        """The engines' bond parameter array (parameters, bonds): one row per parameter name; a
+        chain's N + 1 bonds, a square lattice's in the order of ``geometry.bonds()``.
 
         Parameters
         ----------
@@ -227,19 +235,18 @@ class Model:
 
         Returns
         -------
-        numpy.ndarray of shape (MAX_BOND_PARAMETERS, N + 1)
+        numpy.ndarray of shape (len(parameter_names), bonds)
             Row i the parameter ``parameter_names[i]`` of every bond, in the units the model's
-            law reads them; the rows beyond the model's zero.
+            law reads them.
         """
         rows = self.parameters(chain)
-        out = np.zeros((MAX_BOND_PARAMETERS, chain.geometry.n_bonds))
-        for i, row in enumerate(rows):
-            out[i] = row
-        return out
+        require(len(rows) == self.bond_parameter_count, f"model {self.name!r}: parameters(lattice)",
+                f"{len(rows)} rows", f"one row per parameter name, {list(self.parameter_names)}")
+        return parameter_array(rows, chain.geometry.n_bonds)
 
     def site_parameters(self, chain) -> np.ndarray | None:
-        """The engines' site parameter array (MAX_SITE_PARAMETERS, N): the site law's rows, then
-        zeros; None for a model without a site law.
+        """The engines' site parameter array (parameters, N): one row per site parameter name;
+        None for a model without a site law.
 
         Parameters
         ----------
@@ -248,11 +255,16 @@ class Model:
 
         Returns
         -------
-        numpy.ndarray of shape (MAX_SITE_PARAMETERS, N), or None
-            Row i the site parameter ``site.parameter_names[i]`` of every site, the rows beyond
-            the law's zero; None without a site law.
+        numpy.ndarray of shape (len(site.parameter_names), N), or None
+            Row i the site parameter ``site.parameter_names[i]`` of every site; None without a
+            site law.
         """
-        return None if self.site is None else site_parameter_array(self.site.parameters(chain), chain.N)
+        if self.site is None:
+            return None
+        rows = self.site.parameters(chain)
+        require(len(rows) == self.site_parameter_count, f"model {self.name!r}: site.parameters(lattice)",
+                f"{len(rows)} rows", f"one row per site parameter name, {list(self.site.parameter_names)}")
+        return parameter_array(rows, chain.N)
 
     def __repr__(self) -> str:
         return f"Model({self.name})"
@@ -305,6 +317,185 @@ def _unbox_model(typ, obj, c):
 
 def _kernels(model_type) -> Model:
     return _BY_IDENTITY[model_type.identity]
+
+
+# ---- a bond's and a site's parameters as the tuple its kernels read --------------------------
+# A model has as many parameters per bond (and per site) as its law needs. Numba builds a tuple
+# of a length fixed at compile time: the length is the model's, read from its type, and the
+# tuple is built by appending one load at a time (``_gather``). The engines keep each kind of
+# parameter in its own array, in one of two layouts: a 2D array (parameters, bonds), read one
+# float per row (``bond_values``, ``site_values``), or a flat array of SIMD vectors, parameter
+# r of an element at ``at + r stride`` (``bond_vectors``, ``site_vectors``).
+
+
+@njit(cache=True)
+def _value(A, r, at, stride):
+    """Row r of a 2D array at column ``at`` (``stride`` unused)."""
+    return A[r, at]
+
+
+@njit(cache=True)
+def _vector(A, r, at, stride):
+    """The SIMD vector of a flat array at ``at + r stride``."""
+    return vload(A, at + r * stride)
+
+
+@functools.cache
+def _gather(count: int, load):
+    """A compiled ``take(A, at, stride)`` -> ``(load(A, 0, at, stride), ...,
+    load(A, count - 1, at, stride))``: the empty tuple for ``count`` 0."""
+    take = njit(lambda A, at, stride: ())
+    for r in range(count):
+        take = _append(take, load, r)
+    return take
+
+
+def _append(take, load, r: int):
+    """``take``, with the load of row r appended to its tuple."""
+    return njit(lambda A, at, stride: take(A, at, stride) + (load(A, r, at, stride),))
+
+
+def _parameter_count(model_type, kind: str) -> int:
+    return getattr(_kernels(model_type), f"{kind}_parameter_count")
+
+
+def bond_values(model, A, b):
+    """The tuple P of bond b's parameters, ``(A[0, b], ..., A[n - 1, b])`` with n the model's
+    count (``Model.bond_parameter_count``).
+
+    A dispatcher for Numba-compiled code (it has no Python body).
+
+    Parameters
+    ----------
+    model : Model
+        The model, whose Numba type gives the length of the tuple at compile time.
+    A : numpy.ndarray of shape (parameters, bonds)
+        The bond parameters (``Model.bond_parameters``).
+    b : int
+        The bond.
+
+    Returns
+    -------
+    tuple of float
+        The bond's parameters, as its kernels read them.
+    """
+
+
+def site_values(model, A, n):
+    """The tuple S of site n's parameters, ``(A[0, n], ...)``, one per site parameter of the
+    model (the empty tuple without a site law).
+
+    A dispatcher for Numba-compiled code, as :func:`bond_values`.
+
+    Parameters
+    ----------
+    model : Model or SplitModel
+        The model, whose Numba type gives the length of the tuple at compile time.
+    A : numpy.ndarray of shape (parameters, N)
+        The site parameters (``Model.site_parameters``).
+    n : int
+        The site.
+
+    Returns
+    -------
+    tuple of float
+        The site's parameters, as its kernels read them.
+    """
+
+
+def bond_vectors(model, A, at, stride):
+    """The tuple P of a bond's parameters on the SIMD lanes: parameter r the vector of the flat
+    array A at ``at + r stride``, one per bond parameter of the model.
+
+    A dispatcher for Numba-compiled code (it has no Python body).
+
+    Parameters
+    ----------
+    model : Model
+        The model, whose Numba type gives the length of the tuple at compile time.
+    A : numpy.ndarray of shape (n,)
+        The engine's flat array of bond parameters.
+    at : int
+        Where the bond's first parameter vector starts (an element index).
+    stride : int
+        Elements from one parameter's vector to the next's.
+
+    Returns
+    -------
+    tuple of SIMD vectors
+        The bond's parameters, as its kernels read them.
+    """
+
+
+def site_vectors(model, A, at, stride):
+    """The tuple S of a site's parameters on the SIMD lanes, as :func:`bond_vectors` (the empty
+    tuple without a site law).
+
+    A dispatcher for Numba-compiled code (it has no Python body).
+
+    Parameters
+    ----------
+    model : Model or SplitModel
+        The model, whose Numba type gives the length of the tuple at compile time.
+    A : numpy.ndarray of shape (n,)
+        The engine's flat array of site parameters.
+    at : int
+        Where the site's first parameter vector starts (an element index).
+    stride : int
+        Elements from one parameter's vector to the next's.
+
+    Returns
+    -------
+    tuple of SIMD vectors
+        The site's parameters, as its kernels read them.
+    """
+
+
+def _dispatch_values(stub, kind: str):
+    @overload(stub)
+    def _select(model, A, n):
+        if isinstance(model, ModelType):
+            take = _gather(_parameter_count(model, kind), _value)
+            return lambda model, A, n: take(A, n, 0)
+
+
+def _dispatch_vectors(stub, kind: str):
+    @overload(stub)
+    def _select(model, A, at, stride):
+        if isinstance(model, ModelType):
+            take = _gather(_parameter_count(model, kind), _vector)
+            return lambda model, A, at, stride: take(A, at, stride)
+
+
+def parameter_counts(model):
+    """(parameters per bond, parameters per site) of the model, constants at compile time (a
+    model without a site law has none per site).
+
+    A dispatcher for Numba-compiled code (it has no Python body).
+
+    Parameters
+    ----------
+    model : Model or SplitModel
+        The model.
+
+    Returns
+    -------
+    tuple of int
+        ``(bond_parameter_count, site_parameter_count)``.
+    """
+
+
+@overload(parameter_counts)
+def _parameter_counts(model):
+    if isinstance(model, ModelType):
+        counts = (_parameter_count(model, "bond"), _parameter_count(model, "site"))
+        return lambda model: counts
+
+
+_dispatch_values(bond_values, "bond")
+_dispatch_values(site_values, "site")
+_dispatch_vectors(bond_vectors, "bond")
+_dispatch_vectors(site_vectors, "site")
 
 
 @njit(cache=True)
@@ -463,7 +654,7 @@ def site_kick_deviation(model, S, u, dq, g):
 
 
 def add_site_energy(model, u, sites, H):
-    """H + sum_n w(u_n) (summed in order, sites the (MAX_SITE_PARAMETERS, N) parameters); H itself
+    """H + sum_n w(u_n) (summed in order, sites the (parameters, N) array); H itself
     for a model without a site law.
 
     A dispatcher for Numba-compiled code (it has no Python body).
@@ -474,7 +665,7 @@ def add_site_energy(model, u, sites, H):
         The model, whose Numba type selects the site law at compile time.
     u : numpy.ndarray of shape (N,)
         The displacements.
-    sites : numpy.ndarray of shape (MAX_SITE_PARAMETERS, N)
+    sites : numpy.ndarray of shape (parameters, N)
         The site parameters (``Model.site_parameters``).
     H : float
         The energy so far (the bonds' and the kinetic), in the model's energy unit.
@@ -572,7 +763,7 @@ def _add_site_energy(model, u, sites, H):
 
         def with_site(model, u, sites, H):
             for n in range(u.shape[0]):
-                H += kernel((sites[0, n], sites[1, n]), u[n])
+                H += kernel(site_values(model, sites, n), u[n])
             return H
 
         return with_site

@@ -15,7 +15,7 @@ S = sum_l x_l / 2 is conserved beside H. The disordered DNLS chain is one (``mod
 A model gives its on-site part as Numba kernels: ``frequency(S, x)``, the pair (w, g) with
 w = 2 a'(x) and g = 2 dw/dx (so that dw = g (q dq + p dp): the tangent map of A), and
 ``onsite_energy(S, x)``, a(x); S is the tuple of the site's parameters (rows of one array, at
-most ``MAX_SITE_PARAMETERS``), x the site's q^2 + p^2. The kernels run on floats and on the
+as many as the law needs), x the site's q^2 + p^2. The kernels run on floats and on the
 batch engine's vectors (+ - * only), as a bond model's do. A split model is a Numba type like a
 :class:`~chainchaos.system.models.base.Model`: the engine of ``chainchaos.engine.split``
 compiles its kernels in.
@@ -33,10 +33,10 @@ from chainchaos.errors import require
 from chainchaos.system.models.base import (
     _BY_IDENTITY,
     LATTICES,
-    MAX_SITE_PARAMETERS,
     ModelType,
     _kernel_identity,
-    site_parameter_array,
+    parameter_array,
+    site_values,
 )
 
 
@@ -53,7 +53,7 @@ class SplitModel:
     colour : str
         The colour of its curves (a matplotlib colour).
     parameter_names : tuple of str
-        Names of the site parameters (at most ``MAX_SITE_PARAMETERS``), e.g. ``("eps", "beta")``.
+        Names of the site parameters (one or more), e.g. ``("eps", "beta")``.
     parameters : callable
         ``parameters(lattice)``: one array of length N per name.
     frequency : callable
@@ -92,8 +92,8 @@ class SplitModel:
     is_split: ClassVar[bool] = True
 
     def __post_init__(self):
-        require(0 < len(self.parameter_names) <= MAX_SITE_PARAMETERS, "parameter_names", self.parameter_names,
-                f"1 to {MAX_SITE_PARAMETERS} site parameters")
+        require(len(self.parameter_names) > 0, "parameter_names", self.parameter_names,
+                "one or more site parameters")
         require(self.lattice in LATTICES, "lattice", self.lattice, f"one of {list(LATTICES)}")
         object.__setattr__(self, "identity", _kernel_identity(self.name, [self.frequency, self.onsite_energy]))
         _BY_IDENTITY[self.identity] = self
@@ -103,8 +103,18 @@ class SplitModel:
         """The modules that define the model's kernels, as its identity names them."""
         return self.identity.partition("@")[2].rpartition(":")[0]
 
+    @property
+    def bond_parameter_count(self) -> int:
+        """Parameters per bond: none (every bond of a split model hops with unit strength)."""
+        return 0
+
+    @property
+    def site_parameter_count(self) -> int:
+        """The rows of :meth:`site_parameters`: the length of every site's tuple S."""
+        return len(self.parameter_names)
+
     def site_parameters(self, lattice) -> np.ndarray:
-        """The engines' site parameter array (MAX_SITE_PARAMETERS, N): the model's rows, then zeros.
+        """The engines' site parameter array (parameters, N): one row per parameter name.
 
         Parameters
         ----------
@@ -113,10 +123,13 @@ class SplitModel:
 
         Returns
         -------
-        numpy.ndarray of shape (MAX_SITE_PARAMETERS, N)
+        numpy.ndarray of shape (len(parameter_names), N)
             Row i the parameter ``parameter_names[i]`` of every site.
         """
-        return site_parameter_array(self.parameters(lattice), lattice.N)
+        rows = self.parameters(lattice)
+        require(len(rows) == self.site_parameter_count, f"model {self.name!r}: parameters(lattice)",
+                f"{len(rows)} rows", f"one row per parameter name, {list(self.parameter_names)}")
+        return parameter_array(rows, lattice.N)
 
     def __repr__(self) -> str:
         return f"SplitModel({self.name})"
@@ -195,13 +208,13 @@ def _onsite_energy(model, S, x):
 @njit(cache=True)
 def energy_kernel(model, q, p, sites, shape2):
     """H of one state (q, p) (N,) of a split model on the lattice ``shape2`` = (Nx, Ny)
-    (``Geometry.shape2``), sites its (MAX_SITE_PARAMETERS, N) parameters: the on-site energies,
+    (``Geometry.shape2``), sites its (parameters, N) array: the on-site energies,
     then the hopping -(q_a q_b + p_a p_b) of every bond, along the lines, then across them,
     summed in order."""
     nx, ny = shape2
     H = 0.0
     for n in range(q.shape[0]):
-        H += onsite_energy(model, (sites[0, n], sites[1, n]), q[n] * q[n] + p[n] * p[n])
+        H += onsite_energy(model, site_values(model, sites, n), q[n] * q[n] + p[n] * p[n])
     for j in range(ny):
         for n in range(j * nx, (j + 1) * nx - 1):
             H -= q[n] * q[n + 1] + p[n] * p[n + 1]
