@@ -247,7 +247,7 @@ def dnls_norm_error(argv: list[str]) -> dict:
 
 
 def window_2d(argv: list[str]) -> dict:
-    """benchmarks/window_2d.py: the growing window's cost on square DNLS lattices of growing size."""
+    """benchmarks/window_2d.py: the growing window's cost on square DNLS or KG lattices of growing size."""
     sys.path.insert(0, str(HERE))
     import window_2d as bench
 

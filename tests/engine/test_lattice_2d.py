@@ -138,10 +138,9 @@ def test_a_kg_study_on_the_square_lattice_runs_from_one_spec():
     ds = run_study(spec)
     assert (ds["valid"] == 1).all() and list(np.ravel(ds.attrs["lattice_shape"])) == [11, 11]
     assert np.isfinite(ds["mlce"].isel(time=-1)).all() and float(ds["energy_error"].max()) < 1e-5
-    with pytest.raises(Exception, match="window"):
-        from chainchaos.studies.study.spec import load_study
-
-        load_study({**spec, "integration": {**spec["integration"], "window": {}}})
+    # the same study on a growing window: the same orbits, to within what the cut leaves
+    windowed = run_study({**spec, "integration": {**spec["integration"], "window": {"margin": 2}}})
+    np.testing.assert_allclose(windowed["mean_log10_participation"], ds["mean_log10_participation"], rtol=1e-9)
 
 
 def test_lanes_of_one_problem_share_their_lattice_shape():
@@ -172,3 +171,34 @@ def test_the_simd_blocks_give_the_single_loop_s_numbers_to_the_bit(model, bounda
             np.testing.assert_array_equal(getattr(engines[kind], name), getattr(engines["single"], name),
                                           err_msg=f"{kind} {name}")
     assert np.all(engines["single"].log_growth != 0.0)
+
+
+@pytest.mark.parametrize("boundary, site", [(("fixed", "fixed"), (31, 31)), (("free", "fixed"), (2, 31))],
+                         ids=["centre", "at a free edge"])
+def test_the_growing_window_follows_a_packet_on_the_square_kg_lattice(boundary, site):
+    """A rectangle of sites that widens on each side the packet nears, its bonds across the edge
+    walls with their own parameters (none where the lattice's edge is free): the orbit and the
+    mLCE vector of the whole lattice, to within what the cut leaves, while the window stays smaller
+    than the lattice; in SIMD blocks and lane by lane alike."""
+    from chainchaos.run.window import Window, WindowedEngine, restricted_deviation
+
+    lattices = [kg_lattice(seed, 10.0, (61, 61), boundary) for seed in range(3)]
+    states = [Excitation(kind="block", site=site, width=3).state("kg", lattice, 0.4)[:2] for lattice in lattices]
+    q, p = (np.stack([s[k] for s in states], axis=1) for k in (0, 1))
+    rng = np.random.default_rng(0)
+    dq, dp = rng.normal(size=q.shape), rng.normal(size=q.shape)
+    problem = Problem("kg", lattices, integrator="ABA864", dt=0.1, check_every=50)
+    runs = {kind: WindowedEngine(problem, Window(threshold=1e-10, margin=4, every=20), q, p, dq, dp, kind)
+            for kind in ("batch", "single")}
+    for run in runs.values():
+        run.advance(1500)
+    start = restricted_deviation(dq, dp, *Window.excited(q, p, lattices[0].geometry), geometry=lattices[0].geometry)
+    whole = problem.engine(q.copy(), p.copy(), *start)
+    whole.advance(1500)
+    windowed = runs["batch"]
+    for name in ("q", "p", "log_growth"):
+        np.testing.assert_array_equal(getattr(windowed, name), getattr(runs["single"], name), err_msg=name)
+    _, lo_x, hi_x, lo_y, hi_y = windowed.spans[-1]
+    assert len(windowed.spans) > 1 and hi_x < 61 and 0 < lo_y and hi_y < 61 and (lo_x > 0) == (site[0] > 2)
+    assert np.abs(windowed.q - whole.q).max() < 1e-6 and np.abs(windowed.p - whole.p).max() < 1e-6
+    assert np.abs(windowed.log_growth - whole.log_growth).max() < 1e-6

@@ -9,8 +9,6 @@ lattices), the energy is conserved to the scheme's order, and the Morse chain's 
 limit is the harmonic chain of the same K2.
 """
 
-import importlib.util
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -18,24 +16,16 @@ import pytest
 from numba import njit
 
 from chainchaos import Model, check_model, kg_chain, random_chain
-from chainchaos.engine.model_checks import ModelCheckError
+from chainchaos.engine.model_checks import ModelCheckError, _module_of_file
 from chainchaos.engine.problem import Problem
 from chainchaos.kernels.simd import LANES
 from chainchaos.system.chain import kg_lattice
 from chainchaos.system.models import total_energy
 from chainchaos.system.models.base import SiteLaw
 
-
-def _example(name):
-    """The module examples/<name>.py, imported without adding its model to the registry."""
-    spec = importlib.util.spec_from_file_location(f"example_{name}", Path(__file__).parents[2] / "examples" / f"{name}.py")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = module  # its kernels' identity digests the module's source
-    spec.loader.exec_module(module)
-    return module
-
-
-MORSE = _example("morse").MORSE
+# examples/morse.py as load_model imports it (under the file's stem, as Numba's cache names its
+# kernels), without adding its model to the registry
+MORSE = _module_of_file(Path(__file__).parents[2] / "examples" / "morse.py").MORSE
 THIRD = 1.0 / 3.0
 
 

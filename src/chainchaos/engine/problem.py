@@ -218,11 +218,15 @@ class Problem:
         (a bond model's: a split model has neither)."""
         require(not self.model.is_split, "model", self.model.name, "a bond model (a split model has no masses and "
                 "bonds: its site_parameters are all its engines read)")
-        if self.chains[0].geometry.dimension == 2:  # a square lattice's bonds: geometry.bonds()
-            require(self.sites is None, "sites", self.sites, "None for a bond model on a square lattice (no window)")
-            inv_mass = np.ascontiguousarray(np.stack([1.0 / c.mass for c in self.chains], axis=1))
-            bonds = np.ascontiguousarray(np.stack([self.model.bond_parameters(c) for c in self.chains], axis=2))
-            return inv_mass, bonds
+        full = self.chains[0].geometry
+        if full.dimension == 2:  # a square lattice's bonds: geometry.bonds(), of the window's own lattice
+            inv_mass = np.ascontiguousarray(np.stack([1.0 / c.mass[self._span] for c in self.chains], axis=1))
+            bonds = np.stack([self.model.bond_parameters(c) for c in self.chains], axis=2)
+            if self.sites is not None:
+                index = full.window_bonds(self.sites)
+                bonds = bonds[:, index]
+                bonds[:, index < 0] = 0.0  # no bond there: a free edge of the lattice
+            return inv_mass, np.ascontiguousarray(bonds)
         lo, hi = self.sites or (0, self.chains[0].N)
         inv_mass = np.ascontiguousarray(np.stack([1.0 / c.mass[lo:hi] for c in self.chains], axis=1))
         bonds = np.ascontiguousarray(np.stack([self.model.bond_parameters(c)[:, lo:hi + 1] for c in self.chains],

@@ -15,8 +15,10 @@ scaled back to their norms, :func:`restricted_deviation`), ``2 margin`` sites in
 window.
 
 On a square lattice (``system.geometry``) the window is a rectangle of sites, each of its four
-sides measured and moved out the same way, the sites beyond held at rest (a DNLS lattice's
-hopping to them adds nothing).
+sides measured and moved out the same way, the sites beyond held at rest: a DNLS lattice's
+hopping to them adds nothing, and a Klein-Gordon lattice's bond across the window's edge is a
+wall with that bond's parameters (``Geometry.window_bonds``; none where the lattice's own edge
+is free).
 
 The engine has the interface the sampling driver (``chainchaos.run.driver``) reads: full-lattice
 states and deviation vectors, ln|v|, gap counts, ``bad`` steps; its cost follows the window's
@@ -29,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from chainchaos.errors import require
-from chainchaos.system.models import bond_potentials, site_potentials
+from chainchaos.system.models import bond_potentials, lattice_bond_potentials, site_potentials
 
 
 @dataclass(frozen=True)
@@ -108,11 +110,17 @@ def site_weights(problem, q, p, dq, dp) -> tuple[np.ndarray, np.ndarray]:
     inv_mass, bonds = problem.lane_parameters
     n, B = q.shape
     H = 0.5 * p * p * inv_mass
-    V, W = np.empty(n + 1), np.empty(n)
+    ends = problem.geometry.bonds() if problem.geometry.dimension == 2 else None
+    V, W = np.empty(bonds.shape[1]), np.empty(n)
     for j in range(B):
-        qj = np.ascontiguousarray(q[:, j])
-        bond_potentials(problem.model, qj, np.ascontiguousarray(bonds[:, :, j]), V)
-        H[:, j] += 0.5 * (V[:-1] + V[1:])
+        qj, Pj = np.ascontiguousarray(q[:, j]), np.ascontiguousarray(bonds[:, :, j])
+        if ends is None:
+            bond_potentials(problem.model, qj, Pj, V)
+            H[:, j] += 0.5 * (V[:-1] + V[1:])
+        else:  # each bond's half to each of its sites (a wall has none), as models.energy_density
+            lattice_bond_potentials(problem.model, qj, Pj, ends, V)
+            for sites in ends.T:
+                np.add.at(H[:, j], sites[sites >= 0], 0.5 * V[sites >= 0])
         if problem.model.has_site_law:
             site_potentials(problem.model, qj, problem.lane_sites(j), W)
             H[:, j] += W

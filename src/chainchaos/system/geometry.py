@@ -139,6 +139,46 @@ class Geometry:
                 pairs += list(zip(chain[:-1], chain[1:]))
         return np.array(pairs, dtype=np.int64).reshape(-1, 2)
 
+    def window_bonds(self, span) -> np.ndarray:
+        """Where the bonds of a window of this square lattice come from: the rectangle ``span`` =
+        (lo_x, hi_x, lo_y, hi_y) of sites taken as a lattice of its own with walls on every side
+        (``Geometry((hi_x - lo_x, hi_y - lo_y))``: a bond across the window's edge joins a site to
+        one held at rest, which is what a wall is), the index in :meth:`bonds` of each of its
+        bonds, in its own order; -1 where this lattice has no such bond (a free edge), whose
+        parameters are then zero and whose force is none.
+
+        Parameters
+        ----------
+        span : tuple of int
+            (lo_x, hi_x, lo_y, hi_y): the sites lo_x <= i < hi_x, lo_y <= j < hi_y.
+
+        Returns
+        -------
+        numpy.ndarray of shape (window bonds,), dtype int64
+            Indices into :meth:`bonds`, or -1.
+        """
+        lo_x, hi_x, lo_y, hi_y = span
+        nx, ny = self.shape2
+        window = Geometry((hi_x - lo_x, hi_y - lo_y))
+        index = {(int(a), int(b)): k for k, (a, b) in enumerate(self.bonds())}
+        wx = hi_x - lo_x
+        along = window.shape2[1] * (wx + 1)  # the window's bonds along the first axis come first
+
+        def full(site, i_step, j_step, other):
+            """The full lattice's number of a window site, or of the site beyond the wall next to
+            ``other`` (-1: this lattice's own wall)."""
+            if site >= 0:
+                return (lo_y + site // wx) * nx + lo_x + site % wx
+            i, j = lo_x + other % wx + i_step, lo_y + other // wx + j_step
+            return j * nx + i if 0 <= i < nx and 0 <= j < ny else -1
+
+        out = []
+        for k, (a, b) in enumerate(window.bonds()):
+            i_step, j_step = (1, 0) if k < along else (0, 1)
+            pair = (full(a, -i_step, -j_step, b), full(b, i_step, j_step, a))
+            out.append(index.get(pair, -1))
+        return np.array(out, dtype=np.int64)
+
     def as_attrs(self) -> dict:
         """The geometry as NetCDF attributes (``lattice_shape``, ``lattice_boundary``)."""
         return {"lattice_shape": list(self.shape), "lattice_boundary": " ".join(self.boundary)}

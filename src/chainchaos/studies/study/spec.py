@@ -648,11 +648,6 @@ class Study:
                 if geometry.dimension == 2 and flat:
                     raise ParameterError("shape", list(geometry.shape),
                                          f"[N] with the models {flat} (two axes: the Klein-Gordon and DNLS models)")
-                bonded = [m for m in self.models if not MODELS[m].is_split]
-                if geometry.dimension == 2 and bonded and self.window is not None:
-                    raise ParameterError("window", self.spec["integration"]["window"],
-                                         f"absent with the models {bonded} on a square lattice (the window of a "
-                                         "square lattice is built for the DNLS models)")
                 if geometry.dimension == 2 and self.selected:
                     raise ParameterError("excitation.site", "selected", "centre or [i, j] on a square lattice")
 
