@@ -4,6 +4,8 @@ out, each scheme's order on the energy, the tangent map against finite differenc
 width 1 with free transverse edges equal to the chain's engines to the bit, a lattice equal to
 its transpose, and a study of one's own on the square lattice from one spec."""
 
+import itertools
+
 import numpy as np
 import pytest
 
@@ -202,3 +204,35 @@ def test_the_growing_window_follows_a_packet_on_the_square_kg_lattice(boundary, 
     assert len(windowed.spans) > 1 and hi_x < 61 and 0 < lo_y and hi_y < 61 and (lo_x > 0) == (site[0] > 2)
     assert np.abs(windowed.q - whole.q).max() < 1e-6 and np.abs(windowed.p - whole.p).max() < 1e-6
     assert np.abs(windowed.log_growth - whole.log_growth).max() < 1e-6
+
+
+@pytest.mark.parametrize("boundary", [("fixed", "fixed"), ("fixed", "free"), ("free", "fixed"), ("free", "free")])
+def test_every_window_bond_is_the_lattice_s_bond_between_the_same_sites(boundary):
+    """Geometry.window_bonds against the lattice's own list of bonds: each bond of a window (walls
+    on every side) is the lattice's bond along the same axis between the same two sites (a wall
+    stands for the site across the window's edge, or for the lattice's own wall), -1 where the
+    lattice has none; every rectangle of a 7 x 5 lattice."""
+    geometry = Geometry((7, 5), boundary)
+    nx, ny = geometry.shape2
+    ends = geometry.bonds()
+    first_axis = ny * (nx + 1 if geometry.fixed[0] else nx - 1)
+    lookup = {(k >= first_axis, int(a), int(b)): k for k, (a, b) in enumerate(ends)}
+    for lo_x, hi_x, lo_y, hi_y in itertools.product(range(7), range(1, 8), range(5), range(1, 6)):
+        if hi_x <= lo_x or hi_y <= lo_y or (hi_x - lo_x) * (hi_y - lo_y) < 2:
+            continue
+        wx = hi_x - lo_x
+        window = Geometry((wx, hi_y - lo_y))
+        window_first_axis = (hi_y - lo_y) * (wx + 1)
+
+        def full(site, step, other):
+            if site >= 0:
+                return (lo_y + site // wx) * nx + lo_x + site % wx
+            i, j = lo_x + other % wx + step[0], lo_y + other // wx + step[1]
+            return j * nx + i if 0 <= i < nx and 0 <= j < ny else -1
+
+        expected = []
+        for k, (a, b) in enumerate(window.bonds()):
+            step = (1, 0) if k < window_first_axis else (0, 1)
+            pair = (full(a, (-step[0], -step[1]), b), full(b, step, a))
+            expected.append(lookup.get((k >= window_first_axis, *pair), -1))
+        np.testing.assert_array_equal(geometry.window_bonds((lo_x, hi_x, lo_y, hi_y)), expected)

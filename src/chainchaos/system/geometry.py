@@ -159,25 +159,25 @@ class Geometry:
         """
         lo_x, hi_x, lo_y, hi_y = span
         nx, ny = self.shape2
-        window = Geometry((hi_x - lo_x, hi_y - lo_y))
-        index = {(int(a), int(b)): k for k, (a, b) in enumerate(self.bonds())}
-        wx = hi_x - lo_x
-        along = window.shape2[1] * (wx + 1)  # the window's bonds along the first axis come first
+        fixed_x, fixed_y = self.fixed
+        per_line, per_column = (nx + 1 if fixed_x else nx - 1), (ny + 1 if fixed_y else ny - 1)
 
-        def full(site, i_step, j_step, other):
-            """The full lattice's number of a window site, or of the site beyond the wall next to
-            ``other`` (-1: this lattice's own wall)."""
-            if site >= 0:
-                return (lo_y + site // wx) * nx + lo_x + site % wx
-            i, j = lo_x + other % wx + i_step, lo_y + other // wx + j_step
-            return j * nx + i if 0 <= i < nx and 0 <= j < ny else -1
+        def before(position, length, fixed):
+            """The index along its line of the bond before ``position`` (0..length; length: after
+            the last site), -1 where the line has none."""
+            if fixed:
+                return position
+            return np.where((position >= 1) & (position <= length - 1), position - 1, -1)
 
-        out = []
-        for k, (a, b) in enumerate(window.bonds()):
-            i_step, j_step = (1, 0) if k < along else (0, 1)
-            pair = (full(a, -i_step, -j_step, b), full(b, i_step, j_step, a))
-            out.append(index.get(pair, -1))
-        return np.array(out, dtype=np.int64)
+        # the window's bonds along the first axis, line by line, each with its two walls ...
+        i, j = np.meshgrid(np.arange(lo_x, hi_x + 1), np.arange(lo_y, hi_y), indexing="xy")
+        k = before(i, nx, fixed_x)
+        along = np.where(k >= 0, j * per_line + k, -1)
+        # ... then along the second, column by column
+        i, j = np.meshgrid(np.arange(lo_x, hi_x), np.arange(lo_y, hi_y + 1), indexing="ij")
+        k = before(j, ny, fixed_y)
+        across = np.where(k >= 0, ny * per_line + i * per_column + k, -1)
+        return np.concatenate([along.ravel(), across.ravel()]).astype(np.int64)
 
     def as_attrs(self) -> dict:
         """The geometry as NetCDF attributes (``lattice_shape``, ``lattice_boundary``)."""
