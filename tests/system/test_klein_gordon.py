@@ -315,3 +315,20 @@ def test_simulate_runs_the_kg_lattice_and_records_its_disorder_strength():
     P = ds["participation"].values
     assert np.all((P >= 1.0) & (P <= 64.0))
     assert ds.attrs["max_energy_error"] < 1e-6
+
+
+@pytest.mark.parametrize("model", ["kg", "kg_linear"])
+def test_the_right_hand_side_is_hamilton_s_equations(model):
+    """``engine.rhs`` (scipy's integrators and the kernels' warm-up run it) of a model with a site
+    law: u' = p / m and p' = -dH/du, against central differences of the Hamiltonian."""
+    from chainchaos.engine.rhs import rhs
+
+    lattice = kg_chain(2, 4.0, 12)
+    rng = np.random.default_rng(6)
+    u, p = 0.3 * rng.normal(size=12), 0.3 * rng.normal(size=12)
+    out = rhs(model, lattice)(0.0, np.concatenate([u, p]))
+    np.testing.assert_array_equal(out[:12], p / lattice.mass)
+    h = 1e-5
+    gradient = [(total_energy(model, lattice, u + h * e, p) - total_energy(model, lattice, u - h * e, p)) / (2 * h)
+                for e in np.eye(12)]
+    np.testing.assert_allclose(out[12:], -np.array(gradient), rtol=0, atol=1e-8)

@@ -16,14 +16,6 @@ from chainchaos.system.models.base import check_sites, site_kick, site_kick_devi
 
 
 @njit(cache=True)
-def _site(model, sites, n):
-    """Site n's parameters, or a placeholder (never read) without a site law."""
-    if sites is None:
-        return ()
-    return site_values(model, sites, n)
-
-
-@njit(cache=True)
 def rhs_kernel(y, out, model, inv_mass, bonds, tangent, f, k, sites=None):
     """Fill ``out`` with dy/dt at state ``y`` (length 2N, or 4N when ``tangent``).
 
@@ -38,7 +30,7 @@ def rhs_kernel(y, out, model, inv_mass, bonds, tangent, f, k, sites=None):
     bond_forces(model, u, bonds, f, k, tangent)
     for n in range(N):
         out[n] = inv_mass[n] * y[N + n]
-        out[N + n] = site_kick(model, _site(model, sites, n), u[n], f[n] - f[n + 1])
+        out[N + n] = site_kick(model, site_values(model, sites, n), u[n], f[n] - f[n + 1])
     if tangent:
         for n in range(N):
             out[2 * N + n] = inv_mass[n] * y[3 * N + n]
@@ -48,7 +40,8 @@ def rhs_kernel(y, out, model, inv_mass, bonds, tangent, f, k, sites=None):
                 g_next = k[n + 1] * (y[2 * N + n] - y[2 * N + n + 1])
             else:
                 g_next = k[N] * y[2 * N + N - 1]
-            out[3 * N + n] = site_kick_deviation(model, _site(model, sites, n), u[n], y[2 * N + n], g_prev - g_next)
+            site = site_values(model, sites, n)
+            out[3 * N + n] = site_kick_deviation(model, site, u[n], y[2 * N + n], g_prev - g_next)
             g_prev = g_next
 
 

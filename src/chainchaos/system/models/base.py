@@ -335,6 +335,12 @@ def _value(A, r, at, stride):
 
 
 @njit(cache=True)
+def _zero(A, r, at, stride):
+    """0.0: the parameters read from no array (``None``, a model without that law's arrays)."""
+    return 0.0
+
+
+@njit(cache=True)
 def _vector(A, r, at, stride):
     """The SIMD vector of a flat array at ``at + r stride``."""
     return vload(A, at + r * stride)
@@ -391,8 +397,9 @@ def site_values(model, A, n):
     ----------
     model : Model or SplitModel
         The model, whose Numba type gives the length of the tuple at compile time.
-    A : numpy.ndarray of shape (parameters, N)
-        The site parameters (``Model.site_parameters``).
+    A : numpy.ndarray of shape (parameters, N), or None
+        The site parameters (``Model.site_parameters``); None gives zeros (a caller that
+        passes none for a model without a site law, whose kernels never read them).
     n : int
         The site.
 
@@ -455,7 +462,8 @@ def _dispatch_values(stub, kind: str):
     @overload(stub)
     def _select(model, A, n):
         if isinstance(model, ModelType):
-            take = _gather(_parameter_count(model, kind), _value)
+            load = _zero if isinstance(A, (types.NoneType, types.Omitted)) else _value
+            take = _gather(_parameter_count(model, kind), load)
             return lambda model, A, n: take(A, n, 0)
 
 
