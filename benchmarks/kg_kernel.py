@@ -23,9 +23,11 @@ Four tables, after a line naming the machine:
    the whole chain and on the growing window (``chainchaos.run.window``), with the window's final
    width: the windowed cost follows the packet's width, the whole chain's N.
 4. **The square lattice.** The L x L lattice ``kg_lattice(0, W, (L, L))`` (``engine.lattice``:
-   single loop and SIMD blocks) beside the chain of L^2 sites (``integrators`` and ``batch``), from
-   the same random state, with the tangent map: ns per site and step per trajectory, and per bond
-   (a square lattice has about two bonds per site, a chain one).
+   single loop and SIMD blocks, and a hand-written C loop of the same scheme,
+   ``benchmarks/c_reference/kg_square.c``) beside the chain of L^2 sites (``integrators`` and
+   ``batch``), from the same random state, with the tangent map: ns per site and step per
+   trajectory, and per bond (a square lattice has about two bonds per site, a chain one); the C
+   loop's final state after ``--check-steps`` steps against the single loop's.
 """
 
 import argparse
@@ -36,16 +38,18 @@ import time
 from pathlib import Path
 
 import numpy as np
-from c_loops import compile_c, engine_runner, per_site, run_c
+from c_loops import compile_c, difference, engine_runner, per_site, run_c
 from kernel_vs_c import CFLAGS, HERE
 
 from chainchaos.engine.integrators import get_scheme
+from chainchaos.engine.lattice import line_bonds
 from chainchaos.engine.problem import Problem
 from chainchaos.kernels.simd import LANES
 from chainchaos.records.provenance import machine_line
 from chainchaos.system.chain import kg_chain, kg_lattice
 
 SOURCE = HERE / "c_reference" / "kg_chain.c"
+SQUARE_SOURCE = HERE / "c_reference" / "kg_square.c"
 DT, W, CHECK_EVERY = 0.4, 4.0, 1000
 
 
@@ -143,12 +147,30 @@ def spreading(args, exe=None) -> list[dict]:
     return rows
 
 
+def square_c_run(args, exe: Path):
+    """The square lattice's C loop: (ns per site and step, final state)."""
+    scheme = get_scheme(args.integrator)
+
+    def run(L: int, steps: int):
+        lattice = kg_lattice(0, W, (L, L))
+        px, py = line_bonds(lattice.geometry, Problem("kg", [lattice]).model.bond_parameters(lattice))
+        q, p, dq, dp = (a[:, 0] for a in start(L * L, 1))
+        ns, final = run_c(exe, f"kg_square_input_{L}", {
+            "nx": L, "ny": L, "steps": steps, "tangent": 1, "check_every": CHECK_EVERY, "repeats": args.repeats,
+            "dt": DT, "stages": len(scheme.drifts), "kicks": scheme.kicks, "drifts": scheme.drifts,
+            "KX": px[0], "KY": py[0], "eps": lattice.eps, "q": q, "p": p, "dq": dq, "dp": dp})
+        return ns / (L * L), final
+    return run
+
+
 def square(args, exe=None) -> list[dict]:
     rows = []
+    c_loop = square_c_run(args, compile_c(SQUARE_SOURCE))
     print(f"\nThe square lattice beside the chain of as many sites ({args.integrator}, dt = {DT}, tangent map): "
-          "ns per site and step per trajectory (per bond in brackets)\n")
-    print("| L | sites | lattice single | lattice batch | chain single | chain batch | lattice / chain, batch |")
-    print("|---:|---:|---:|---:|---:|---:|---:|")
+          "ns per site and step per trajectory (per bond in brackets), and the square lattice's C loop\n")
+    print("| L | sites | lattice single | lattice batch | chain single | chain batch | lattice / chain, batch | "
+          "lattice C | lattice batch / C | C vs single: rel. diff. |")
+    print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for L in args.square:
         N = L * L
         steps = max(20, int(args.sites_steps / N))
@@ -157,14 +179,20 @@ def square(args, exe=None) -> list[dict]:
             run = engine_runner("kg", lattice, start, args.integrator, DT, CHECK_EVERY, args.repeats, LANES)
             for kind in ("single", "batch"):
                 ns[shape, kind] = run(N, kind, steps if kind == "single" else max(4, steps // LANES), True)[0]
+        c, _ = c_loop(L, steps)
+        lattice_run = engine_runner("kg", lambda n: kg_lattice(0, W, (L, L)), start, args.integrator, DT, CHECK_EVERY,
+                                    1, LANES)
+        diff = difference(lattice_run(N, "single", args.check_steps, True)[1], c_loop(L, args.check_steps)[1], True)
         bonds = {"lattice": kg_lattice(0, W, (L, L)).geometry.n_bonds, "chain": N + 1}
         row = {"L": L, "sites": N, **{f"{shape}_{kind}_ns": round(v, 2) for (shape, kind), v in ns.items()},
                **{f"{shape}_{kind}_ns_per_bond": round(v * N / bonds[shape], 2) for (shape, kind), v in ns.items()},
-               "ratio_batch": round(ns["lattice", "batch"] / ns["chain", "batch"], 2)}
+               "ratio_batch": round(ns["lattice", "batch"] / ns["chain", "batch"], 2), "lattice_c_ns": round(c, 2),
+               "lattice_batch_over_c": round(ns["lattice", "batch"] / c, 2), "difference": float(f"{diff:.1e}")}
         rows.append(row)
         cell = {k: f"{v:.1f} ({v * N / bonds[k[0]]:.1f})" for k, v in ns.items()}
         print(f"| {L} | {N} | {cell['lattice', 'single']} | {cell['lattice', 'batch']} | {cell['chain', 'single']} | "
-              f"{cell['chain', 'batch']} | {row['ratio_batch']:.2f} |", flush=True)
+              f"{cell['chain', 'batch']} | {row['ratio_batch']:.2f} | {c:.1f} | {row['lattice_batch_over_c']:.2f} | "
+              f"{diff:.1e} |", flush=True)
     return rows
 
 
