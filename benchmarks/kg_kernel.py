@@ -47,6 +47,7 @@ from chainchaos.engine.problem import Problem
 from chainchaos.kernels.simd import LANES
 from chainchaos.records.provenance import machine_line
 from chainchaos.system.chain import kg_chain, kg_lattice
+from chainchaos.system.models import MODELS
 
 SOURCE = HERE / "c_reference" / "kg_chain.c"
 SQUARE_SOURCE = HERE / "c_reference" / "kg_square.c"
@@ -153,7 +154,7 @@ def square_c_run(args, exe: Path):
 
     def run(L: int, steps: int):
         lattice = kg_lattice(0, W, (L, L))
-        px, py = line_bonds(lattice.geometry, Problem("kg", [lattice]).model.bond_parameters(lattice))
+        px, py = line_bonds(lattice.geometry, MODELS["kg"].bond_parameters(lattice))
         q, p, dq, dp = (a[:, 0] for a in start(L * L, 1))
         ns, final = run_c(exe, f"kg_square_input_{L}", {
             "nx": L, "ny": L, "steps": steps, "tangent": 1, "check_every": CHECK_EVERY, "repeats": args.repeats,

@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from chainchaos.errors import require
-from chainchaos.system.models import bond_potentials, lattice_bond_potentials, site_potentials
+from chainchaos.system.models import add_bond_halves, bond_potentials, lattice_bond_potentials, site_potentials
 
 
 @dataclass(frozen=True)
@@ -117,10 +117,9 @@ def site_weights(problem, q, p, dq, dp) -> tuple[np.ndarray, np.ndarray]:
         if ends is None:
             bond_potentials(problem.model, qj, Pj, V)
             H[:, j] += 0.5 * (V[:-1] + V[1:])
-        else:  # each bond's half to each of its sites (a wall has none), as models.energy_density
+        else:  # each bond's half to each of its sites, as models.energy_density
             lattice_bond_potentials(problem.model, qj, Pj, ends, V)
-            for sites in ends.T:
-                np.add.at(H[:, j], sites[sites >= 0], 0.5 * V[sites >= 0])
+            add_bond_halves(H[:, j], V, ends)
         if problem.model.has_site_law:
             site_potentials(problem.model, qj, problem.lane_sites(j), W)
             H[:, j] += W

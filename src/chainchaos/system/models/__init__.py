@@ -300,15 +300,29 @@ def energy_density(model, chain, u: np.ndarray, p: np.ndarray) -> np.ndarray:
     V = bond_potential_energy(model, chain, u)
     if chain.geometry.dimension == 1:
         H = p**2 / (2.0 * chain.mass) + 0.5 * (V[..., :-1] + V[..., 1:])
-    else:  # each bond's half to each of its sites (a wall has none)
+    else:
         H = p**2 / (2.0 * chain.mass)
-        bonds = chain.geometry.bonds()
-        for sites in bonds.T:  # the bonds' first sites, then their second
-            np.add.at(np.moveaxis(H, -1, 0), sites[sites >= 0], np.moveaxis(0.5 * V[..., sites >= 0], -1, 0))
+        add_bond_halves(H, V, chain.geometry.bonds())
     W = site_potential_energy(model, chain, u)
     if W is not None:
         H = H + W
     return H / H.sum(axis=-1, keepdims=True)
+
+
+def add_bond_halves(H: np.ndarray, V: np.ndarray, ends: np.ndarray) -> None:
+    """Add half of each bond's potential to each of its two sites (a wall takes none), in place.
+
+    Parameters
+    ----------
+    H : numpy.ndarray of shape (..., N)
+        Energies per site, the site on the last axis (a view is written through).
+    V : numpy.ndarray of shape (..., B)
+        The potential of every bond, in the order of ``ends``.
+    ends : numpy.ndarray of shape (B, 2)
+        Each bond's two site numbers, -1 for a wall (``Geometry.bonds``).
+    """
+    for sites in ends.T:  # the bonds' first sites, then their second
+        np.add.at(np.moveaxis(H, -1, 0), sites[sites >= 0], np.moveaxis(0.5 * V[..., sites >= 0], -1, 0))
 
 
 def open_bonds(model, chain, u: np.ndarray) -> np.ndarray:
@@ -340,6 +354,6 @@ def open_bonds(model, chain, u: np.ndarray) -> np.ndarray:
 
 
 __all__ = ["BEAD_MODELS", "BOND_MODELS", "MODELS", "PACKAGE_MODELS", "Model", "SiteLaw",
-           "add_to_registry", "bond_forces", "require_free_name",
+           "add_bond_halves", "add_to_registry", "bond_forces", "require_free_name",
            "bond_potential_energy", "bond_potentials", "energy_density", "energy_kernel", "get_model", "model_label",
            "open_bonds", "site_potential_energy", "site_potentials", "total_energy"]

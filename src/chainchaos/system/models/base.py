@@ -56,21 +56,32 @@ from chainchaos.kernels.simd import vload
 _BY_IDENTITY: dict[str, "Model"] = {}
 
 
-def parameter_array(rows, n: int) -> np.ndarray:
-    """The engines' parameter array of a model's bonds or sites: one row per parameter.
+def parameter_array(rows, names, n: int, what: str) -> np.ndarray:
+    """The engines' parameter array of a model's bonds or sites: one row per parameter name.
 
     Parameters
     ----------
     rows : sequence of numpy.ndarray or float
-        The model's parameters, one row of n values (or one value for all) each.
+        What the model's ``parameters(lattice)`` returned: one row of n values (or one value for
+        all) per name.
+    names : tuple of str
+        The parameters' names, one per row.
     n : int
         The number of bonds or sites.
+    what : str
+        Who returned ``rows``, for the error (e.g. ``"model 'kg': site.parameters(lattice)"``).
 
     Returns
     -------
-    numpy.ndarray of shape (len(rows), n)
+    numpy.ndarray of shape (len(names), n)
         Row i is ``rows[i]``, as float64, C-contiguous.
+
+    Raises
+    ------
+    ParameterError
+        Where ``rows`` has another length than ``names``.
     """
+    require(len(rows) == len(names), what, f"{len(rows)} rows", f"one row per parameter name, {list(names)}")
     out = np.zeros((len(rows), n))
     for i, row in enumerate(rows):
         out[i] = row
@@ -239,10 +250,8 @@ class Model:
             Row i the parameter ``parameter_names[i]`` of every bond, in the units the model's
             law reads them.
         """
-        rows = self.parameters(chain)
-        require(len(rows) == self.bond_parameter_count, f"model {self.name!r}: parameters(lattice)",
-                f"{len(rows)} rows", f"one row per parameter name, {list(self.parameter_names)}")
-        return parameter_array(rows, chain.geometry.n_bonds)
+        return parameter_array(self.parameters(chain), self.parameter_names, chain.geometry.n_bonds,
+                               f"model {self.name!r}: parameters(lattice)")
 
     def site_parameters(self, chain) -> np.ndarray | None:
         """The engines' site parameter array (parameters, N): one row per site parameter name;
@@ -261,10 +270,8 @@ class Model:
         """
         if self.site is None:
             return None
-        rows = self.site.parameters(chain)
-        require(len(rows) == self.site_parameter_count, f"model {self.name!r}: site.parameters(lattice)",
-                f"{len(rows)} rows", f"one row per site parameter name, {list(self.site.parameter_names)}")
-        return parameter_array(rows, chain.N)
+        return parameter_array(self.site.parameters(chain), self.site.parameter_names, chain.N,
+                               f"model {self.name!r}: site.parameters(lattice)")
 
     def __repr__(self) -> str:
         return f"Model({self.name})"
@@ -335,12 +342,6 @@ def _value(A, r, at, stride):
 
 
 @njit(cache=True)
-def _zero(A, r, at, stride):
-    """0.0: the parameters read from no array (``None``, a model without that law's arrays)."""
-    return 0.0
-
-
-@njit(cache=True)
 def _vector(A, r, at, stride):
     """The SIMD vector of a flat array at ``at + r stride``."""
     return vload(A, at + r * stride)
@@ -398,8 +399,8 @@ def site_values(model, A, n):
     model : Model or SplitModel
         The model, whose Numba type gives the length of the tuple at compile time.
     A : numpy.ndarray of shape (parameters, N), or None
-        The site parameters (``Model.site_parameters``); None gives zeros (a caller that
-        passes none for a model without a site law, whose kernels never read them).
+        The site parameters (``Model.site_parameters``); None for a model without a site law
+        (its tuple is empty: nothing is read).
     n : int
         The site.
 
@@ -462,8 +463,7 @@ def _dispatch_values(stub, kind: str):
     @overload(stub)
     def _select(model, A, n):
         if isinstance(model, ModelType):
-            load = _zero if isinstance(A, (types.NoneType, types.Omitted)) else _value
-            take = _gather(_parameter_count(model, kind), load)
+            take = _gather(_parameter_count(model, kind), _value)
             return lambda model, A, n: take(A, n, 0)
 
 

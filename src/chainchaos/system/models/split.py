@@ -126,10 +126,8 @@ class SplitModel:
         numpy.ndarray of shape (len(parameter_names), N)
             Row i the parameter ``parameter_names[i]`` of every site.
         """
-        rows = self.parameters(lattice)
-        require(len(rows) == self.site_parameter_count, f"model {self.name!r}: parameters(lattice)",
-                f"{len(rows)} rows", f"one row per parameter name, {list(self.parameter_names)}")
-        return parameter_array(rows, lattice.N)
+        return parameter_array(self.parameters(lattice), self.parameter_names, lattice.N,
+                               f"model {self.name!r}: parameters(lattice)")
 
     def __repr__(self) -> str:
         return f"SplitModel({self.name})"
